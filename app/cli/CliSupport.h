@@ -1,0 +1,27 @@
+#pragma once
+// Shared plumbing of driftlab-cli commands: database location, JSON output, progress.
+
+#include <QJsonDocument>
+#include <QString>
+
+class QCommandLineParser;
+class QCommandLineOption;
+
+namespace driftlab {
+
+class CliSupport {
+public:
+    // driftlab.sqlite in the user's data directory (created if needed).
+    static QString defaultDatabasePath();
+    // The --db value, else `fallback` (a positional argument), else the default path.
+    // With mustExist, a missing file is a UsageError naming it.
+    static QString databasePath(const QString &option, const QString &fallback, bool mustExist);
+    // Writes JSON to a file or, for "-", to standard output. Throws std::runtime_error.
+    static void writeJson(const QJsonDocument &doc, const QString &target);
+    // Writes a progress line to standard error.
+    static void progress(const QString &line);
+    // Parses "SECONDS" or "H:MM:SS" (also "MM:SS"). Throws UsageError naming `option`.
+    static double parseDuration(const QString &text, const QString &option);
+};
+
+} // namespace driftlab

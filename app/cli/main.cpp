@@ -1,0 +1,77 @@
+// driftlab-cli: the headless face of DriftLab.
+
+#include "AnalyseCommand.h"
+#include "InfoCommand.h"
+#include "RecordCommand.h"
+
+#include <QCoreApplication>
+#include <QTextStream>
+
+#include <exception>
+#include <memory>
+#include <vector>
+
+using namespace driftlab;
+
+namespace {
+
+std::vector<std::unique_ptr<CliCommand>> commands()
+{
+    std::vector<std::unique_ptr<CliCommand>> list;
+    list.push_back(std::make_unique<RecordCommand>());
+    list.push_back(std::make_unique<InfoCommand>());
+    list.push_back(std::make_unique<AnalyseCommand>());
+    return list;
+}
+
+void usage(QTextStream &out, const std::vector<std::unique_ptr<CliCommand>> &list)
+{
+    out << "Usage: driftlab-cli COMMAND [options]\n"
+           "       driftlab-cli COMMAND --help\n\nCommands:\n";
+    for (const auto &c : list)
+        out << "  " << c->name().leftJustified(10) << c->summary().section(QLatin1Char('\n'), 0, 0) << '\n';
+    out << "\nExit codes: 0 done, 1 failed, 2 bad usage or bad input.\n";
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    QCoreApplication app(argc, argv);
+    QCoreApplication::setApplicationName(QStringLiteral("DriftLab"));
+    QCoreApplication::setApplicationVersion(QStringLiteral(DRIFTLAB_VERSION));
+    QTextStream err(stderr);
+    QTextStream out(stdout);
+    const auto list = commands();
+    QStringList args = QCoreApplication::arguments();
+    args.removeFirst();
+    if (args.isEmpty()) {
+        usage(err, list);
+        return 2;
+    }
+    const QString name = args.takeFirst();
+    if (name == QLatin1String("--help") || name == QLatin1String("-h") || name == QLatin1String("help")) {
+        usage(out, list);
+        return 0;
+    }
+    if (name == QLatin1String("--version")) {
+        out << "driftlab-cli " << DRIFTLAB_VERSION << '\n';
+        return 0;
+    }
+    for (const auto &c : list) {
+        if (c->name() != name && !(name == QLatin1String("analyze") && c->name() == QLatin1String("analyse")))
+            continue;
+        try {
+            return c->run(args);
+        } catch (const UsageError &e) {
+            err << "driftlab-cli: " << e.what() << '\n';
+            return 2;
+        } catch (const std::exception &e) {
+            err << "driftlab-cli " << name << ": " << e.what() << '\n';
+            return 1;
+        }
+    }
+    err << "driftlab-cli: unknown command '" << name << "'\n\n";
+    usage(err, list);
+    return 2;
+}

@@ -1,0 +1,105 @@
+#include "SessionAnalysis.h"
+
+#include "SessionStore.h"
+
+#include <stdexcept>
+
+namespace driftlab {
+
+SessionAnalysis::SessionAnalysis(const SessionStore &store, qint64 sessionId)
+    : m_store(store), m_sessionId(sessionId), m_info(store.session(sessionId)), m_channels(store.channels(sessionId))
+{
+}
+
+ScrewGeometry SessionAnalysis::geometry() const
+{
+    ScrewGeometry g;
+    const QJsonObject screw = m_info.machine.value(QStringLiteral("screw")).toObject();
+    auto read = [&](const char *key, double &target) {
+        const QJsonValue v = screw.value(QLatin1String(key));
+        if (v.isDouble())
+            target = v.toDouble();
+    };
+    read("length_m", g.length_m);
+    read("diameter_m", g.diameter_m);
+    read("nut_length_m", g.nutLength_m);
+    read("fixed_bearing_length_m", g.fixedBearingLength_m);
+    read("density_kg_m3", g.density_kg_m3);
+    read("specific_heat_J_kgK", g.specificHeat_J_kgK);
+    read("expansion_per_K", g.expansion_per_K);
+    return g;
+}
+
+FdmParameters SessionAnalysis::defaultParameters() const
+{
+    FdmParameters p;
+    const QJsonValue pf = m_info.machine.value(QStringLiteral("fixed_end_position_mm"));
+    if (pf.isDouble())
+        p.fixedEndPosition_mm = pf.toDouble();
+    const QJsonValue lambda = m_info.machine.value(QStringLiteral("screw")).toObject().value(QStringLiteral("conductivity_W_mK"));
+    if (lambda.isDouble())
+        p.conductivity_W_mK = lambda.toDouble();
+    return p;
+}
+
+TimeSeries SessionAnalysis::channelByRole(const QString &role) const
+{
+    for (const ChannelInfo &c : m_channels) {
+        if (c.role == role) {
+            const SampleBlock b = m_store.samples(c.id);
+            TimeSeries s;
+            s.t.assign(b.t.begin(), b.t.end());
+            s.v.assign(b.v.begin(), b.v.end());
+            return s;
+        }
+    }
+    throw std::runtime_error(QStringLiteral("session %1 has no channel with role '%2'")
+                                 .arg(m_sessionId)
+                                 .arg(role)
+                                 .toStdString());
+}
+
+ScrewDrive SessionAnalysis::drive() const
+{
+    ScrewDrive d;
+    d.position_mm = channelByRole(QStringLiteral("axis_position"));
+    d.feed_mm_min = channelByRole(QStringLiteral("feed_rate"));
+    d.ambient_C = channelByRole(QStringLiteral("ambient"));
+    return d;
+}
+
+ElongationCheck SessionAnalysis::checkElongation(const FdmParameters &parameters) const
+{
+    ElongationCheck check;
+    check.parameters = parameters;
+    check.geometry = geometry();
+    const ScrewDrive d = drive();
+    const TimeSeries probe = channelByRole(QStringLiteral("screw_elongation"));
+    FdmSimulation sim(check.geometry, parameters);
+    check.comparison = sim.compareElongation(d, probe);
+    check.duration_s = probe.empty() ? 0.0 : probe.t.back() - probe.t.front();
+    return check;
+}
+
+QJsonObject SessionAnalysis::toJson(const ElongationCheck &check)
+{
+    const FdmParameters &p = check.parameters;
+    return QJsonObject{
+        {QStringLiteral("model"), QStringLiteral("fdm-seed000")},
+        {QStringLiteral("parameters"),
+         QJsonObject{{QStringLiteral("k1"), p.k1},
+                     {QStringLiteral("k2"), p.k2},
+                     {QStringLiteral("k3"), p.k3},
+                     {QStringLiteral("k4"), p.k4},
+                     {QStringLiteral("lambda_W_mK"), p.conductivity_W_mK},
+                     {QStringLiteral("fixed_end_position_mm"), p.fixedEndPosition_mm}}},
+        {QStringLiteral("samples"), static_cast<double>(check.comparison.samples)},
+        {QStringLiteral("duration_s"), check.duration_s},
+        {QStringLiteral("elongation_rms_error_um"), check.comparison.rms_um},
+        {QStringLiteral("elongation_max_error_um"), check.comparison.maxAbsError_um},
+        {QStringLiteral("measured_peak_um"), check.comparison.measuredPeak_um},
+        {QStringLiteral("predicted_peak_um"), check.comparison.predictedPeak_um},
+    };
+}
+
+} // namespace driftlab

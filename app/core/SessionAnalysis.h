@@ -1,0 +1,46 @@
+#pragma once
+// Bridges a stored session to analysis/: reads the channels the seed-000 model needs
+// by their role (axis_position, feed_rate, ambient, screw_elongation) and the screw
+// description from the session's machine block, and runs the model against them.
+
+#include "FdmSimulation.h"
+#include "StorageTypes.h"
+
+#include <QJsonObject>
+#include <QString>
+
+namespace driftlab {
+
+class SessionStore;
+
+struct ElongationCheck {
+    ElongationComparison comparison;
+    FdmParameters parameters;
+    ScrewGeometry geometry;
+    double duration_s = 0.0;
+};
+
+class SessionAnalysis {
+public:
+    SessionAnalysis(const SessionStore &store, qint64 sessionId);
+
+    // Screw geometry from the machine block (missing keys keep the Table-1 defaults).
+    ScrewGeometry geometry() const;
+    // Model parameters: Table 3 (X) with P_f from the machine block when present.
+    FdmParameters defaultParameters() const;
+    // Throws std::runtime_error naming the missing role if a needed channel is absent.
+    ScrewDrive drive() const;
+    TimeSeries channelByRole(const QString &role) const;
+
+    // Runs the model with `parameters` over the session and compares with the probe.
+    ElongationCheck checkElongation(const FdmParameters &parameters) const;
+    static QJsonObject toJson(const ElongationCheck &check);
+
+private:
+    const SessionStore &m_store;
+    qint64 m_sessionId;
+    SessionInfo m_info;
+    QVector<ChannelInfo> m_channels;
+};
+
+} // namespace driftlab

@@ -1,0 +1,78 @@
+// driftlab: the DriftLab desktop application.
+
+#include "MainWindow.h"
+
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QDir>
+#include <QFileInfo>
+#include <QPixmap>
+#include <QStandardPaths>
+#include <QTextStream>
+#include <QTimer>
+
+using namespace driftlab;
+
+int main(int argc, char **argv)
+{
+    QApplication app(argc, argv);
+    QApplication::setApplicationName(QStringLiteral("DriftLab"));
+    QApplication::setApplicationVersion(QStringLiteral(DRIFTLAB_VERSION));
+
+    QCommandLineParser p;
+    p.setApplicationDescription(QStringLiteral("DriftLab: record, review and model machine-tool thermal errors."));
+    p.addHelpOption();
+    p.addVersionOption();
+    const QCommandLineOption db(QStringLiteral("db"),
+                                QStringLiteral("Session database to open (default: driftlab.sqlite in the user's data directory)."),
+                                QStringLiteral("file"));
+    const QCommandLineOption session(QStringLiteral("session"), QStringLiteral("Session id to show."), QStringLiteral("id"));
+    const QCommandLineOption screenshot(QStringLiteral("screenshot"),
+                                        QStringLiteral("Render the main window to a PNG and exit (works headless with "
+                                                       "QT_QPA_PLATFORM=offscreen)."),
+                                        QStringLiteral("png"));
+    p.addOptions({db, session, screenshot});
+    p.process(app);
+
+    QTextStream err(stderr);
+    QString path = p.value(db);
+    if (path.isEmpty())
+        path = QDir(QStandardPaths::writableLocation(QStandardPaths::AppDataLocation)).filePath(QStringLiteral("driftlab.sqlite"));
+
+    MainWindow window;
+    if (QFileInfo::exists(path)) {
+        if (!window.openDatabase(path)) {
+            err << "driftlab: " << window.lastError() << '\n';
+            if (p.isSet(screenshot))
+                return 2;
+        }
+    } else if (p.isSet(db)) {
+        err << "driftlab: database " << path << " does not exist\n";
+        return 2;
+    }
+    if (p.isSet(session)) {
+        bool ok = false;
+        const qint64 id = p.value(session).toLongLong(&ok);
+        if (!ok) {
+            err << "driftlab: --session must be a session id, got '" << p.value(session) << "'\n";
+            return 2;
+        }
+        window.showSession(id);
+    }
+    window.show();
+
+    if (p.isSet(screenshot)) {
+        const QString png = p.value(screenshot);
+        QTimer::singleShot(200, &window, [&window, png, &err] {
+            const QPixmap pixmap = window.grab();
+            if (!pixmap.save(png, "PNG")) {
+                err << "driftlab: cannot write screenshot " << png << '\n';
+                QApplication::exit(1);
+                return;
+            }
+            err << "driftlab: screenshot written to " << QFileInfo(png).absoluteFilePath() << '\n';
+            QApplication::exit(0);
+        });
+    }
+    return app.exec();
+}

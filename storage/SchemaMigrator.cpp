@@ -1,0 +1,127 @@
+#include "SchemaMigrator.h"
+
+#include "StorageError.h"
+
+#include <QSqlError>
+#include <QSqlQuery>
+#include <QStringList>
+#include <QVariant>
+
+namespace driftlab {
+
+namespace {
+
+// Migration k brings the schema from version k to k+1. Never edit a released entry: append.
+const QStringList &migrations()
+{
+    static const QStringList list = {
+        // 0 -> 1: sessions, channels, samples (narrow table), events, analysis results.
+        QStringLiteral(R"(
+CREATE TABLE sessions (
+  id INTEGER PRIMARY KEY,
+  name TEXT NOT NULL,
+  started TEXT NOT NULL,
+  operator TEXT NOT NULL DEFAULT '',
+  notes TEXT NOT NULL DEFAULT '',
+  machine_json TEXT NOT NULL DEFAULT '{}',
+  complete INTEGER NOT NULL DEFAULT 0,
+  created TEXT NOT NULL DEFAULT (strftime('%Y-%m-%dT%H:%M:%SZ','now'))
+);
+CREATE TABLE channels (
+  id INTEGER PRIMARY KEY,
+  session_id INTEGER NOT NULL REFERENCES sessions(id) ON DELETE CASCADE,
+  key TEXT NOT NULL,
+  kind TEXT NOT NULL,
+  sensor TEXT NOT NULL DEFAULT '',
+  unit TEXT NOT NULL DEFAULT '',
+  location TEXT NOT NULL DEFAULT '',
+  role TEXT NOT NULL DEFAULT '',
+  screw_position_m REAL,
+  UNIQUE(session_id, key)
+);
+CREATE TABLE samples (
+  channel_id INTEGER NOT NULL REFERENCES channels(id) ON DELETE CASCADE,
+  t REAL NOT NULL,
+  value REAL NOT NULL
+);
+CREATE INDEX samples_channel_time ON samples(channel_id, t);
+CREATE TABLE events (
+  id INTEGER PRIMARY KEY,
+  session_id INTEGER NOT NULL REFERENCES sessions(id) ON DELETE CASCADE,
+  t REAL NOT NULL,
+  label TEXT NOT NULL
+);
+CREATE TABLE analysis_results (
+  id INTEGER PRIMARY KEY,
+  session_id INTEGER NOT NULL REFERENCES sessions(id) ON DELETE CASCADE,
+  kind TEXT NOT NULL,
+  created TEXT NOT NULL DEFAULT (strftime('%Y-%m-%dT%H:%M:%SZ','now')),
+  result_json TEXT NOT NULL
+);
+)"),
+    };
+    return list;
+}
+
+void exec(QSqlDatabase &db, const QString &sql)
+{
+    QSqlQuery q(db);
+    if (!q.exec(sql))
+        throw StorageError(QStringLiteral("%1: schema statement failed: %2\n%3")
+                               .arg(db.databaseName(), q.lastError().text(), sql.left(200))
+                               .toStdString());
+}
+
+} // namespace
+
+int SchemaMigrator::currentVersion()
+{
+    return static_cast<int>(migrations().size());
+}
+
+int SchemaMigrator::version(QSqlDatabase &db)
+{
+    QSqlQuery q(db);
+    if (!q.exec(QStringLiteral("PRAGMA user_version")) || !q.next())
+        throw StorageError(QStringLiteral("%1: cannot read schema version: %2")
+                               .arg(db.databaseName(), q.lastError().text())
+                               .toStdString());
+    return q.value(0).toInt();
+}
+
+void SchemaMigrator::migrate(QSqlDatabase &db)
+{
+    const int have = version(db);
+    if (have > currentVersion())
+        throw StorageError(QStringLiteral("%1: schema version %2 is newer than this DriftLab (%3); update DriftLab")
+                               .arg(db.databaseName())
+                               .arg(have)
+                               .arg(currentVersion())
+                               .toStdString());
+    for (int v = have; v < currentVersion(); ++v) {
+        if (!db.transaction())
+            throw StorageError(QStringLiteral("%1: cannot begin migration: %2")
+                                   .arg(db.databaseName(), db.lastError().text())
+                                   .toStdString());
+        try {
+            // QSqlQuery runs one statement at a time.
+            const QStringList statements = migrations().at(v).split(QLatin1Char(';'), Qt::SkipEmptyParts);
+            for (const QString &s : statements) {
+                if (!s.trimmed().isEmpty())
+                    exec(db, s);
+            }
+            exec(db, QStringLiteral("PRAGMA user_version = %1").arg(v + 1));
+        } catch (...) {
+            db.rollback();
+            throw;
+        }
+        if (!db.commit())
+            throw StorageError(QStringLiteral("%1: migration to version %2 failed to commit: %3")
+                                   .arg(db.databaseName())
+                                   .arg(v + 1)
+                                   .arg(db.lastError().text())
+                                   .toStdString());
+    }
+}
+
+} // namespace driftlab
