@@ -16,7 +16,12 @@ bool CliCommand::parse(QCommandLineParser &parser, const QStringList &args) cons
     if (!parser.parse(full))
         throw UsageError(QStringLiteral("%1: %2 (see 'driftlab-cli %1 --help')").arg(name(), parser.errorText()));
     if (parser.isSet(help)) {
-        QTextStream(stdout) << parser.helpText();
+        // Qt's first line names the executable path; name the command instead.
+        QString text = parser.helpText();
+        const int eol = text.indexOf(QLatin1Char('\n'));
+        const QString usage = text.left(eol).section(QLatin1Char(' '), 2); // "[options] ARGS"
+        text = QStringLiteral("Usage: driftlab-cli %1 %2").arg(name(), usage) + text.mid(eol);
+        QTextStream(stdout) << text;
         return false;
     }
     return true;

@@ -325,6 +325,7 @@ class TestFdmScrewModel : public QObject {
 private slots:
     void steadyStateMatchesAnalyticFin_data();
     void steadyStateMatchesAnalyticFin();
+    void transientMatchesFineGrid_data();
     void transientMatchesFineGrid();
     void stabilityLimitThrows();
     void stabilityLimitMatchesEq10Coefficient_data();
@@ -422,15 +423,36 @@ void TestFdmScrewModel::steadyStateMatchesAnalyticFin()
 }
 
 // ---------------------------------------------------------------------------------------
+void TestFdmScrewModel::transientMatchesFineGrid_data()
+{
+    QTest::addColumn<double>("warmFeed1");
+    QTest::addColumn<double>("warmFeed2");
+    QTest::addColumn<double>("tolerance"); // fraction of the peak elongation
+    // With dt = 0.1 s and dx = 0.01 m, the Table 2 feeds move the nut by a whole number of
+    // half cells per step (6000 mm/min = exactly one cell), so the number of cells eq. (10)
+    // puts under the 212 mm nut (21 or 22, 21.2 on average) does not average out: up to
+    // 22/21.2 = +3.8 % nut heat. Measured 2.6 % of the peak; tolerance 4 %.
+    QTest::newRow("Table 2 feeds 6000/9000 (cell-aliased nut)") << 6000.0 << 9000.0 << 0.04;
+    // Feeds that are not commensurate with dx/dt: the nut coverage averages out. Measured
+    // 0.3 % of the peak; tolerance 1 %.
+    QTest::newRow("feeds 5400/8700") << 5400.0 << 8700.0 << 0.01;
+}
+
 void TestFdmScrewModel::transientMatchesFineGrid()
 {
+    QFETCH(double, warmFeed1);
+    QFETCH(double, warmFeed2);
+    QFETCH(double, tolerance);
     const ScrewGeometry g;
     const FdmParameters p; // Table 3, X axis
     const FdmSettings s;   // Table 1 grid
     FdmScrewModel model(g, p, s);
     const int N = model.cellCount();
+    // Reference: 10x finer grid (800 cells, dx = 1 mm), implicit Euler, same dt = 0.1 s.
     FineGridScrew fine(g, p, 10 * N, s.dt_s);
-    const DutyCycle cycle;
+    DutyCycle cycle;
+    cycle.phases[0].feed = warmFeed1;
+    cycle.phases[2].feed = warmFeed2;
     const double Ta0 = cycle.ambient(0.0);
     model.reset(Ta0);
     fine.reset(Ta0);
@@ -464,11 +486,11 @@ void TestFdmScrewModel::transientMatchesFineGrid()
           comparisons, peak, maxErrElong, 100 * maxErrElong / peak, maxErrTe, 100 * maxErrTe / peak);
     QVERIFY(comparisons >= 10);
     QVERIFY(peak > 10.0);
-    // Tolerance 3 % of the peak: the coarse model quantises the nut to whole cells by eq. (10)
-    // (right cell edge inside the nut, i.e. on average half a cell towards the fixed end) and
-    // treats the free-end face to first order; the fine grid uses the physical extents.
-    QVERIFY2(maxErrElong < 0.03 * peak, qPrintable(QString::number(maxErrElong)));
-    QVERIFY2(maxErrTe < 0.03 * peak, qPrintable(QString::number(maxErrTe)));
+    // The coarse model quantises the nut to whole cells by eq. (10) (cells whose right edge is
+    // inside the nut) and treats the free-end face to first order; the fine grid uses the
+    // physical extents (see the _data rows for the tolerances).
+    QVERIFY2(maxErrElong < tolerance * peak, qPrintable(QString::number(maxErrElong)));
+    QVERIFY2(maxErrTe < tolerance * peak, qPrintable(QString::number(maxErrTe)));
 }
 
 // ---------------------------------------------------------------------------------------
@@ -503,12 +525,21 @@ void TestFdmScrewModel::stabilityLimitThrows()
         QVERIFY(thrown);
         QCOMPARE(model.time_s(), 0.0); // nothing advanced
         QCOMPARE(model.cellTemperature(0), 20.0);
-        // The limit depends on the feed (h = k1 v + k2): at rest the same dt is stable.
-        QVERIFY(s.dt_s < model.maxStableTimeStep(0.0));
+    }
+    {
+        // The limit depends on the feed (h = k1 v + k2): a dt between the limits at 6000 mm/min
+        // and at rest is refused at 6000 (either direction) but accepted at rest.
+        const double limit0 = FdmScrewModel(g, p).maxStableTimeStep(0.0);
+        QVERIFY(limit0 > limit);
+        FdmSettings s;
+        s.dt_s = 0.5 * (limit + limit0);
+        FdmScrewModel model(g, p, s);
+        model.reset(20.0);
+        QVERIFY_EXCEPTION_THROWN(model.step(0.0, feed, 20.0), FdmStabilityError);
         model.step(0.0, 0.0, 20.0);
-        QVERIFY(model.time_s() > 0.0);
-        // and the direction of travel does not matter
+        QCOMPARE(model.time_s(), s.dt_s);
         QVERIFY_EXCEPTION_THROWN(model.step(0.0, -feed, 20.0), FdmStabilityError);
+        QCOMPARE(model.time_s(), s.dt_s);
     }
     {
         FdmSettings s;

@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Builds DriftLab twice (normal, and with AddressSanitizer + UBSan) and runs every test.
+set -euo pipefail
+src="$(cd "$(dirname "$0")/.." && pwd)"
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
+chmod 700 "$XDG_RUNTIME_DIR"
+jobs="$(nproc)"
+
+"$src/scripts/build.sh" "$src/build" -DDRIFTLAB_WERROR=ON
+ctest --test-dir "$src/build" --output-on-failure -j"$jobs"
+
+"$src/scripts/build.sh" "$src/build-asan" -DDRIFTLAB_SANITIZE=ON -DDRIFTLAB_WERROR=ON -DCMAKE_BUILD_TYPE=Debug
+ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" \
+LSAN_OPTIONS="suppressions=$src/scripts/lsan.supp:print_suppressions=0" \
+UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
+  ctest --test-dir "$src/build-asan" --output-on-failure -j"$jobs"
