@@ -1,0 +1,134 @@
+// Thermal error views show exactly the computed thermal errors, and export headless.
+
+#include "ErrorSurfacePlot.h"
+#include "PlotExporter.h"
+#include "ThermalErrorTable.h"
+#include "ThermalErrorViews.h"
+#include "TimeSeriesPlot.h"
+
+#include <QImage>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include <qwt_plot_curve.h>
+#include <qwt_plot_spectrogram.h>
+
+#include <cmath>
+
+using namespace driftlab;
+
+namespace {
+// Known truth: geometric error g(x) shared by all runs, thermal error e(x, t).
+double geometric(double x) { return 2.0 * std::cos(x / 80.0); }
+double thermal(double x, double t) { return 30.0 * (1.0 - std::exp(-t / 3000.0)) * (x + 141.0) / 741.0; }
+
+ThermalErrorTable makeTable()
+{
+    std::vector<InterferometerPoint> pts;
+    for (int run = 0; run < 7; ++run) {
+        const double t0 = run * 1800.0;
+        for (int k = 0; k < 12; ++k) {
+            const double x = 50.0 * k;
+            const double t = t0 + 20.0 * k;
+            pts.push_back({t, run, x, geometric(x) + (run == 0 ? 0.0 : thermal(x, t)), 0});
+        }
+    }
+    return ThermalErrorTable::build(pts, 0);
+}
+} // namespace
+
+class TestErrorViews : public QObject {
+    Q_OBJECT
+private slots:
+    void surfaceEqualsThermalErrorsAtNodes();
+    void surfaceInterpolatesBetweenNodes();
+    void profilesAndHistoriesHoldTheTable();
+    void exportsPngSvgPdf();
+    void rejectsUnknownFormat();
+};
+
+void TestErrorViews::surfaceEqualsThermalErrorsAtNodes()
+{
+    const ThermalErrorTable table = makeTable();
+    ErrorSurfacePlot plot;
+    plot.setTable(table);
+    for (std::size_t r = 0; r < table.runCount(); ++r) {
+        for (std::size_t k = 0; k < table.targetCount(); ++k) {
+            const double x = table.targets_mm()[k];
+            const double t = table.runTimes_s()[r];
+            QVERIFY(std::fabs(plot.valueAt(x, t) - table.error(r, k)) < 1e-9);
+        }
+    }
+    // The grid itself is the independent truth minus nothing: run-mean time differs from the
+    // target's own time by <= 110 s, so compare against the truth at the target's time.
+    QVERIFY(std::fabs(table.error(5, 11) - thermal(550.0, 6 * 1800.0 + 220.0)) < 1e-9);
+    QVERIFY(plot.spectrogram()->contourLevels().size() == 9);
+}
+
+void TestErrorViews::surfaceInterpolatesBetweenNodes()
+{
+    const ThermalErrorTable table = makeTable();
+    ErrorSurfacePlot plot;
+    plot.setTable(table);
+    const double x = 0.5 * (table.targets_mm()[3] + table.targets_mm()[4]);
+    const double t = 0.5 * (table.runTimes_s()[2] + table.runTimes_s()[3]);
+    const double expected = 0.25 * (table.error(2, 3) + table.error(2, 4) + table.error(3, 3) + table.error(3, 4));
+    QVERIFY(std::fabs(plot.valueAt(x, t) - expected) < 1e-9);
+}
+
+void TestErrorViews::profilesAndHistoriesHoldTheTable()
+{
+    const ThermalErrorTable table = makeTable();
+    TimeSeriesPlot profiles;
+    ThermalErrorViews::showProfiles(profiles, table);
+    QCOMPARE(profiles.curves().size(), int(table.runCount()));
+    for (std::size_t r = 0; r < table.runCount(); ++r) {
+        const QwtPlotCurve *c = profiles.curves().at(int(r));
+        QCOMPARE(c->dataSize(), table.targetCount());
+        for (std::size_t k = 0; k < table.targetCount(); ++k) {
+            QCOMPARE(c->sample(k).x(), table.targets_mm()[k]);
+            QCOMPARE(c->sample(k).y(), table.error(r, k));
+        }
+    }
+    TimeSeriesPlot histories;
+    ThermalErrorViews::showHistories(histories, table);
+    QCOMPARE(histories.curves().size(), int(table.targetCount()));
+    const QwtPlotCurve *last = histories.curves().back();
+    QCOMPARE(last->dataSize(), table.runCount());
+    // Error at the far target grows monotonically during the warm-up.
+    for (std::size_t r = 1; r < table.runCount(); ++r)
+        QVERIFY(last->sample(r).y() > last->sample(r - 1).y());
+}
+
+void TestErrorViews::exportsPngSvgPdf()
+{
+    QTemporaryDir dir;
+    const ThermalErrorTable table = makeTable();
+    ErrorSurfacePlot plot;
+    plot.setTable(table);
+    for (const char *suffix : {"png", "svg", "pdf"}) {
+        const QString path = dir.filePath(QStringLiteral("surface.") + QLatin1String(suffix));
+        PlotExporter::exportPlot(plot, path, QSizeF(200, 120), 100);
+        QVERIFY(QFileInfo(path).size() > 1000);
+    }
+    QImage png(dir.filePath(QStringLiteral("surface.png")));
+    QVERIFY(!png.isNull());
+    // 200 mm at 100 dpi = 787 px.
+    QVERIFY(std::abs(png.width() - 787) <= 2);
+    QFile svg(dir.filePath(QStringLiteral("surface.svg")));
+    QVERIFY(svg.open(QIODevice::ReadOnly));
+    QVERIFY(svg.readAll().contains("<svg"));
+    QFile pdf(dir.filePath(QStringLiteral("surface.pdf")));
+    QVERIFY(pdf.open(QIODevice::ReadOnly));
+    QVERIFY(pdf.read(5) == "%PDF-");
+}
+
+void TestErrorViews::rejectsUnknownFormat()
+{
+    ErrorSurfacePlot plot;
+    QVERIFY_EXCEPTION_THROWN(PlotExporter::exportPlot(plot, QStringLiteral("/tmp/x.bmpx")), std::invalid_argument);
+    QVERIFY_EXCEPTION_THROWN(PlotExporter::exportPlot(plot, QStringLiteral("/nonexistent-dir/x.png")), std::runtime_error);
+}
+
+QTEST_MAIN(TestErrorViews)
+#include "tst_errorviews.moc"

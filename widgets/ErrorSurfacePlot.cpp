@@ -1,0 +1,134 @@
+#include "ErrorSurfacePlot.h"
+
+#include "ThermalErrorTable.h"
+
+#include <qwt_color_map.h>
+#include <qwt_plot_layout.h>
+#include <qwt_plot_spectrogram.h>
+#include <qwt_raster_data.h>
+#include <qwt_scale_widget.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace driftlab {
+
+namespace {
+
+// Bilinear interpolation on the (target position, run time) grid; NaN cells are
+// filled from the nearest valid target of the same run.
+class ThermalErrorRaster : public QwtRasterData {
+public:
+    explicit ThermalErrorRaster(const ThermalErrorTable &table)
+        : m_x(table.targets_mm()), m_y(table.runTimes_s()), m_z(m_x.size() * m_y.size(), 0.0)
+    {
+        double lo = 0.0, hi = 0.0;
+        for (std::size_t r = 0; r < m_y.size(); ++r) {
+            for (std::size_t k = 0; k < m_x.size(); ++k) {
+                double v = table.error(r, k);
+                for (std::size_t d = 1; std::isnan(v) && d < m_x.size(); ++d) {
+                    if (k >= d)
+                        v = table.error(r, k - d);
+                    if (std::isnan(v) && k + d < m_x.size())
+                        v = table.error(r, k + d);
+                }
+                if (std::isnan(v))
+                    v = 0.0;
+                m_z[r * m_x.size() + k] = v;
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+        }
+        if (hi - lo < 1e-9)
+            hi = lo + 1.0;
+        setInterval(Qt::XAxis, QwtInterval(m_x.empty() ? 0.0 : m_x.front(), m_x.empty() ? 1.0 : m_x.back()));
+        setInterval(Qt::YAxis, QwtInterval(m_y.empty() ? 0.0 : m_y.front(), m_y.empty() ? 1.0 : m_y.back()));
+        setInterval(Qt::ZAxis, QwtInterval(lo, hi));
+    }
+
+    double value(double x, double y) const override
+    {
+        if (m_x.empty() || m_y.empty())
+            return 0.0;
+        const auto bracket = [](const std::vector<double> &a, double v, std::size_t &i, double &w) {
+            if (a.size() == 1 || v <= a.front()) {
+                i = 0;
+                w = 0.0;
+                return;
+            }
+            if (v >= a.back()) {
+                i = a.size() - 2;
+                w = 1.0;
+                return;
+            }
+            i = static_cast<std::size_t>(std::upper_bound(a.begin(), a.end(), v) - a.begin()) - 1;
+            w = (v - a[i]) / (a[i + 1] - a[i]);
+        };
+        std::size_t i = 0, j = 0;
+        double wx = 0.0, wy = 0.0;
+        bracket(m_x, x, i, wx);
+        bracket(m_y, y, j, wy);
+        const std::size_t nx = m_x.size();
+        const std::size_t i1 = std::min(i + 1, nx - 1), j1 = std::min(j + 1, m_y.size() - 1);
+        const double z00 = m_z[j * nx + i], z01 = m_z[j * nx + i1];
+        const double z10 = m_z[j1 * nx + i], z11 = m_z[j1 * nx + i1];
+        return (1 - wy) * ((1 - wx) * z00 + wx * z01) + wy * ((1 - wx) * z10 + wx * z11);
+    }
+
+private:
+    std::vector<double> m_x, m_y, m_z;
+};
+
+QwtLinearColorMap *errorColourMap()
+{
+    auto *map = new QwtLinearColorMap(QColor(49, 54, 149), QColor(165, 0, 38));
+    map->addColorStop(0.25, QColor(116, 173, 209));
+    map->addColorStop(0.5, QColor(255, 255, 191));
+    map->addColorStop(0.75, QColor(244, 109, 67));
+    return map;
+}
+
+} // namespace
+
+ErrorSurfacePlot::ErrorSurfacePlot(QWidget *parent) : QwtPlot(parent), m_spectrogram(new QwtPlotSpectrogram())
+{
+    setTitle(tr("Thermal error over position and time"));
+    setAxisTitle(QwtPlot::xBottom, tr("axis position (mm)"));
+    setAxisTitle(QwtPlot::yLeft, tr("time (s)"));
+    setAxisTitle(QwtPlot::yRight, tr("thermal error (µm)"));
+    m_spectrogram->setRenderThreadCount(0);
+    m_spectrogram->setColorMap(errorColourMap());
+    m_spectrogram->setDisplayMode(QwtPlotSpectrogram::ContourMode, true);
+    m_spectrogram->setDefaultContourPen(QPen(QColor(0, 0, 0, 120), 0.0));
+    m_spectrogram->attach(this);
+    enableAxis(QwtPlot::yRight);
+    axisWidget(QwtPlot::yRight)->setColorBarEnabled(true);
+    plotLayout()->setAlignCanvasToScales(true);
+}
+
+ErrorSurfacePlot::~ErrorSurfacePlot() = default;
+
+void ErrorSurfacePlot::setTable(const ThermalErrorTable &table)
+{
+    auto *raster = new ThermalErrorRaster(table);
+    const QwtInterval z = raster->interval(Qt::ZAxis);
+    m_spectrogram->setData(raster); // takes ownership
+    QList<double> levels;
+    const double step = (z.maxValue() - z.minValue()) / 10.0;
+    for (int i = 1; i < 10; ++i)
+        levels.append(z.minValue() + i * step);
+    m_spectrogram->setContourLevels(levels);
+    axisWidget(QwtPlot::yRight)->setColorMap(z, errorColourMap());
+    setAxisScale(QwtPlot::yRight, z.minValue(), z.maxValue());
+    setAxisScale(QwtPlot::xBottom, raster->interval(Qt::XAxis).minValue(), raster->interval(Qt::XAxis).maxValue());
+    setAxisScale(QwtPlot::yLeft, raster->interval(Qt::YAxis).minValue(), raster->interval(Qt::YAxis).maxValue());
+    replot();
+}
+
+double ErrorSurfacePlot::valueAt(double position_mm, double time_s) const
+{
+    const QwtRasterData *data = m_spectrogram->data();
+    return data ? data->value(position_mm, time_s) : 0.0;
+}
+
+} // namespace driftlab

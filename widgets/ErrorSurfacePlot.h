@@ -1,0 +1,28 @@
+#pragma once
+// Thermal error over axis position and time as a spectrogram with contour lines
+// (seed 002's error surface). Between measured runs and targets it interpolates bilinearly.
+
+#include <qwt_plot.h>
+
+class QwtPlotSpectrogram;
+
+namespace driftlab {
+
+class ThermalErrorTable;
+
+class ErrorSurfacePlot : public QwtPlot {
+    Q_OBJECT
+public:
+    explicit ErrorSurfacePlot(QWidget *parent = nullptr);
+    ~ErrorSurfacePlot() override;
+
+    void setTable(const ThermalErrorTable &table);
+    // The value the surface shows at (position, time) — for readouts and tests.
+    double valueAt(double position_mm, double time_s) const;
+    QwtPlotSpectrogram *spectrogram() const { return m_spectrogram; }
+
+private:
+    QwtPlotSpectrogram *m_spectrogram;
+};
+
+} // namespace driftlab

@@ -1,0 +1,19 @@
+#pragma once
+// Renders any QwtPlot to PNG, SVG or PDF (chosen by the file suffix), with or without a display.
+
+#include <QSizeF>
+#include <QString>
+
+class QwtPlot;
+
+namespace driftlab {
+
+class PlotExporter {
+public:
+    // Throws std::invalid_argument for an unknown suffix, std::runtime_error if the file
+    // cannot be written. Size in millimetres; resolution in dots per inch.
+    static void exportPlot(QwtPlot &plot, const QString &path, QSizeF size_mm = QSizeF(240, 150), int dpi = 120);
+    static bool supportedSuffix(const QString &path);
+};
+
+} // namespace driftlab
