@@ -21,7 +21,7 @@ std::size_t targetIndex(const std::vector<double> &targets, double x, double tol
 }
 } // namespace
 
-ThermalErrorTable ThermalErrorTable::build(const std::vector<InterferometerPoint> &points, int referenceRun,
+ThermalErrorTable ThermalErrorTable::build(const std::vector<InterferometerReading> &points, int referenceRun,
                                            double tol)
 {
     ThermalErrorTable table;

@@ -8,7 +8,7 @@
 
 namespace driftlab {
 
-struct InterferometerPoint {
+struct InterferometerReading {
     double time_s = 0.0;
     int run = 0;
     double position_mm = 0.0;
@@ -20,7 +20,7 @@ class ThermalErrorTable {
 public:
     // Targets closer than `targetTolerance_mm` are the same target. Throws
     // std::invalid_argument if the reference run is absent.
-    static ThermalErrorTable build(const std::vector<InterferometerPoint> &points, int referenceRun,
+    static ThermalErrorTable build(const std::vector<InterferometerReading> &points, int referenceRun,
                                    double targetTolerance_mm = 0.05);
 
     struct Cell {

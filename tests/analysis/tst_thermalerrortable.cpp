@@ -27,7 +27,7 @@ private slots:
 
 void TestThermalErrorTable::geometricErrorCancels()
 {
-    std::vector<InterferometerPoint> pts;
+    std::vector<InterferometerReading> pts;
     double t = 0.0;
     // Runs deliberately stored out of order (3 before 1) with slightly jittered positions.
     for (int run : {0, 3, 1, 2}) {
@@ -58,7 +58,7 @@ void TestThermalErrorTable::geometricErrorCancels()
 void TestThermalErrorTable::directionsReferencedSeparately()
 {
     // Backlash of 4 um between directions; thermal error identical in both.
-    std::vector<InterferometerPoint> pts;
+    std::vector<InterferometerReading> pts;
     for (int run : {0, 1}) {
         for (int dir : {+1, -1}) {
             for (int k = 0; k < 5; ++k) {
@@ -76,7 +76,7 @@ void TestThermalErrorTable::directionsReferencedSeparately()
 
 void TestThermalErrorTable::missingReferenceTargetIsInvalid()
 {
-    std::vector<InterferometerPoint> pts = {{0, 0, 0.0, 1.0, 0}, {1, 0, 100.0, 2.0, 0}, {50, 1, 0.0, 1.5, 0},
+    std::vector<InterferometerReading> pts = {{0, 0, 0.0, 1.0, 0}, {1, 0, 100.0, 2.0, 0}, {50, 1, 0.0, 1.5, 0},
                                             {51, 1, 100.0, 3.0, 0}, {52, 1, 200.0, 9.0, 0}};
     const ThermalErrorTable table = ThermalErrorTable::build(pts, 0);
     QCOMPARE(table.targetCount(), std::size_t(2));
@@ -89,7 +89,7 @@ void TestThermalErrorTable::missingReferenceTargetIsInvalid()
 
 void TestThermalErrorTable::noReferenceRunThrows()
 {
-    std::vector<InterferometerPoint> pts = {{0, 1, 0.0, 1.0, 0}};
+    std::vector<InterferometerReading> pts = {{0, 1, 0.0, 1.0, 0}};
     QVERIFY_EXCEPTION_THROWN(ThermalErrorTable::build(pts, 0), std::invalid_argument);
 }
 

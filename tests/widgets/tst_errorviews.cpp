@@ -24,7 +24,7 @@ double thermal(double x, double t) { return 30.0 * (1.0 - std::exp(-t / 3000.0))
 
 ThermalErrorTable makeTable()
 {
-    std::vector<InterferometerPoint> pts;
+    std::vector<InterferometerReading> pts;
     for (int run = 0; run < 7; ++run) {
         const double t0 = run * 1800.0;
         for (int k = 0; k < 12; ++k) {
