@@ -1,11 +1,13 @@
 #include "ThermalErrorViews.h"
 
 #include "ThermalErrorTable.h"
+#include "TimeSeries.h"
 #include "TimeSeriesPlot.h"
 
 #include <qwt_plot_curve.h>
 #include <qwt_symbol.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace driftlab {
@@ -58,6 +60,55 @@ void ThermalErrorViews::showHistories(TimeSeriesPlot &plot, const ThermalErrorTa
         markPoints(plot.addCurve(QObject::tr("%1 mm").arg(table.targets_mm()[k]), t, y, false));
     }
     plot.zoomToData();
+}
+
+LineFit ThermalErrorViews::showAgainstTemperature(TimeSeriesPlot &plot, const ThermalErrorTable &table, std::size_t target,
+                                                  const TimeSeries &temperature, const QString &channelName)
+{
+    plot.clearCurves();
+    plot.setTitle(QObject::tr("Thermal error at %1 mm against %2").arg(table.targets_mm().at(target)).arg(channelName));
+    plot.setAxisTitle(QwtPlot::xBottom, QObject::tr("%1 (°C)").arg(channelName));
+    plot.setAxisTitles(QObject::tr("thermal error (µm)"), QString());
+    plot.enableAxis(QwtPlot::yRight, false);
+    QVector<double> x, y;
+    for (const auto &m : table.measurements()) {
+        if (!m.valid || std::fabs(m.position_mm - table.targets_mm()[target]) > 0.05)
+            continue;
+        x.push_back(temperature.at(m.time_s));
+        y.push_back(m.thermal_um);
+    }
+    LineFit fit;
+    fit.points = x.size();
+    if (x.size() >= 2) {
+        double mx = 0, my = 0;
+        for (int i = 0; i < x.size(); ++i) {
+            mx += x[i];
+            my += y[i];
+        }
+        mx /= x.size();
+        my /= y.size();
+        double sxx = 0, sxy = 0, syy = 0;
+        for (int i = 0; i < x.size(); ++i) {
+            sxx += (x[i] - mx) * (x[i] - mx);
+            sxy += (x[i] - mx) * (y[i] - my);
+            syy += (y[i] - my) * (y[i] - my);
+        }
+        if (sxx > 0) {
+            fit.slope = sxy / sxx;
+            fit.intercept = my - fit.slope * mx;
+            fit.r2 = syy > 0 ? sxy * sxy / (sxx * syy) : 1.0;
+        }
+    }
+    QwtPlotCurve *points = plot.addCurve(QObject::tr("measured"), x, y, false);
+    points->setStyle(QwtPlotCurve::NoCurve);
+    markPoints(points);
+    if (fit.points >= 2) {
+        const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+        plot.addCurve(QObject::tr("fit: %1 µm/K, R² = %2").arg(fit.slope, 0, 'f', 2).arg(fit.r2, 0, 'f', 3),
+                      {*lo, *hi}, {fit.intercept + fit.slope * *lo, fit.intercept + fit.slope * *hi}, false);
+    }
+    plot.zoomToData();
+    return fit;
 }
 
 } // namespace driftlab

@@ -4,9 +4,19 @@
 
 #include <QString>
 
+#include <cstddef>
+
 namespace driftlab {
 
+struct TimeSeries;
 class ThermalErrorTable;
+
+struct LineFit {
+    double slope = 0.0;     // um per K
+    double intercept = 0.0; // um
+    double r2 = 0.0;
+    int points = 0;
+};
 class TimeSeriesPlot;
 
 class ThermalErrorViews {
@@ -15,6 +25,10 @@ public:
     static void showProfiles(TimeSeriesPlot &plot, const ThermalErrorTable &table);
     // One curve per target: thermal error (um) against time (s).
     static void showHistories(TimeSeriesPlot &plot, const ThermalErrorTable &table);
+    // Thermal error at one target against a temperature channel (interpolated at each
+    // measurement's time), with its least-squares line. Returns the fit.
+    static LineFit showAgainstTemperature(TimeSeriesPlot &plot, const ThermalErrorTable &table, std::size_t target,
+                                          const TimeSeries &temperature, const QString &channelName);
 };
 
 } // namespace driftlab

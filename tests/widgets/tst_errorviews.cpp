@@ -1,10 +1,14 @@
 // Thermal error views show exactly the computed thermal errors, and export headless.
 
+#include "ErrorSurface3D.h"
 #include "ErrorSurfacePlot.h"
 #include "PlotExporter.h"
 #include "ThermalErrorTable.h"
 #include "ThermalErrorViews.h"
+#include "TimeSeries.h"
 #include "TimeSeriesPlot.h"
+
+#include <QtDataVisualization/QSurfaceDataProxy>
 
 #include <QImage>
 #include <QTemporaryDir>
@@ -43,6 +47,8 @@ private slots:
     void surfaceEqualsThermalErrorsAtNodes();
     void surfaceInterpolatesBetweenNodes();
     void profilesAndHistoriesHoldTheTable();
+    void errorAgainstTemperatureFitsTheLine();
+    void surface3DProxyHoldsTheGrid();
     void exportsPngSvgPdf();
     void rejectsUnknownFormat();
 };
@@ -98,6 +104,42 @@ void TestErrorViews::profilesAndHistoriesHoldTheTable()
     // Error at the far target grows monotonically during the warm-up.
     for (std::size_t r = 1; r < table.runCount(); ++r)
         QVERIFY(last->sample(r).y() > last->sample(r - 1).y());
+}
+
+void TestErrorViews::errorAgainstTemperatureFitsTheLine()
+{
+    // A temperature channel that the far target's thermal error follows linearly:
+    // T(t) = 20 + e(550, t) / 4.5  ->  error = 4.5 um/K * (T - 20).
+    TimeSeries temp;
+    for (double t = 0; t <= 7 * 1800.0; t += 5.0) {
+        temp.t.push_back(t);
+        temp.v.push_back(20.0 + thermal(550.0, t) / 4.5);
+    }
+    const ThermalErrorTable table = makeTable();
+    TimeSeriesPlot plot;
+    const LineFit fit = ThermalErrorViews::showAgainstTemperature(plot, table, 11, temp, QStringLiteral("T_nut"));
+    QCOMPARE(fit.points, 6);
+    QVERIFY(std::fabs(fit.slope - 4.5) < 1e-3);
+    QVERIFY(std::fabs(fit.intercept + 4.5 * 20.0) < 0.05);
+    QVERIFY(fit.r2 > 0.99999);
+    QCOMPARE(plot.curves().size(), 2);
+}
+
+void TestErrorViews::surface3DProxyHoldsTheGrid()
+{
+    const ThermalErrorTable table = makeTable();
+    QtDataVisualization::QSurfaceDataProxy proxy;
+    ErrorSurface3D::fillProxy(proxy, table);
+    QCOMPARE(proxy.rowCount(), int(table.runCount()));
+    QCOMPARE(proxy.columnCount(), int(table.targetCount()));
+    for (int r = 0; r < proxy.rowCount(); ++r) {
+        for (int k = 0; k < proxy.columnCount(); ++k) {
+            const QVector3D p = proxy.itemAt(r, k)->position();
+            QCOMPARE(double(p.x()), table.targets_mm()[size_t(k)]);
+            QVERIFY(std::fabs(p.y() - table.error(size_t(r), size_t(k))) < 1e-4);
+            QVERIFY(std::fabs(p.z() - table.runTimes_s()[size_t(r)] / 60.0) < 1e-3);
+        }
+    }
 }
 
 void TestErrorViews::exportsPngSvgPdf()

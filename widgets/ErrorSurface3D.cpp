@@ -1,0 +1,71 @@
+#include "ErrorSurface3D.h"
+
+#include "ThermalErrorTable.h"
+
+#include <QHBoxLayout>
+#include <QtDataVisualization/Q3DSurface>
+#include <QtDataVisualization/QSurface3DSeries>
+#include <QtDataVisualization/QSurfaceDataProxy>
+#include <QtDataVisualization/QValue3DAxis>
+
+#include <cmath>
+
+using namespace QtDataVisualization;
+
+namespace driftlab {
+
+ErrorSurface3D::ErrorSurface3D(QWidget *parent) : QWidget(parent)
+{
+    m_graph = new Q3DSurface();
+    m_proxy = new QSurfaceDataProxy();
+    auto *series = new QSurface3DSeries(m_proxy);
+    series->setDrawMode(QSurface3DSeries::DrawSurfaceAndWireframe);
+    series->setFlatShadingEnabled(false);
+    QLinearGradient gradient;
+    gradient.setColorAt(0.0, QColor(49, 54, 149));
+    gradient.setColorAt(0.5, QColor(255, 255, 191));
+    gradient.setColorAt(1.0, QColor(165, 0, 38));
+    series->setBaseGradient(gradient);
+    series->setColorStyle(Q3DTheme::ColorStyleRangeGradient);
+    m_graph->addSeries(series);
+    m_graph->axisX()->setTitle(tr("position (mm)"));
+    m_graph->axisZ()->setTitle(tr("time (min)"));
+    m_graph->axisY()->setTitle(tr("thermal error (µm)"));
+    for (QValue3DAxis *axis : {m_graph->axisX(), m_graph->axisY(), m_graph->axisZ()})
+        axis->setTitleVisible(true);
+    auto *layout = new QHBoxLayout(this);
+    layout->setContentsMargins(0, 0, 0, 0);
+    layout->addWidget(QWidget::createWindowContainer(m_graph, this));
+}
+
+ErrorSurface3D::~ErrorSurface3D() = default;
+
+void ErrorSurface3D::fillProxy(QSurfaceDataProxy &proxy, const ThermalErrorTable &table)
+{
+    auto *rows = new QSurfaceDataArray();
+    rows->reserve(static_cast<int>(table.runCount()));
+    for (std::size_t r = 0; r < table.runCount(); ++r) {
+        auto *row = new QSurfaceDataRow(static_cast<int>(table.targetCount()));
+        for (std::size_t k = 0; k < table.targetCount(); ++k) {
+            double e = table.error(r, k);
+            for (std::size_t d = 1; std::isnan(e) && d < table.targetCount(); ++d) {
+                if (k >= d)
+                    e = table.error(r, k - d);
+                if (std::isnan(e) && k + d < table.targetCount())
+                    e = table.error(r, k + d);
+            }
+            (*row)[static_cast<int>(k)].setPosition(QVector3D(static_cast<float>(table.targets_mm()[k]),
+                                                              static_cast<float>(std::isnan(e) ? 0.0 : e),
+                                                              static_cast<float>(table.runTimes_s()[r] / 60.0)));
+        }
+        rows->append(row);
+    }
+    proxy.resetArray(rows);
+}
+
+void ErrorSurface3D::setTable(const ThermalErrorTable &table)
+{
+    fillProxy(*m_proxy, table);
+}
+
+} // namespace driftlab

@@ -1,0 +1,32 @@
+#pragma once
+// The thermal error surface over position and time as a rotatable 3-D surface
+// (Qt DataVisualization). Needs OpenGL: under Xvfb, Mesa's software renderer serves it.
+
+#include <QWidget>
+
+namespace QtDataVisualization {
+class Q3DSurface;
+class QSurfaceDataProxy;
+}
+
+namespace driftlab {
+
+class ThermalErrorTable;
+
+class ErrorSurface3D : public QWidget {
+    Q_OBJECT
+public:
+    explicit ErrorSurface3D(QWidget *parent = nullptr);
+    ~ErrorSurface3D() override;
+
+    void setTable(const ThermalErrorTable &table);
+    // Rows = runs (time), columns = targets (position); x = position mm, z = time min,
+    // y = thermal error um. Missing cells take the nearest measured target of the run.
+    static void fillProxy(QtDataVisualization::QSurfaceDataProxy &proxy, const ThermalErrorTable &table);
+
+private:
+    QtDataVisualization::Q3DSurface *m_graph = nullptr;
+    QtDataVisualization::QSurfaceDataProxy *m_proxy = nullptr;
+};
+
+} // namespace driftlab
