@@ -14,6 +14,11 @@
 
 namespace driftlab {
 
+namespace {
+// Channels longer than this are drawn from decimated min/max levels.
+constexpr qint64 kRawCurveLimit = 20000;
+} // namespace
+
 MainWindow::MainWindow(QWidget *parent)
     : QMainWindow(parent), m_browser(new SessionBrowser(this)), m_plot(new TimeSeriesPlot(this))
 {
@@ -104,9 +109,21 @@ void MainWindow::showChannels(const QVector<qint64> &channelIds)
         for (const ChannelInfo &c : m_store->channels(m_sessionId)) {
             if (!channelIds.contains(c.id))
                 continue;
-            const SampleBlock block = m_store->samples(c.id);
             const bool right = c.kind != QLatin1String("temperature");
-            m_plot->addCurve(c.key, block.t, block.v, right);
+            if (m_store->sampleCount(c.id) > kRawCurveLimit) {
+                // Long channels: min/max per pixel column from the store's decimation levels.
+                const SessionStore *store = m_store.get();
+                const qint64 id = c.id;
+                const DecimatedSeries whole = store->decimated(id, -1e300, 1e300, 1);
+                const double tFirst = whole.tFirst.isEmpty() ? 0.0 : whole.tFirst.front();
+                const double tLast = whole.tLast.isEmpty() ? 0.0 : whole.tLast.back();
+                m_plot->addDecimatedCurve(
+                    c.key, [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); }, tFirst,
+                    tLast, right);
+            } else {
+                const SampleBlock block = m_store->samples(c.id);
+                m_plot->addCurve(c.key, block.t, block.v, right);
+            }
             QString &units = right ? rightUnits : leftUnits;
             if (!units.contains(c.unit))
                 units += (units.isEmpty() ? QString() : QStringLiteral(", ")) + c.unit;

@@ -9,6 +9,12 @@
 #include <qwt_text.h>
 
 #include <QPen>
+#include <QTimer>
+
+#include <qwt_scale_div.h>
+#include <qwt_scale_widget.h>
+
+#include <algorithm>
 
 namespace driftlab {
 
@@ -22,8 +28,16 @@ const QVector<QColor> &curveColours()
 }
 } // namespace
 
-TimeSeriesPlot::TimeSeriesPlot(QWidget *parent) : QwtPlot(parent)
+TimeSeriesPlot::TimeSeriesPlot(QWidget *parent) : QwtPlot(parent), m_refresh(new QTimer(this))
 {
+    // Zooming and panning change the x scale; refetch at most 25 times a second.
+    m_refresh->setSingleShot(true);
+    m_refresh->setInterval(40);
+    connect(m_refresh, &QTimer::timeout, this, &TimeSeriesPlot::refreshDecimated);
+    connect(axisWidget(QwtPlot::xBottom), &QwtScaleWidget::scaleDivChanged, this, [this] {
+        if (!m_decimated.isEmpty() && !m_refresh->isActive())
+            m_refresh->start();
+    });
     setCanvasBackground(Qt::white);
     setAxisTitle(QwtPlot::xBottom, tr("time (s)"));
     enableAxis(QwtPlot::yRight, true);
@@ -46,6 +60,7 @@ void TimeSeriesPlot::clearCurves()
         delete c;
     }
     m_curves.clear();
+    m_decimated.clear();
     replot();
 }
 
@@ -60,6 +75,51 @@ QwtPlotCurve *TimeSeriesPlot::addCurve(const QString &title, const QVector<doubl
     c->attach(this);
     m_curves.push_back(c);
     return c;
+}
+
+void TimeSeriesPlot::envelopePoints(const DecimatedSeries &d, QVector<double> &x, QVector<double> &y)
+{
+    x.clear();
+    y.clear();
+    x.reserve(2 * d.min.size());
+    y.reserve(2 * d.min.size());
+    for (int i = 0; i < d.min.size(); ++i) {
+        const double t = 0.5 * (d.tFirst[i] + d.tLast[i]);
+        x.push_back(t);
+        y.push_back(d.min[i]);
+        if (d.max[i] != d.min[i]) {
+            x.push_back(t);
+            y.push_back(d.max[i]);
+        }
+    }
+}
+
+QwtPlotCurve *TimeSeriesPlot::addDecimatedCurve(const QString &title, RangeFetcher fetch, double tFirst, double tLast,
+                                                bool rightAxis)
+{
+    QwtPlotCurve *c = addCurve(title, {}, {}, rightAxis);
+    c->setRenderHint(QwtPlotItem::RenderAntialiased, false);
+    m_decimated.push_back({c, std::move(fetch), tFirst, tLast});
+    const DecimatedCurve &d = m_decimated.back();
+    QVector<double> x, y;
+    envelopePoints(d.fetch(tFirst, tLast, std::max(200, canvas()->width())), x, y);
+    c->setSamples(x, y);
+    return c;
+}
+
+void TimeSeriesPlot::refreshDecimated()
+{
+    const QwtScaleDiv &div = axisScaleDiv(QwtPlot::xBottom);
+    const int buckets = std::max(200, canvas()->width());
+    for (const DecimatedCurve &d : m_decimated) {
+        const double t0 = std::max(d.tFirst, div.lowerBound());
+        const double t1 = std::min(d.tLast, div.upperBound());
+        QVector<double> x, y;
+        if (t1 > t0)
+            envelopePoints(d.fetch(t0, t1, buckets), x, y);
+        d.curve->setSamples(x, y);
+    }
+    replot();
 }
 
 QwtPlotCurve *TimeSeriesPlot::curve(const QString &title) const

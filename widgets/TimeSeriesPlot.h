@@ -2,12 +2,17 @@
 // Qwt time-series plot of any number of channels: temperatures on the left axis,
 // everything else on the right; zoom with the mouse, pan with the middle button.
 
+#include "StorageTypes.h"
+
+#include <QPointF>
 #include <QString>
 #include <QVector>
-#include <QPointF>
+
+#include <functional>
 
 #include <qwt_plot.h>
 
+class QTimer;
 class QwtPlotCurve;
 class QwtPlotZoomer;
 
@@ -21,13 +26,27 @@ public:
     void clearCurves();
     // Adds a curve; `rightAxis` puts it on the right y axis. Returns the curve.
     QwtPlotCurve *addCurve(const QString &title, const QVector<double> &t, const QVector<double> &v, bool rightAxis);
+    // Min/max per pixel column, fetched for the visible time range whenever it changes
+    // (PulseView style): a 36-million-sample channel draws as fast as a 2,000-point one.
+    using RangeFetcher = std::function<DecimatedSeries(double t0, double t1, int buckets)>;
+    QwtPlotCurve *addDecimatedCurve(const QString &title, RangeFetcher fetch, double tFirst, double tLast, bool rightAxis);
+    // Polyline through (t, min), (t, max) per bucket: its envelope holds every sample.
+    static void envelopePoints(const DecimatedSeries &d, QVector<double> &x, QVector<double> &y);
     QVector<QwtPlotCurve *> curves() const { return m_curves; }
     QwtPlotCurve *curve(const QString &title) const;
     void setAxisTitles(const QString &left, const QString &right);
     void zoomToData();
 
 private:
+    void refreshDecimated();
+    struct DecimatedCurve {
+        QwtPlotCurve *curve;
+        RangeFetcher fetch;
+        double tFirst, tLast;
+    };
     QVector<QwtPlotCurve *> m_curves;
+    QVector<DecimatedCurve> m_decimated;
+    QTimer *m_refresh;
     QwtPlotZoomer *m_zoomer = nullptr;
 };
 
