@@ -10,33 +10,37 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace driftlab {
 
 namespace {
 
-// Bilinear interpolation on the (target position, run time) grid; NaN cells are
-// filled from the nearest valid target of the same run.
-class ThermalErrorRaster : public QwtRasterData {
+// Bilinear interpolation on an (x, y) grid, y-major; NaN cells are filled from the
+// nearest valid x of the same row.
+class GridRaster : public QwtRasterData {
 public:
-    explicit ThermalErrorRaster(const ThermalErrorTable &table)
-        : m_x(table.targets_mm()), m_y(table.runTimes_s()), m_z(m_x.size() * m_y.size(), 0.0)
+    GridRaster(std::vector<double> x, std::vector<double> y, const std::vector<double> &z)
+        : m_x(std::move(x)), m_y(std::move(y)), m_z(m_x.size() * m_y.size(), 0.0)
     {
+        const std::size_t nx = m_x.size();
         double lo = 0.0, hi = 0.0;
+        bool first = true;
         for (std::size_t r = 0; r < m_y.size(); ++r) {
-            for (std::size_t k = 0; k < m_x.size(); ++k) {
-                double v = table.error(r, k);
-                for (std::size_t d = 1; std::isnan(v) && d < m_x.size(); ++d) {
+            for (std::size_t k = 0; k < nx; ++k) {
+                double v = z[r * nx + k];
+                for (std::size_t d = 1; std::isnan(v) && d < nx; ++d) {
                     if (k >= d)
-                        v = table.error(r, k - d);
-                    if (std::isnan(v) && k + d < m_x.size())
-                        v = table.error(r, k + d);
+                        v = z[r * nx + k - d];
+                    if (std::isnan(v) && k + d < nx)
+                        v = z[r * nx + k + d];
                 }
                 if (std::isnan(v))
                     v = 0.0;
-                m_z[r * m_x.size() + k] = v;
-                lo = std::min(lo, v);
-                hi = std::max(hi, v);
+                m_z[r * nx + k] = v;
+                lo = first ? v : std::min(lo, v);
+                hi = first ? v : std::max(hi, v);
+                first = false;
             }
         }
         if (hi - lo < 1e-9)
@@ -110,16 +114,27 @@ ErrorSurfacePlot::~ErrorSurfacePlot() = default;
 
 void ErrorSurfacePlot::setTable(const ThermalErrorTable &table)
 {
-    auto *raster = new ThermalErrorRaster(table);
-    const QwtInterval z = raster->interval(Qt::ZAxis);
+    std::vector<double> z(table.runCount() * table.targetCount());
+    for (std::size_t r = 0; r < table.runCount(); ++r)
+        for (std::size_t k = 0; k < table.targetCount(); ++k)
+            z[r * table.targetCount() + k] = table.error(r, k);
+    setGrid(table.targets_mm(), table.runTimes_s(), z);
+}
+
+void ErrorSurfacePlot::setGrid(const std::vector<double> &x, const std::vector<double> &y, const std::vector<double> &z)
+{
+    if (z.size() != x.size() * y.size())
+        throw std::invalid_argument("ErrorSurfacePlot::setGrid: z must hold x.size() * y.size() values");
+    auto *raster = new GridRaster(x, y, z);
+    const QwtInterval range = raster->interval(Qt::ZAxis);
     m_spectrogram->setData(raster); // takes ownership
     QList<double> levels;
-    const double step = (z.maxValue() - z.minValue()) / 10.0;
+    const double step = (range.maxValue() - range.minValue()) / 10.0;
     for (int i = 1; i < 10; ++i)
-        levels.append(z.minValue() + i * step);
+        levels.append(range.minValue() + i * step);
     m_spectrogram->setContourLevels(levels);
-    axisWidget(QwtPlot::yRight)->setColorMap(z, errorColourMap());
-    setAxisScale(QwtPlot::yRight, z.minValue(), z.maxValue());
+    axisWidget(QwtPlot::yRight)->setColorMap(range, errorColourMap());
+    setAxisScale(QwtPlot::yRight, range.minValue(), range.maxValue());
     setAxisScale(QwtPlot::xBottom, raster->interval(Qt::XAxis).minValue(), raster->interval(Qt::XAxis).maxValue());
     setAxisScale(QwtPlot::yLeft, raster->interval(Qt::YAxis).minValue(), raster->interval(Qt::YAxis).maxValue());
     replot();

@@ -4,6 +4,8 @@
 
 #include <qwt_plot.h>
 
+#include <vector>
+
 class QwtPlotSpectrogram;
 
 namespace driftlab {
@@ -17,6 +19,9 @@ public:
     ~ErrorSurfacePlot() override;
 
     void setTable(const ThermalErrorTable &table);
+    // Any surface on a rectilinear grid: z[row * x.size() + column], rows along y
+    // (ascending), NaN = not measured. Axis titles are the caller's.
+    void setGrid(const std::vector<double> &x, const std::vector<double> &y, const std::vector<double> &z);
     // The value the surface shows at (position, time) — for readouts and tests.
     double valueAt(double position_mm, double time_s) const;
     QwtPlotSpectrogram *spectrogram() const { return m_spectrogram; }

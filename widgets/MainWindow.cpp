@@ -1,52 +1,134 @@
 #include "MainWindow.h"
 
+#include "BundleTransfer.h"
+#include "PlotExporter.h"
+#include "ReviewWorkspace.h"
 #include "SessionBrowser.h"
 #include "SessionStore.h"
 #include "StorageError.h"
-#include "TimeSeriesPlot.h"
 
-#include <QAction>
+#include <QCloseEvent>
+#include <QDockWidget>
+#include <QDragEnterEvent>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QInputDialog>
 #include <QMenuBar>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QSettings>
 #include <QSplitter>
 #include <QStatusBar>
 
 namespace driftlab {
 
 namespace {
-// Channels longer than this are drawn from decimated min/max levels.
-constexpr qint64 kRawCurveLimit = 20000;
+constexpr int kMaxRecent = 8;
+const char *kRecentKey = "recentDatabases";
+
+bool isBundlePath(const QString &path)
+{
+    const QFileInfo info(path);
+    return (info.isDir() && QFileInfo::exists(info.filePath() + QStringLiteral("/manifest.json"))) ||
+           info.suffix().compare(QLatin1String("zip"), Qt::CaseInsensitive) == 0;
+}
 } // namespace
 
 MainWindow::MainWindow(QWidget *parent)
-    : QMainWindow(parent), m_browser(new SessionBrowser(this)), m_plot(new TimeSeriesPlot(this))
+    : QMainWindow(parent),
+      m_browser(new SessionBrowser(this)),
+      m_split(new QSplitter(this)),
+      m_workspace(new ReviewWorkspace(this)),
+      m_comparison(new ReviewWorkspace(this))
 {
+    setObjectName(QStringLiteral("DriftLabMainWindow"));
     setWindowTitle(tr("DriftLab"));
-    auto *splitter = new QSplitter(this);
-    splitter->addWidget(m_browser);
-    splitter->addWidget(m_plot);
-    splitter->setStretchFactor(1, 1);
-    splitter->setSizes({300, 980});
-    setCentralWidget(splitter);
+    setAcceptDrops(true);
+    m_split->addWidget(m_workspace);
+    m_split->addWidget(m_comparison);
+    m_comparison->hide();
+    setCentralWidget(m_split);
 
-    QMenu *file = menuBar()->addMenu(tr("&File"));
-    file->addAction(tr("&Open database..."), this, &MainWindow::chooseDatabase, QKeySequence::Open);
-    file->addSeparator();
-    file->addAction(tr("&Quit"), this, &QWidget::close, QKeySequence::Quit);
+    auto *dock = new QDockWidget(tr("Sessions"), this);
+    dock->setObjectName(QStringLiteral("SessionsDock"));
+    dock->setWidget(m_browser);
+    addDockWidget(Qt::LeftDockWidgetArea, dock);
+    buildMenus();
+    menuBar()->findChild<QMenu *>(QStringLiteral("ViewMenu"))->addAction(dock->toggleViewAction());
 
     connect(m_browser, &SessionBrowser::sessionSelected, this, &MainWindow::showSession);
     connect(m_browser, &SessionBrowser::channelsChanged, this, &MainWindow::showChannels);
     resize(1280, 760);
-    statusBar()->showMessage(tr("No database open"));
+    QSettings settings;
+    restoreGeometry(settings.value(QStringLiteral("geometry")).toByteArray());
+    restoreState(settings.value(QStringLiteral("windowState")).toByteArray());
+    statusBar()->showMessage(tr("No database open: File > Open database, or drop a recording bundle here"));
 }
 
 MainWindow::~MainWindow() = default;
+
+void MainWindow::buildMenus()
+{
+    QMenu *file = menuBar()->addMenu(tr("&File"));
+    file->addAction(tr("&Open database..."), this, &MainWindow::chooseDatabase, QKeySequence::Open);
+    m_recentMenu = file->addMenu(tr("Open &recent"));
+    refreshRecentMenu();
+    file->addSeparator();
+    file->addAction(tr("&Import recording bundle..."), this, &MainWindow::chooseBundle);
+    file->addAction(tr("&Export session as bundle..."), this, &MainWindow::exportSession);
+    file->addAction(tr("Export current &view (PNG, SVG, PDF)..."), this, &MainWindow::exportView);
+    file->addSeparator();
+    file->addAction(tr("&Quit"), this, &QWidget::close, QKeySequence::Quit);
+    QMenu *view = menuBar()->addMenu(tr("&View"));
+    view->setObjectName(QStringLiteral("ViewMenu"));
+    view->addAction(tr("&Compare with session..."), this, &MainWindow::chooseComparison);
+    view->addAction(tr("Close c&omparison"), this, [this] { compareWith(0); });
+}
+
+TimeSeriesPlot *MainWindow::plot() const
+{
+    return m_workspace->timeSeriesPlot();
+}
 
 void MainWindow::reportError(const QString &message)
 {
     m_lastError = message;
     statusBar()->showMessage(message);
+}
+
+QStringList MainWindow::recentDatabases() const
+{
+    return QSettings().value(QLatin1String(kRecentKey)).toStringList();
+}
+
+void MainWindow::rememberDatabase(const QString &path)
+{
+    QSettings settings;
+    QStringList recent = settings.value(QLatin1String(kRecentKey)).toStringList();
+    const QString abs = QFileInfo(path).absoluteFilePath();
+    recent.removeAll(abs);
+    recent.prepend(abs);
+    while (recent.size() > kMaxRecent)
+        recent.removeLast();
+    settings.setValue(QLatin1String(kRecentKey), recent);
+    settings.setValue(QStringLiteral("lastDatabase"), abs);
+    refreshRecentMenu();
+}
+
+void MainWindow::refreshRecentMenu()
+{
+    m_recentMenu->clear();
+    for (const QString &path : recentDatabases())
+        m_recentMenu->addAction(path, this, [this, path] { openDatabase(path); });
+    m_recentMenu->setEnabled(!m_recentMenu->isEmpty());
+}
+
+void MainWindow::closeEvent(QCloseEvent *event)
+{
+    QSettings settings;
+    settings.setValue(QStringLiteral("geometry"), saveGeometry());
+    settings.setValue(QStringLiteral("windowState"), saveState());
+    QMainWindow::closeEvent(event);
 }
 
 void MainWindow::chooseDatabase()
@@ -61,15 +143,14 @@ bool MainWindow::openDatabase(const QString &path)
 {
     try {
         auto store = std::make_unique<SessionStore>(path);
-        const QVector<SessionInfo> sessions = store->sessions();
+        m_workspace->clear();
+        m_comparison->clear();
+        m_comparison->hide();
         m_store = std::move(store);
-        m_browser->setSessions(sessions);
         setWindowTitle(tr("DriftLab - %1").arg(QFileInfo(path).fileName()));
-        statusBar()->showMessage(tr("%1: %n session(s)", nullptr, sessions.size()).arg(path));
-        if (!sessions.isEmpty()) {
-            m_browser->selectSession(sessions.back().id);
-            showSession(sessions.back().id);
-        }
+        rememberDatabase(path);
+        refreshSessions(0);
+        statusBar()->showMessage(tr("%1: %n session(s)", nullptr, m_store->sessions().size()).arg(path));
         return true;
     } catch (const StorageError &e) {
         reportError(QString::fromStdString(e.what()));
@@ -77,24 +158,26 @@ bool MainWindow::openDatabase(const QString &path)
     }
 }
 
+void MainWindow::refreshSessions(qint64 select)
+{
+    const QVector<SessionInfo> sessions = m_store->sessions();
+    m_browser->setSessions(sessions);
+    if (sessions.isEmpty())
+        return;
+    const qint64 id = select ? select : sessions.back().id;
+    m_browser->selectSession(id);
+    showSession(id);
+}
+
 void MainWindow::showSession(qint64 sessionId)
 {
     if (!m_store)
         return;
     try {
-        const SessionInfo info = m_store->session(sessionId);
-        const QVector<ChannelInfo> channels = m_store->channels(sessionId);
+        m_workspace->setSession(m_store.get(), sessionId);
         m_sessionId = sessionId;
-        // By default: temperatures and displacements, not the CNC's fast position/feed.
-        QVector<qint64> shown;
-        for (const ChannelInfo &c : channels) {
-            if (c.kind == QLatin1String("temperature") || c.kind == QLatin1String("displacement"))
-                shown.push_back(c.id);
-        }
-        m_browser->setChannels(channels, shown);
-        m_plot->setTitle(info.name);
-        showChannels(shown);
-    } catch (const StorageError &e) {
+        m_browser->setChannels(m_store->channels(sessionId), m_workspace->defaultChannels());
+    } catch (const std::exception &e) {
         reportError(QString::fromStdString(e.what()));
     }
 }
@@ -104,36 +187,126 @@ void MainWindow::showChannels(const QVector<qint64> &channelIds)
     if (!m_store || m_sessionId == 0)
         return;
     try {
-        m_plot->clearCurves();
-        QString leftUnits, rightUnits;
-        for (const ChannelInfo &c : m_store->channels(m_sessionId)) {
-            if (!channelIds.contains(c.id))
-                continue;
-            const bool right = c.kind != QLatin1String("temperature");
-            if (m_store->sampleCount(c.id) > kRawCurveLimit) {
-                // Long channels: min/max per pixel column from the store's decimation levels.
-                const SessionStore *store = m_store.get();
-                const qint64 id = c.id;
-                const DecimatedSeries whole = store->decimated(id, -1e300, 1e300, 1);
-                const double tFirst = whole.tFirst.isEmpty() ? 0.0 : whole.tFirst.front();
-                const double tLast = whole.tLast.isEmpty() ? 0.0 : whole.tLast.back();
-                m_plot->addDecimatedCurve(
-                    c.key, [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); }, tFirst,
-                    tLast, right);
-            } else {
-                const SampleBlock block = m_store->samples(c.id);
-                m_plot->addCurve(c.key, block.t, block.v, right);
-            }
-            QString &units = right ? rightUnits : leftUnits;
-            if (!units.contains(c.unit))
-                units += (units.isEmpty() ? QString() : QStringLiteral(", ")) + c.unit;
-        }
-        m_plot->setAxisTitles(leftUnits.isEmpty() ? QString() : tr("temperature (%1)").arg(leftUnits),
-                              rightUnits.isEmpty() ? QString() : rightUnits);
-        m_plot->zoomToData();
-    } catch (const StorageError &e) {
+        m_workspace->showChannels(channelIds);
+    } catch (const std::exception &e) {
         reportError(QString::fromStdString(e.what()));
     }
+}
+
+void MainWindow::compareWith(qint64 sessionId)
+{
+    if (sessionId == 0 || !m_store) {
+        m_comparison->clear();
+        m_comparison->hide();
+        return;
+    }
+    try {
+        m_comparison->setSession(m_store.get(), sessionId);
+        m_comparison->show();
+        m_split->setSizes({m_split->width() / 2, m_split->width() / 2});
+    } catch (const std::exception &e) {
+        reportError(QString::fromStdString(e.what()));
+    }
+}
+
+void MainWindow::chooseComparison()
+{
+    if (!m_store)
+        return;
+    QStringList labels;
+    QVector<qint64> ids;
+    for (const SessionInfo &s : m_store->sessions()) {
+        labels << QStringLiteral("#%1  %2").arg(s.id).arg(s.name);
+        ids << s.id;
+    }
+    bool ok = false;
+    const QString choice = QInputDialog::getItem(this, tr("Compare"), tr("Session to show beside the current one:"),
+                                                 labels, 0, false, &ok);
+    if (ok)
+        compareWith(ids.value(labels.indexOf(choice)));
+}
+
+bool MainWindow::importBundle(const QString &path)
+{
+    if (!m_store) {
+        reportError(tr("Open a database before importing %1").arg(path));
+        return false;
+    }
+    try {
+        statusBar()->showMessage(tr("Importing %1...").arg(path));
+        const qint64 id = BundleTransfer::importBundle(*m_store, path);
+        refreshSessions(id);
+        statusBar()->showMessage(tr("Imported %1 as session %2").arg(path).arg(id));
+        return true;
+    } catch (const std::exception &e) {
+        // Nothing was imported: the store rolls the whole bundle back.
+        reportError(QString::fromStdString(e.what()));
+        if (isVisible())
+            QMessageBox::warning(this, tr("Import failed"), m_lastError);
+        return false;
+    }
+}
+
+void MainWindow::chooseBundle()
+{
+    const QString path = QFileDialog::getOpenFileName(this, tr("Import recording bundle"), QString(),
+                                                      tr("Bundles (manifest.json *.zip);;All files (*)"));
+    if (path.isEmpty())
+        return;
+    importBundle(QFileInfo(path).fileName() == QLatin1String("manifest.json") ? QFileInfo(path).absolutePath() : path);
+}
+
+void MainWindow::exportSession()
+{
+    if (!m_store || m_sessionId == 0)
+        return;
+    const QString out = QFileDialog::getSaveFileName(this, tr("Export session"), QStringLiteral("session.zip"),
+                                                     tr("Zipped bundle (*.zip);;Bundle folder (*.bundle)"));
+    if (out.isEmpty())
+        return;
+    try {
+        BundleTransfer::exportBundle(*m_store, m_sessionId, out);
+        statusBar()->showMessage(tr("Exported session %1 to %2").arg(m_sessionId).arg(out));
+    } catch (const std::exception &e) {
+        reportError(QString::fromStdString(e.what()));
+    }
+}
+
+void MainWindow::exportView()
+{
+    const QString name = m_workspace->currentViewName();
+    QwtPlot *plot = m_workspace->plotForView(name);
+    if (!plot)
+        return;
+    const QString out = QFileDialog::getSaveFileName(this, tr("Export view"), name + QStringLiteral(".png"),
+                                                     tr("PNG (*.png);;SVG (*.svg);;PDF (*.pdf)"));
+    if (out.isEmpty())
+        return;
+    try {
+        PlotExporter::exportPlot(*plot, out);
+        statusBar()->showMessage(tr("Wrote %1").arg(out));
+    } catch (const std::exception &e) {
+        reportError(QString::fromStdString(e.what()));
+    }
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent *event)
+{
+    for (const QUrl &url : event->mimeData()->urls()) {
+        if (url.isLocalFile() && isBundlePath(url.toLocalFile())) {
+            event->acceptProposedAction();
+            return;
+        }
+    }
+}
+
+void MainWindow::dropEvent(QDropEvent *event)
+{
+    for (const QUrl &url : event->mimeData()->urls()) {
+        if (url.isLocalFile() && isBundlePath(url.toLocalFile()))
+            importBundle(url.toLocalFile());
+    }
+    event->acceptProposedAction();
 }
 
 } // namespace driftlab

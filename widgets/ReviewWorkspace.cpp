@@ -1,0 +1,258 @@
+#include "ReviewWorkspace.h"
+
+#include "ErrorSurface3D.h"
+#include "ErrorSurfacePlot.h"
+#include "InfraredPanel.h"
+#include "SessionReviewData.h"
+#include "SessionStore.h"
+#include "ThermalErrorViews.h"
+#include "TimeSeriesPlot.h"
+
+#include <QComboBox>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QTabWidget>
+#include <QVBoxLayout>
+
+namespace driftlab {
+
+namespace {
+// Channels longer than this are drawn from decimated min/max levels.
+constexpr qint64 kRawCurveLimit = 20000;
+
+enum Tab { TimeSeriesTab, SurfaceTab, ProfilesTab, HistoriesTab, TemperatureTab, ThreeDTab, InfraredTab };
+} // namespace
+
+ReviewWorkspace::ReviewWorkspace(QWidget *parent)
+    : QWidget(parent),
+      m_tabs(new QTabWidget(this)),
+      m_timeSeries(new TimeSeriesPlot(this)),
+      m_surface(new ErrorSurfacePlot(this)),
+      m_profiles(new TimeSeriesPlot(this)),
+      m_histories(new TimeSeriesPlot(this)),
+      m_temperaturePage(new QWidget(this)),
+      m_temperatureChannel(new QComboBox(this)),
+      m_target(new QComboBox(this)),
+      m_againstTemperature(new TimeSeriesPlot(this)),
+      m_3dPage(new QWidget(this)),
+      m_infrared(new InfraredPanel(this))
+{
+    auto *layout = new QVBoxLayout(this);
+    layout->setContentsMargins(0, 0, 0, 0);
+    layout->addWidget(m_tabs);
+    auto *tempLayout = new QVBoxLayout(m_temperaturePage);
+    auto *pickers = new QHBoxLayout();
+    pickers->addWidget(new QLabel(tr("Temperature channel:"), m_temperaturePage));
+    pickers->addWidget(m_temperatureChannel, 1);
+    pickers->addWidget(new QLabel(tr("Target:"), m_temperaturePage));
+    pickers->addWidget(m_target, 1);
+    tempLayout->addLayout(pickers);
+    tempLayout->addWidget(m_againstTemperature, 1);
+    new QVBoxLayout(m_3dPage);
+
+    m_tabs->insertTab(TimeSeriesTab, m_timeSeries, tr("Channels"));
+    m_tabs->insertTab(SurfaceTab, m_surface, tr("Error surface"));
+    m_tabs->insertTab(ProfilesTab, m_profiles, tr("Error vs position"));
+    m_tabs->insertTab(HistoriesTab, m_histories, tr("Error vs time"));
+    m_tabs->insertTab(TemperatureTab, m_temperaturePage, tr("Error vs temperature"));
+    m_tabs->insertTab(ThreeDTab, m_3dPage, tr("3-D surface"));
+    m_tabs->insertTab(InfraredTab, m_infrared, tr("Infrared"));
+    connect(m_temperatureChannel, QOverload<int>::of(&QComboBox::currentIndexChanged), this,
+            &ReviewWorkspace::updateTemperatureView);
+    connect(m_target, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &ReviewWorkspace::updateTemperatureView);
+    // The 3-D view needs OpenGL: create it only when someone looks at it.
+    connect(m_tabs, &QTabWidget::currentChanged, this, [this](int index) {
+        if (index == ThreeDTab)
+            ensure3D();
+    });
+    clear();
+}
+
+ReviewWorkspace::~ReviewWorkspace() = default;
+
+void ReviewWorkspace::clear()
+{
+    m_store = nullptr;
+    m_sessionId = 0;
+    m_data.reset();
+    m_hasErrors = false;
+    m_timeSeries->clearCurves();
+    for (int t = SurfaceTab; t <= InfraredTab; ++t)
+        m_tabs->setTabEnabled(t, false);
+}
+
+void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
+{
+    auto data = std::make_shared<SessionReviewData>(*store, sessionId);
+    m_store = store;
+    m_sessionId = sessionId;
+    m_data = data;
+    m_timeSeries->setTitle(data->info().name);
+
+    m_hasErrors = data->hasInterferometer();
+    for (int t = SurfaceTab; t <= ThreeDTab; ++t)
+        m_tabs->setTabEnabled(t, m_hasErrors);
+    if (m_hasErrors) {
+        const ThermalErrorTable table = data->thermalErrors();
+        m_surface->setTable(table);
+        ThermalErrorViews::showProfiles(*m_profiles, table);
+        ThermalErrorViews::showHistories(*m_histories, table);
+        m_target->blockSignals(true);
+        m_temperatureChannel->blockSignals(true);
+        m_target->clear();
+        for (double x : table.targets_mm())
+            m_target->addItem(tr("%1 mm").arg(x));
+        m_target->setCurrentIndex(m_target->count() - 1);
+        m_temperatureChannel->clear();
+        for (const ChannelInfo &c : data->channels()) {
+            if (c.kind == QLatin1String("temperature"))
+                m_temperatureChannel->addItem(QStringLiteral("%1 (%2)").arg(c.key, c.role), c.id);
+        }
+        // Start on the temperature that explains the far target's error best.
+        int best = 0;
+        double bestR2 = -1.0;
+        TimeSeriesPlot scratch;
+        for (int i = 0; i < m_temperatureChannel->count(); ++i) {
+            const LineFit fit = ThermalErrorViews::showAgainstTemperature(
+                scratch, table, table.targetCount() - 1, data->series(m_temperatureChannel->itemData(i).toLongLong()),
+                QString());
+            if (fit.r2 > bestR2) {
+                bestR2 = fit.r2;
+                best = i;
+            }
+        }
+        m_temperatureChannel->setCurrentIndex(best);
+        m_target->blockSignals(false);
+        m_temperatureChannel->blockSignals(false);
+        updateTemperatureView();
+        if (m_3d)
+            m_3d->setTable(table);
+    }
+    m_tabs->setTabEnabled(InfraredTab, !data->infraredFrames().isEmpty());
+    m_infrared->setSession(data);
+    showChannels(defaultChannels());
+}
+
+QVector<qint64> ReviewWorkspace::defaultChannels() const
+{
+    QVector<qint64> shown;
+    if (!m_data)
+        return shown;
+    // Temperatures and displacements, not the CNC's fast position and feed.
+    for (const ChannelInfo &c : m_data->channels()) {
+        if (c.kind == QLatin1String("temperature") || c.kind == QLatin1String("displacement"))
+            shown.push_back(c.id);
+    }
+    return shown;
+}
+
+void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
+{
+    m_timeSeries->clearCurves();
+    if (!m_store || !m_data)
+        return;
+    QString leftUnits, rightUnits;
+    for (const ChannelInfo &c : m_data->channels()) {
+        if (!channelIds.contains(c.id))
+            continue;
+        const bool right = c.kind != QLatin1String("temperature");
+        if (m_store->sampleCount(c.id) > kRawCurveLimit) {
+            const SessionStore *store = m_store;
+            const qint64 id = c.id;
+            const DecimatedSeries whole = store->decimated(id, -1e300, 1e300, 1);
+            const double tFirst = whole.tFirst.isEmpty() ? 0.0 : whole.tFirst.front();
+            const double tLast = whole.tLast.isEmpty() ? 0.0 : whole.tLast.back();
+            m_timeSeries->addDecimatedCurve(
+                c.key, [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); }, tFirst,
+                tLast, right);
+        } else {
+            const SampleBlock block = m_store->samples(c.id);
+            m_timeSeries->addCurve(c.key, block.t, block.v, right);
+        }
+        QString &units = right ? rightUnits : leftUnits;
+        if (!units.contains(c.unit))
+            units += (units.isEmpty() ? QString() : QStringLiteral(", ")) + c.unit;
+    }
+    m_timeSeries->enableAxis(QwtPlot::yRight, !rightUnits.isEmpty());
+    m_timeSeries->setAxisTitles(leftUnits.isEmpty() ? QString() : tr("temperature (%1)").arg(leftUnits), rightUnits);
+    m_timeSeries->zoomToData();
+}
+
+void ReviewWorkspace::updateTemperatureView()
+{
+    if (!m_data || !m_hasErrors || m_temperatureChannel->count() == 0 || m_target->currentIndex() < 0)
+        return;
+    const qint64 id = m_temperatureChannel->currentData().toLongLong();
+    ThermalErrorViews::showAgainstTemperature(*m_againstTemperature, m_data->thermalErrors(),
+                                              static_cast<std::size_t>(m_target->currentIndex()), m_data->series(id),
+                                              m_temperatureChannel->currentText().section(QLatin1Char(' '), 0, 0));
+}
+
+void ReviewWorkspace::ensure3D()
+{
+    if (m_3d)
+        return;
+    m_3d = new ErrorSurface3D(m_3dPage);
+    m_3dPage->layout()->addWidget(m_3d);
+    if (m_data && m_hasErrors)
+        m_3d->setTable(m_data->thermalErrors());
+}
+
+QStringList ReviewWorkspace::viewNames()
+{
+    return {QStringLiteral("timeseries"), QStringLiteral("error-surface"), QStringLiteral("error-position"),
+            QStringLiteral("error-time"), QStringLiteral("error-temperature"), QStringLiteral("ir-profile"),
+            QStringLiteral("ir-surface")};
+}
+
+QwtPlot *ReviewWorkspace::plotForView(const QString &name)
+{
+    const int index = viewNames().indexOf(name);
+    const bool errors = m_hasErrors;
+    const bool ir = m_infrared->frameCount() > 0;
+    switch (index) {
+    case 0:
+        m_tabs->setCurrentIndex(TimeSeriesTab);
+        return m_timeSeries;
+    case 1:
+        m_tabs->setCurrentIndex(SurfaceTab);
+        return errors ? m_surface : nullptr;
+    case 2:
+        m_tabs->setCurrentIndex(ProfilesTab);
+        return errors ? m_profiles : nullptr;
+    case 3:
+        m_tabs->setCurrentIndex(HistoriesTab);
+        return errors ? m_histories : nullptr;
+    case 4:
+        m_tabs->setCurrentIndex(TemperatureTab);
+        return errors && m_temperatureChannel->count() > 0 ? m_againstTemperature : nullptr;
+    case 5:
+        m_tabs->setCurrentIndex(InfraredTab);
+        return ir ? static_cast<QwtPlot *>(m_infrared->profilePlot()) : nullptr;
+    case 6:
+        m_tabs->setCurrentIndex(InfraredTab);
+        return ir && m_infrared->frameCount() >= 2 ? static_cast<QwtPlot *>(m_infrared->profileSurface()) : nullptr;
+    default:
+        return nullptr;
+    }
+}
+
+QString ReviewWorkspace::currentViewName() const
+{
+    switch (m_tabs->currentIndex()) {
+    case SurfaceTab:
+        return QStringLiteral("error-surface");
+    case ProfilesTab:
+        return QStringLiteral("error-position");
+    case HistoriesTab:
+        return QStringLiteral("error-time");
+    case TemperatureTab:
+        return QStringLiteral("error-temperature");
+    case InfraredTab:
+        return QStringLiteral("ir-profile");
+    default:
+        return QStringLiteral("timeseries");
+    }
+}
+
+} // namespace driftlab

@@ -1,0 +1,72 @@
+#pragma once
+// The review views of one session in tabs: channels over time, the thermal error views
+// of the interferometer runs (surface, against position, time and temperature, 3-D) and
+// the infrared frames. Each view can be exported by name.
+
+#include <QStringList>
+#include <QVector>
+#include <QWidget>
+
+#include <memory>
+
+class QComboBox;
+class QTabWidget;
+class QwtPlot;
+
+namespace driftlab {
+
+class ErrorSurface3D;
+class ErrorSurfacePlot;
+class InfraredPanel;
+class SessionReviewData;
+class SessionStore;
+class TimeSeriesPlot;
+
+class ReviewWorkspace : public QWidget {
+    Q_OBJECT
+public:
+    explicit ReviewWorkspace(QWidget *parent = nullptr);
+    ~ReviewWorkspace() override;
+
+    // Loads a session from `store` (which must outlive the workspace or the next call).
+    // Throws StorageError / std::runtime_error.
+    void setSession(const SessionStore *store, qint64 sessionId);
+    void clear();
+    qint64 session() const { return m_sessionId; }
+    // Plots the channels (by id) in the time-series view.
+    void showChannels(const QVector<qint64> &channelIds);
+    QVector<qint64> defaultChannels() const;
+
+    // Export names: timeseries, error-surface, error-position, error-time,
+    // error-temperature, ir-profile, ir-surface.
+    static QStringList viewNames();
+    // The plot behind a view (nullptr if the session has no data for it); selects its tab.
+    QwtPlot *plotForView(const QString &name);
+    QString currentViewName() const;
+    TimeSeriesPlot *timeSeriesPlot() const { return m_timeSeries; }
+    ErrorSurfacePlot *errorSurface() const { return m_surface; }
+    InfraredPanel *infraredPanel() const { return m_infrared; }
+
+private:
+    void updateTemperatureView();
+    void ensure3D();
+
+    const SessionStore *m_store = nullptr;
+    qint64 m_sessionId = 0;
+    std::shared_ptr<SessionReviewData> m_data;
+    bool m_hasErrors = false;
+    QTabWidget *m_tabs;
+    TimeSeriesPlot *m_timeSeries;
+    ErrorSurfacePlot *m_surface;
+    TimeSeriesPlot *m_profiles;
+    TimeSeriesPlot *m_histories;
+    QWidget *m_temperaturePage;
+    QComboBox *m_temperatureChannel;
+    QComboBox *m_target;
+    TimeSeriesPlot *m_againstTemperature;
+    QWidget *m_3dPage;
+    ErrorSurface3D *m_3d = nullptr;
+    InfraredPanel *m_infrared;
+};
+
+} // namespace driftlab

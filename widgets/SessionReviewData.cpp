@@ -1,0 +1,111 @@
+#include "SessionReviewData.h"
+
+#include "SessionStore.h"
+
+#include <QJsonArray>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace driftlab {
+
+SessionReviewData::SessionReviewData(const SessionStore &store, qint64 sessionId)
+    : m_store(store),
+      m_sessionId(sessionId),
+      m_info(store.session(sessionId)),
+      m_channels(store.channels(sessionId)),
+      m_points(store.interferometerPoints(sessionId)),
+      m_frames(store.irFrames(sessionId))
+{
+}
+
+int SessionReviewData::referenceRun() const
+{
+    const QJsonValue ref = m_info.manifest.value(QStringLiteral("interferometer")).toObject().value(QStringLiteral("reference_run"));
+    if (ref.isDouble())
+        return ref.toInt();
+    return m_points.isEmpty() ? 0 : m_points.front().run; // the first run, taken cold
+}
+
+ThermalErrorTable SessionReviewData::thermalErrors() const
+{
+    if (m_points.isEmpty())
+        throw std::runtime_error(QStringLiteral("session %1 has no interferometer runs").arg(m_sessionId).toStdString());
+    std::vector<InterferometerReading> readings;
+    readings.reserve(static_cast<size_t>(m_points.size()));
+    for (const InterferometerPoint &p : m_points) {
+        const int dir = p.direction == QLatin1String("+") ? 1 : (p.direction == QLatin1String("-") ? -1 : 0);
+        readings.push_back({p.t, p.run, p.position_mm, p.error_um, dir});
+    }
+    return ThermalErrorTable::build(readings, referenceRun());
+}
+
+InfraredCalibration SessionReviewData::infraredCalibration() const
+{
+    InfraredCalibration c;
+    const QJsonObject ir = m_info.manifest.value(QStringLiteral("infrared")).toObject();
+    c.scale = ir.value(QStringLiteral("scale")).toDouble(c.scale);
+    c.offset = ir.value(QStringLiteral("offset")).toDouble(c.offset);
+    const QJsonArray px = ir.value(QStringLiteral("screw_line_px")).toArray();
+    if (px.size() == 2) {
+        c.lineX0_px = px.at(0).toArray().at(0).toDouble();
+        c.lineY0_px = px.at(0).toArray().at(1).toDouble();
+        c.lineX1_px = px.at(1).toArray().at(0).toDouble();
+        c.lineY1_px = px.at(1).toArray().at(1).toDouble();
+    }
+    const QJsonArray m = ir.value(QStringLiteral("screw_line_m")).toArray();
+    if (m.size() == 2) {
+        c.line0_m = m.at(0).toDouble();
+        c.line1_m = m.at(1).toDouble();
+    }
+    c.screwWidth_px = ir.value(QStringLiteral("screw_width_px")).toDouble(c.screwWidth_px);
+    return c;
+}
+
+cv::Mat SessionReviewData::frameTemperature(qint64 frameId) const
+{
+    const IrFrame f = m_store.irFrame(frameId);
+    if (f.pixels.size() != f.width * f.height || f.width <= 0)
+        throw std::runtime_error(QStringLiteral("infrared frame %1 has no pixels").arg(frameId).toStdString());
+    cv::Mat counts(f.height, f.width, CV_16UC1, const_cast<quint16 *>(f.pixels.constData()));
+    return InfraredFrame::countsToTemperature(counts, infraredCalibration());
+}
+
+std::optional<ChannelInfo> SessionReviewData::channelByRole(const QString &role) const
+{
+    for (const ChannelInfo &c : m_channels) {
+        if (c.role == role || c.key == role)
+            return c;
+    }
+    return std::nullopt;
+}
+
+TimeSeries SessionReviewData::series(qint64 channelId) const
+{
+    const SampleBlock b = m_store.samples(channelId);
+    TimeSeries s;
+    s.t.assign(b.t.begin(), b.t.end());
+    s.v.assign(b.v.begin(), b.v.end());
+    return s;
+}
+
+std::optional<double> SessionReviewData::nutCentreAt(double t) const
+{
+    if (!m_position) {
+        const auto c = channelByRole(QStringLiteral("axis_position"));
+        if (!c)
+            return std::nullopt;
+        m_position = series(c->id);
+    }
+    if (m_position->empty())
+        return std::nullopt;
+    const double pf = m_info.machine.value(QStringLiteral("fixed_end_position_mm")).toDouble(0.0);
+    return std::fabs(m_position->at(t) - pf) / 1000.0;
+}
+
+double SessionReviewData::nutLength_m() const
+{
+    return m_info.machine.value(QStringLiteral("screw")).toObject().value(QStringLiteral("nut_length_m")).toDouble(0.212);
+}
+
+} // namespace driftlab
