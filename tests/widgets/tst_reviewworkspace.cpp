@@ -1,0 +1,182 @@
+// The review workspace on a session with known content: the error surface holds the
+// computed thermal errors, the infrared profile follows the true screw temperature away
+// from the nut (whose position comes from the axis channel), views without data say so.
+
+#include "ErrorSurfacePlot.h"
+#include "InfraredPanel.h"
+#include "ReviewWorkspace.h"
+#include "SessionReviewData.h"
+#include "SessionStore.h"
+
+#include <QJsonArray>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include <cmath>
+
+using namespace driftlab;
+
+namespace {
+constexpr double kPf = -141.0; // fixed-end axis coordinate (mm)
+
+double pitch(double x) { return 1.5 * std::sin(x / 70.0); }
+double thermal(double x, double t) { return 25.0 * (1.0 - std::exp(-t / 2400.0)) * (x - kPf) / 741.0; }
+double screwTemperature(double s_m, double t) { return 20.0 + 4.0 * (1.0 - std::exp(-t / 2400.0)) * std::exp(-s_m / 0.35); }
+double axisPosition(double t) { const double c = std::fmod(t * 50.0, 1200.0); return c <= 600.0 ? c : 1200.0 - c; }
+
+QJsonObject manifest()
+{
+    return QJsonObject{
+        {QStringLiteral("infrared"),
+         QJsonObject{{QStringLiteral("scale"), 0.01},
+                     {QStringLiteral("offset"), -273.15},
+                     {QStringLiteral("screw_line_px"), QJsonArray{QJsonArray{10, 30}, QJsonArray{250, 30}}},
+                     {QStringLiteral("screw_line_m"), QJsonArray{0.0, 0.8}},
+                     {QStringLiteral("screw_width_px"), 6}}},
+        {QStringLiteral("interferometer"), QJsonObject{{QStringLiteral("reference_run"), 0}}}};
+}
+} // namespace
+
+class TestReviewWorkspace : public QObject {
+    Q_OBJECT
+private slots:
+    void initTestCase();
+    void surfaceHoldsThermalErrors();
+    void infraredProfileFollowsTruthAwayFromNut();
+    void viewsWithoutDataAreUnavailable();
+
+private:
+    QTemporaryDir m_dir;
+    std::unique_ptr<SessionStore> m_store;
+    qint64 m_full = 0;
+    qint64 m_bare = 0;
+};
+
+void TestReviewWorkspace::initTestCase()
+{
+    m_store = std::make_unique<SessionStore>(m_dir.filePath(QStringLiteral("review.sqlite")));
+    SessionInfo info;
+    info.name = QStringLiteral("known content");
+    info.started = QStringLiteral("2026-11-22T08:00:00Z");
+    info.machine = QJsonObject{{QStringLiteral("fixed_end_position_mm"), kPf},
+                               {QStringLiteral("screw"), QJsonObject{{QStringLiteral("nut_length_m"), 0.212}}}};
+    info.manifest = manifest();
+    m_full = m_store->createSession(info);
+    ChannelInfo x;
+    x.key = QStringLiteral("X");
+    x.kind = QStringLiteral("position");
+    x.unit = QStringLiteral("mm");
+    x.role = QStringLiteral("axis_position");
+    const qint64 xId = m_store->addChannel(m_full, x);
+    QVector<double> t, v;
+    for (double ti = 0; ti <= 12600; ti += 1.0) {
+        t.push_back(ti);
+        v.push_back(axisPosition(ti));
+    }
+    m_store->appendSamples(xId, t, v);
+    ChannelInfo nut;
+    nut.key = QStringLiteral("T_nut");
+    nut.kind = QStringLiteral("temperature");
+    nut.unit = QStringLiteral("degC");
+    nut.role = QStringLiteral("nut");
+    const qint64 nutId = m_store->addChannel(m_full, nut);
+    QVector<double> tn;
+    for (double ti : t)
+        tn.push_back(20.0 + thermal(550.0, ti) / 5.0);
+    m_store->appendSamples(nutId, t, tn);
+    QVector<InterferometerPoint> pts;
+    for (int run = 0; run < 8; ++run) {
+        for (int k = 0; k < 12; ++k) {
+            InterferometerPoint p;
+            p.t = run * 1800.0 + 15.0 * k;
+            p.run = run;
+            p.position_mm = 50.0 * k;
+            p.error_um = pitch(p.position_mm) + (run == 0 ? 0.0 : thermal(p.position_mm, p.t));
+            pts.push_back(p);
+        }
+    }
+    m_store->addInterferometerPoints(m_full, pts);
+    // Frames: the screw band at its true temperature, the nut housing (hotter, 40 degC)
+    // covering +-106 mm around the nut, background at 18 degC.
+    for (int n = 0; n < 5; ++n) {
+        IrFrame f;
+        f.t = 600.0 + n * 2700.0;
+        f.width = 260;
+        f.height = 60;
+        const double nut_m = (axisPosition(f.t) - kPf) / 1000.0;
+        for (int yy = 0; yy < f.height; ++yy) {
+            for (int xx = 0; xx < f.width; ++xx) {
+                const double s = (xx - 10) / 240.0 * 0.8;
+                double temp = 18.0;
+                if (std::abs(yy - 30) <= 4 && s >= 0 && s <= 0.8)
+                    temp = screwTemperature(s, f.t);
+                if (std::fabs(s - nut_m) <= 0.106 && std::abs(yy - 30) <= 15)
+                    temp = 40.0;
+                f.pixels.push_back(static_cast<quint16>(std::lround((temp + 273.15) / 0.01)));
+            }
+        }
+        m_store->addIrFrame(m_full, f);
+    }
+    SessionInfo bare;
+    bare.name = QStringLiteral("no interferometer, no infrared");
+    bare.started = QStringLiteral("2026-11-22T09:00:00Z");
+    m_bare = m_store->createSession(bare);
+}
+
+void TestReviewWorkspace::surfaceHoldsThermalErrors()
+{
+    ReviewWorkspace ws;
+    ws.setSession(m_store.get(), m_full);
+    const ThermalErrorTable table = SessionReviewData(*m_store, m_full).thermalErrors();
+    QCOMPARE(table.runCount(), std::size_t(7));
+    for (std::size_t r = 0; r < table.runCount(); ++r) {
+        for (std::size_t k = 0; k < table.targetCount(); ++k) {
+            const double x = table.targets_mm()[k];
+            const double tm = table.runTimes_s()[r];
+            // Independent truth: the pitch error cancels; what remains is thermal().
+            const double truth = thermal(x, (r + 1) * 1800.0 + 15.0 * k);
+            QVERIFY(std::fabs(ws.errorSurface()->valueAt(x, tm) - truth) < 1e-9);
+        }
+    }
+    for (const QString &view : ReviewWorkspace::viewNames())
+        QVERIFY2(ws.plotForView(view), qPrintable(view));
+}
+
+void TestReviewWorkspace::infraredProfileFollowsTruthAwayFromNut()
+{
+    const SessionReviewData data(*m_store, m_full);
+    std::vector<double> x, t, z;
+    InfraredPanel::profileGrid(data, 81, x, t, z);
+    QCOMPARE(t.size(), std::size_t(5));
+    QCOMPARE(x.size(), std::size_t(81));
+    int masked = 0, checked = 0;
+    for (std::size_t f = 0; f < t.size(); ++f) {
+        const double nut_m = (axisPosition(t[f]) - kPf) / 1000.0;
+        for (std::size_t i = 0; i < x.size(); ++i) {
+            const double value = z[f * x.size() + i];
+            if (std::fabs(x[i] - nut_m) <= 0.106 + 0.01) {
+                QVERIFY2(std::isnan(value), "the nut housing was not masked");
+                ++masked;
+                continue;
+            }
+            QVERIFY2(std::fabs(value - screwTemperature(x[i], t[f])) < 0.02,
+                     qPrintable(QStringLiteral("frame %1 x=%2: %3 vs %4").arg(f).arg(x[i]).arg(value).arg(screwTemperature(x[i], t[f]))));
+            ++checked;
+        }
+    }
+    QVERIFY(masked > 5 * 20);
+    QVERIFY(checked > 5 * 50);
+}
+
+void TestReviewWorkspace::viewsWithoutDataAreUnavailable()
+{
+    ReviewWorkspace ws;
+    ws.setSession(m_store.get(), m_bare);
+    QVERIFY(ws.plotForView(QStringLiteral("timeseries")));
+    for (const char *view : {"error-surface", "error-position", "error-time", "error-temperature", "ir-profile", "ir-surface"})
+        QVERIFY2(!ws.plotForView(QLatin1String(view)), view);
+    QVERIFY(!ws.plotForView(QStringLiteral("no-such-view")));
+}
+
+QTEST_MAIN(TestReviewWorkspace)
+#include "tst_reviewworkspace.moc"
