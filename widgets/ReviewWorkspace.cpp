@@ -88,6 +88,7 @@ void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
     m_sessionId = sessionId;
     m_data = data;
     m_timeSeries->setTitle(data->info().name);
+    m_timeSeries->setEvents(store->events(sessionId));
 
     m_hasErrors = data->hasInterferometer();
     for (int t = SurfaceTab; t <= ThreeDTab; ++t)

@@ -4,6 +4,7 @@
 #include <qwt_plot_curve.h>
 #include <qwt_plot_grid.h>
 #include <qwt_plot_magnifier.h>
+#include <qwt_plot_marker.h>
 #include <qwt_plot_panner.h>
 #include <qwt_plot_zoomer.h>
 #include <qwt_text.h>
@@ -138,6 +139,29 @@ void TimeSeriesPlot::setAxisTitles(const QString &left, const QString &right)
 {
     setAxisTitle(QwtPlot::yLeft, left);
     setAxisTitle(QwtPlot::yRight, right);
+}
+
+void TimeSeriesPlot::setEvents(const QVector<EventRecord> &events)
+{
+    for (QwtPlotMarker *m : m_events) {
+        m->detach();
+        delete m;
+    }
+    m_events.clear();
+    for (const EventRecord &e : events) {
+        auto *m = new QwtPlotMarker(e.label);
+        m->setLineStyle(QwtPlotMarker::VLine);
+        m->setLinePen(QColor(90, 90, 90), 0.0, Qt::DashLine);
+        m->setXValue(e.t);
+        QwtText label(e.label);
+        label.setColor(QColor(60, 60, 60));
+        m->setLabel(label);
+        m->setLabelAlignment(Qt::AlignRight | Qt::AlignTop);
+        m->setLabelOrientation(Qt::Vertical);
+        m->attach(this);
+        m_events.push_back(m);
+    }
+    replot();
 }
 
 void TimeSeriesPlot::zoomToData()

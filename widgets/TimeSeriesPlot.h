@@ -14,6 +14,7 @@
 
 class QTimer;
 class QwtPlotCurve;
+class QwtPlotMarker;
 class QwtPlotZoomer;
 
 namespace driftlab {
@@ -35,6 +36,9 @@ public:
     QVector<QwtPlotCurve *> curves() const { return m_curves; }
     QwtPlotCurve *curve(const QString &title) const;
     void setAxisTitles(const QString &left, const QString &right);
+    // Vertical markers with labels at operator/program events (replaces earlier ones).
+    void setEvents(const QVector<EventRecord> &events);
+    int eventMarkerCount() const { return m_events.size(); }
     void zoomToData();
 
 private:
@@ -46,6 +50,7 @@ private:
     };
     QVector<QwtPlotCurve *> m_curves;
     QVector<DecimatedCurve> m_decimated;
+    QVector<QwtPlotMarker *> m_events;
     QTimer *m_refresh;
     QwtPlotZoomer *m_zoomer = nullptr;
 };

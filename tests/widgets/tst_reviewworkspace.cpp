@@ -7,6 +7,7 @@
 #include "ReviewWorkspace.h"
 #include "SessionReviewData.h"
 #include "SessionStore.h"
+#include "TimeSeriesPlot.h"
 
 #include <QJsonArray>
 #include <QTemporaryDir>
@@ -117,6 +118,8 @@ void TestReviewWorkspace::initTestCase()
         }
         m_store->addIrFrame(m_full, f);
     }
+    m_store->addEvent(m_full, {0.0, QStringLiteral("feed 3000 mm/min")});
+    m_store->addEvent(m_full, {7200.0, QStringLiteral("standstill")});
     SessionInfo bare;
     bare.name = QStringLiteral("no interferometer, no infrared");
     bare.started = QStringLiteral("2026-11-22T09:00:00Z");
@@ -138,6 +141,7 @@ void TestReviewWorkspace::surfaceHoldsThermalErrors()
             QVERIFY(std::fabs(ws.errorSurface()->valueAt(x, tm) - truth) < 1e-9);
         }
     }
+    QCOMPARE(ws.timeSeriesPlot()->eventMarkerCount(), 2);
     for (const QString &view : ReviewWorkspace::viewNames())
         QVERIFY2(ws.plotForView(view), qPrintable(view));
 }
