@@ -3,7 +3,10 @@
 #include "ThermalErrorTable.h"
 
 #include <QHBoxLayout>
+#include <QtDataVisualization/Q3DCamera>
+#include <QtDataVisualization/Q3DScene>
 #include <QtDataVisualization/Q3DSurface>
+#include <QtDataVisualization/Q3DTheme>
 #include <QtDataVisualization/QSurface3DSeries>
 #include <QtDataVisualization/QSurfaceDataProxy>
 #include <QtDataVisualization/QValue3DAxis>
@@ -33,6 +36,12 @@ ErrorSurface3D::ErrorSurface3D(QWidget *parent) : QWidget(parent)
     m_graph->axisY()->setTitle(tr("thermal error (µm)"));
     for (QValue3DAxis *axis : {m_graph->axisX(), m_graph->axisY(), m_graph->axisZ()})
         axis->setTitleVisible(true);
+    m_graph->axisX()->setLabelFormat(QStringLiteral("%.0f"));
+    m_graph->axisZ()->setLabelFormat(QStringLiteral("%.0f"));
+    m_graph->axisY()->setLabelFormat(QStringLiteral("%.1f"));
+    m_graph->axisZ()->setSegmentCount(4);
+    m_graph->scene()->activeCamera()->setCameraPreset(Q3DCamera::CameraPresetIsometricRightHigh);
+    m_graph->activeTheme()->setFont(QFont(QStringLiteral("DejaVu Sans"), 32));
     auto *layout = new QHBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addWidget(QWidget::createWindowContainer(m_graph, this));

@@ -14,6 +14,7 @@
 #include <qwt_plot_curve.h>
 #include <qwt_symbol.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -99,7 +100,25 @@ void InfraredPanel::setSession(std::shared_ptr<const SessionReviewData> data)
     profileGrid(*m_data, kProfilePoints, x, t, z);
     if (t.size() >= 2)
         m_surface->setGrid(x, t, z);
-    showFrame(0);
+    // Open on the most informative frame: the largest axial temperature spread.
+    int best = 0;
+    double bestSpread = -1.0;
+    for (std::size_t f = 0; f < t.size(); ++f) {
+        double lo = 1e300, hi = -1e300;
+        for (std::size_t i = 0; i < x.size(); ++i) {
+            const double v = z[f * x.size() + i];
+            if (!std::isnan(v)) {
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+        }
+        if (hi - lo > bestSpread) {
+            bestSpread = hi - lo;
+            best = static_cast<int>(f);
+        }
+    }
+    m_slider->setValue(best);
+    showFrame(best);
 }
 
 void InfraredPanel::showFrame(int index)

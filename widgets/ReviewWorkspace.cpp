@@ -238,6 +238,17 @@ QwtPlot *ReviewWorkspace::plotForView(const QString &name)
     }
 }
 
+bool ReviewWorkspace::selectView(const QString &name)
+{
+    if (name == QLatin1String("error-3d")) {
+        if (!m_hasErrors)
+            return false;
+        m_tabs->setCurrentIndex(ThreeDTab);
+        return true;
+    }
+    return plotForView(name) != nullptr;
+}
+
 QString ReviewWorkspace::currentViewName() const
 {
     switch (m_tabs->currentIndex()) {

@@ -43,6 +43,8 @@ public:
     // The plot behind a view (nullptr if the session has no data for it); selects its tab.
     QwtPlot *plotForView(const QString &name);
     QString currentViewName() const;
+    // Shows a view's tab: any export name, or "error-3d" for the 3-D surface.
+    bool selectView(const QString &name);
     TimeSeriesPlot *timeSeriesPlot() const { return m_timeSeries; }
     ErrorSurfacePlot *errorSurface() const { return m_surface; }
     InfraredPanel *infraredPanel() const { return m_infrared; }

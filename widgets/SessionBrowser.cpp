@@ -15,7 +15,6 @@ SessionBrowser::SessionBrowser(QWidget *parent)
 {
     auto *layout = new QVBoxLayout(this);
     layout->setContentsMargins(4, 4, 4, 4);
-    layout->addWidget(new QLabel(tr("Sessions"), this));
     layout->addWidget(m_sessions, 1);
     layout->addWidget(new QLabel(tr("Channels"), this));
     layout->addWidget(m_channels, 2);

@@ -1,6 +1,7 @@
 // driftlab: the DriftLab desktop application.
 
 #include "MainWindow.h"
+#include "ReviewWorkspace.h"
 
 #include <QApplication>
 #include <QCommandLineParser>
@@ -31,7 +32,12 @@ int main(int argc, char **argv)
                                         QStringLiteral("Render the main window to a PNG and exit (works headless with "
                                                        "QT_QPA_PLATFORM=offscreen)."),
                                         QStringLiteral("png"));
-    p.addOptions({db, session, screenshot});
+    const QCommandLineOption view(QStringLiteral("view"),
+                                  QStringLiteral("Review view to show: error-3d, %1.").arg(ReviewWorkspace::viewNames().join(QStringLiteral(", "))),
+                                  QStringLiteral("name"));
+    const QCommandLineOption compare(QStringLiteral("compare"), QStringLiteral("Show this session id beside the first."),
+                                     QStringLiteral("id"));
+    p.addOptions({db, session, screenshot, view, compare});
     p.process(app);
 
     QTextStream err(stderr);
@@ -58,6 +64,17 @@ int main(int argc, char **argv)
             return 2;
         }
         window.showSession(id);
+    }
+    if (p.isSet(compare))
+        window.compareWith(p.value(compare).toLongLong());
+    if (p.isSet(view)) {
+        if (!ReviewWorkspace::viewNames().contains(p.value(view)) && p.value(view) != QLatin1String("error-3d")) {
+            err << "driftlab: --view must be error-3d or one of " << ReviewWorkspace::viewNames().join(QStringLiteral(", "))
+                << '\n';
+            return 2;
+        }
+        if (!window.workspace()->selectView(p.value(view)))
+            err << "driftlab: this session has no data for the view " << p.value(view) << '\n';
     }
     window.show();
 
