@@ -1,12 +1,15 @@
 // The main window opened on a recorded session plots exactly the recorded samples.
 
+#include "BundleTransfer.h"
 #include "MainWindow.h"
+#include "ReviewWorkspace.h"
 #include "SessionBrowser.h"
 #include "SessionRecorder.h"
 #include "SessionStore.h"
 #include "SimulatedRig.h"
 #include "TimeSeriesPlot.h"
 
+#include <QSettings>
 #include <QTemporaryDir>
 #include <QtTest>
 
@@ -22,6 +25,9 @@ private slots:
     void plotsRecordedSamples();
     void channelSelectionChangesCurves();
     void reportsUnreadableDatabase();
+    void importsBundlesAndRefusesBrokenOnes();
+    void comparesTwoSessions();
+    void remembersRecentDatabases();
 
 private:
     QTemporaryDir m_dir;
@@ -32,6 +38,9 @@ private:
 void TestMainWindow::initTestCase()
 {
     QVERIFY(m_dir.isValid());
+    // Keep the user's settings out of it.
+    QSettings::setDefaultFormat(QSettings::IniFormat);
+    QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, m_dir.filePath(QStringLiteral("settings")));
     m_db = m_dir.filePath(QStringLiteral("gui.sqlite"));
     SessionStore store(m_db);
     RigConfig config;
@@ -110,6 +119,51 @@ void TestMainWindow::reportsUnreadableDatabase()
     MainWindow window;
     QVERIFY(!window.openDatabase(bogus));
     QVERIFY(window.lastError().contains(bogus));
+}
+
+void TestMainWindow::importsBundlesAndRefusesBrokenOnes()
+{
+    const QString db = m_dir.filePath(QStringLiteral("import.sqlite"));
+    QFile::remove(db);
+    {
+        SessionStore source(m_db);
+        BundleTransfer::exportBundle(source, m_session, m_dir.filePath(QStringLiteral("s.zip")));
+    }
+    MainWindow window;
+    QVERIFY(window.openDatabase(db));
+    QVERIFY(window.importBundle(m_dir.filePath(QStringLiteral("s.zip"))));
+    QVERIFY(window.currentSession() > 0);
+    QVERIFY(window.plot()->curve(QStringLiteral("S1")));
+    // A broken bundle: refused with a message naming the file; nothing imported.
+    const QString broken = m_dir.filePath(QStringLiteral("broken.bundle"));
+    QDir().mkpath(broken);
+    QFile manifest(broken + QStringLiteral("/manifest.json"));
+    QVERIFY(manifest.open(QIODevice::WriteOnly));
+    manifest.write("{\"format\": \"thermal-error-bundle\", \"version\": 99}");
+    manifest.close();
+    QVERIFY(!window.importBundle(broken));
+    QVERIFY2(window.lastError().contains(QStringLiteral("manifest.json")), qPrintable(window.lastError()));
+    SessionStore check(db);
+    QCOMPARE(check.sessions().size(), 1);
+}
+
+void TestMainWindow::comparesTwoSessions()
+{
+    MainWindow window;
+    QVERIFY(window.openDatabase(m_db));
+    QVERIFY(!window.comparison()->isVisibleTo(&window));
+    window.compareWith(m_session);
+    QVERIFY(window.comparison()->isVisibleTo(&window));
+    QCOMPARE(window.comparison()->session(), m_session);
+    window.compareWith(0);
+    QVERIFY(!window.comparison()->isVisibleTo(&window));
+}
+
+void TestMainWindow::remembersRecentDatabases()
+{
+    MainWindow window;
+    QVERIFY(window.openDatabase(m_db));
+    QCOMPARE(window.recentDatabases().first(), QFileInfo(m_db).absoluteFilePath());
 }
 
 QTEST_MAIN(TestMainWindow)
