@@ -20,8 +20,9 @@ public:
     FeedProgram() = default;
     explicit FeedProgram(QVector<FeedPhase> phases);
 
-    // Seed 000, Table 2: warm-up 84 min, cool-down 42 min, warm-up 42 min at one feed.
-    static FeedProgram seed000Table2(double feed_mm_min, double travelLow_mm = 0.0, double travelHigh_mm = 600.0);
+    // Seed 000, Table 2: warm-up 84 min, cool-down 42 min, warm-up 42 min at one feed
+    // (default travel = the baseline rig's, 0..520 mm).
+    static FeedProgram seed000Table2(double feed_mm_min, double travelLow_mm = 0.0, double travelHigh_mm = 520.0);
 
     const QVector<FeedPhase> &phases() const { return m_phases; }
     double duration_s() const;

@@ -1,69 +1,100 @@
 #pragma once
-// First simulated test rig: a fixed-free ball-screw feed axis driven by a feed
-// programme, with PT100 channels, an eddy-current probe on the screw end and the
-// CNC's position and feed. For now its screw physics is the seed-000 model itself;
-// the acquisition issue replaces it with an independent truth model.
+// The simulated test rig: one truth model (ScrewTruthModel, independent of analysis/)
+// driven by a feed programme, a drifting ambient and an optional coolant circuit, and
+// the instruments observing it: PT100 channels (noise, 0.01 K quantisation, dropouts
+// as missing samples), an eddy-current probe on the screw's free end, the CNC's axis
+// position and feed, a laser interferometer making runs at programmed targets (cold
+// reference run first, fixed geometric pitch error, noise) and an infrared camera.
+//
+// Axis sign (seed 000 eq. 15/16): the nut sits d = |X - P_f| from the fixed end; a
+// positive thermal expansion gives a positive positioning error when P_f lies below
+// the travel and a negative one when it lies above. Structure effects add
+// c_off dT_bed and c_lin dT_bed (X - X_ref) to every positioning deviation.
 
-#include "FdmScrewModel.h"
-#include "FeedProgram.h"
+#include "InfraredRenderer.h"
+#include "RigConfig.h"
+#include "StorageTypes.h"
+#include "ScrewTruthModel.h"
 #include "StorageTypes.h"
 
 #include <QJsonObject>
 #include <QVector>
 
-#include <memory>
 #include <random>
 
 namespace driftlab {
 
-struct RigConfig {
-    ScrewGeometry screw;
-    FdmParameters truth;            // the rig's physics parameters
-    FeedProgram program = FeedProgram::seed000Table2(6000.0);
-    double travelLow_mm = 0.0;
-    double travelHigh_mm = 600.0;
-    double ambientMean_C = 20.0;
-    double ambientDriftAmplitude_K = 0.3;  // slow sinusoidal drift
-    double ambientDriftPeriod_s = 4 * 3600.0;
-    double temperatureNoise_K = 0.02;      // PT100 noise (before 0.01 K quantisation)
-    double probeNoise_um = 0.1;            // eddy-current probe noise
-    double slowRate_Hz = 1.0;              // temperatures and probe
-    double fastRate_Hz = 10.0;             // CNC position and feed
-    unsigned seed = 1;
-};
-
 class SimulatedRig {
 public:
+    // Throws std::invalid_argument for an inconsistent configuration.
     explicit SimulatedRig(const RigConfig &config);
 
-    // Channel descriptions in the order of the blocks advance() fills.
+    const RigConfig &config() const { return m_config; }
+    // Scalar channels in the order of the blocks advance() fills: PT100s, probe, X, F.
     const QVector<ChannelInfo> &channels() const { return m_channels; }
     // Manifest-style machine description (screw, fixed_end_position_mm, travel_mm).
     QJsonObject machineDescription() const;
-    double time_s() const { return m_time; }
-    // Simulates up to `until_s` and appends the samples acquired to blocks[i] for channel i.
-    void advance(double until_s, QVector<SampleBlock> &blocks);
+    // Manifest-style "infrared" block (screw line, width, scale/offset).
+    QJsonObject infraredDescription() const;
+    double time_s() const { return m_time; }        // model time (multiple of screw.dt_s)
+    double sampledUntil_s() const { return m_sampled_s; } // instruments have delivered up to here
 
-    // Noise-free truth for tests: screw-end elongation now (um), ambient at t.
-    double trueElongation_um() const { return m_screw.elongation_um(); }
-    double ambientAt(double t) const;
+    // Simulates up to `until_s` and appends the scalar samples acquired to blocks[i].
+    void advance(double until_s, QVector<SampleBlock> &blocks);
+    // Non-scalar records acquired so far (moved out, so memory stays flat).
+    QVector<InterferometerPoint> takeInterferometerPoints();
+    QVector<IrFrame> takeIrFrames();
+    QVector<EventRecord> takeEvents();
+
+    // Noise-free truth for tests.
+    const ScrewTruthModel &truth() const { return m_model; }
+    double trueElongation_um() const { return m_model.elongation_um(); }
+    double trueFixedEnd_mm() const { return m_fixedEndTrue_mm; }
+    double axisSign() const { return m_sign; }
+    double nutDistance_m(double axis_mm) const;
+    // Positioning deviation now at X relative to the initial state (no pitch error, no noise).
+    double trueThermalError_um(double axis_mm) const;
+    double ambient_C() const { return m_ambient_C; }
+    double coolant_C(double t_s) const;
+    double bedRise_K() const { return m_model.nodeTemperature_C(ScrewTruthModel::Bed) - m_bed0_C; }
+    double pitchError_um(double axis_mm) const;
 
 private:
-    double quantised(double value, double step) const;
-    void sampleSlow(double t, QVector<SampleBlock> &blocks);
-    void sampleFast(double t, QVector<SampleBlock> &blocks);
+    void sampleDue(double t, QVector<SampleBlock> &blocks);
+    void stepModel(double dt);
+    double ambientTarget(double t) const;
 
     RigConfig m_config;
-    FdmScrewModel m_screw;
+    ScrewTruthModel m_model;
+    InfraredRenderer m_ir;
     QVector<ChannelInfo> m_channels;
-    std::mt19937 m_rng;
-    std::normal_distribution<double> m_unitNormal{0.0, 1.0};
+    std::mt19937 m_rngSensors, m_rngAmbient, m_rngIr, m_rngLaser;
+    std::normal_distribution<double> m_unit{0.0, 1.0};
+    std::uniform_real_distribution<double> m_uniform{0.0, 1.0};
+    double m_fixedEndTrue_mm = 0.0;
+    double m_sign = 1.0;
     double m_time = 0.0;
     long long m_steps = 0;
-    double m_nextSlow = 0.0;
-    double m_nextFast = 0.0;
-    double m_bearingHousing_C = 20.0; // lumped housing nodes, first-order lag
-    double m_nutHousing_C = 20.0;
+    double m_sampled_s = 0.0;
+    double m_walk_K = 0.0;
+    double m_ambient_C = 20.0;
+    double m_bed0_C = 20.0;
+    QVector<double> m_nextPt100;
+    QVector<int> m_dropoutLeft;
+    double m_nextProbe = 0.0;
+    double m_nextCnc = 0.0;
+    double m_nextIr = 0.0;
+    int m_nextRun = 0;
+    int m_nextTarget = 0;
+    QVector<double> m_targets;
+    double m_pitchSlope = 0.0;
+    double m_pitchAmp[3] = {0, 0, 0};
+    double m_pitchPhase[3] = {0, 0, 0};
+    int m_lastPhase = -2;
+    QVector<InterferometerPoint> m_laser;
+    QVector<IrFrame> m_frames;
+    QVector<EventRecord> m_events;
+    std::vector<double> m_nutSamples;
 };
 
 } // namespace driftlab

@@ -1,5 +1,6 @@
 #include "MainWindow.h"
 
+#include "AcquisitionPanel.h"
 #include "BundleTransfer.h"
 #include "PlotExporter.h"
 #include "ReviewWorkspace.h"
@@ -39,7 +40,8 @@ MainWindow::MainWindow(QWidget *parent)
       m_browser(new SessionBrowser(this)),
       m_split(new QSplitter(this)),
       m_workspace(new ReviewWorkspace(this)),
-      m_comparison(new ReviewWorkspace(this))
+      m_comparison(new ReviewWorkspace(this)),
+      m_acquisition(new AcquisitionPanel(this))
 {
     setObjectName(QStringLiteral("DriftLabMainWindow"));
     setWindowTitle(tr("DriftLab"));
@@ -53,8 +55,23 @@ MainWindow::MainWindow(QWidget *parent)
     dock->setObjectName(QStringLiteral("SessionsDock"));
     dock->setWidget(m_browser);
     addDockWidget(Qt::LeftDockWidgetArea, dock);
+    auto *acquisition = new QDockWidget(tr("Acquisition"), this);
+    acquisition->setObjectName(QStringLiteral("AcquisitionDock"));
+    acquisition->setWidget(m_acquisition);
+    addDockWidget(Qt::RightDockWidgetArea, acquisition);
+    acquisition->hide();
     buildMenus();
-    menuBar()->findChild<QMenu *>(QStringLiteral("ViewMenu"))->addAction(dock->toggleViewAction());
+    QMenu *viewMenu = menuBar()->findChild<QMenu *>(QStringLiteral("ViewMenu"));
+    viewMenu->addAction(dock->toggleViewAction());
+    viewMenu->addAction(acquisition->toggleViewAction());
+    // A finished recording appears in the session list (opening its database if needed).
+    connect(m_acquisition, &AcquisitionPanel::recordingStopped, this, [this](qint64 id) {
+        const QString db = m_acquisition->databasePath();
+        if (m_store && QFileInfo(m_store->path()).absoluteFilePath() == QFileInfo(db).absoluteFilePath())
+            refreshSessions(id);
+        else if (openDatabase(db))
+            refreshSessions(id);
+    });
 
     connect(m_browser, &SessionBrowser::sessionSelected, this, &MainWindow::showSession);
     connect(m_browser, &SessionBrowser::channelsChanged, this, &MainWindow::showChannels);

@@ -14,6 +14,7 @@ class QSplitter;
 
 namespace driftlab {
 
+class AcquisitionPanel;
 class ReviewWorkspace;
 class SessionBrowser;
 class SessionStore;
@@ -37,6 +38,7 @@ public:
     TimeSeriesPlot *plot() const;
     ReviewWorkspace *workspace() const { return m_workspace; }
     ReviewWorkspace *comparison() const { return m_comparison; }
+    AcquisitionPanel *acquisition() const { return m_acquisition; }
     SessionBrowser *browser() const { return m_browser; }
     qint64 currentSession() const { return m_sessionId; }
     QString lastError() const { return m_lastError; }
@@ -64,6 +66,7 @@ private:
     QSplitter *m_split;
     ReviewWorkspace *m_workspace;
     ReviewWorkspace *m_comparison;
+    AcquisitionPanel *m_acquisition;
     QMenu *m_recentMenu = nullptr;
     qint64 m_sessionId = 0;
     QString m_lastError;

@@ -1,83 +1,205 @@
 #include "RecordCommand.h"
 
+#include "AcquisitionEngine.h"
+#include "BundleTransfer.h"
 #include "CliSupport.h"
-#include "SessionRecorder.h"
+#include "DeviceRegistry.h"
+#include "RigConfigLoader.h"
+#include "RigRecorder.h"
 #include "SessionStore.h"
+#include "SimulatedDevice.h"
 
 #include <QCommandLineParser>
 #include <QElapsedTimer>
 #include <QJsonObject>
+#include <QThread>
+
+#include <cmath>
 
 namespace driftlab {
+
+namespace {
+QString hms(double s)
+{
+    const qint64 t = static_cast<qint64>(std::llround(s));
+    return QStringLiteral("%1:%2:%3").arg(t / 3600).arg((t / 60) % 60, 2, 10, QLatin1Char('0')).arg(t % 60, 2, 10, QLatin1Char('0'));
+}
+} // namespace
 
 QString RecordCommand::summary() const
 {
     return QStringLiteral("Record a thermal test session into a SQLite session database.\n"
-                          "With --sim the embedded simulated rig is recorded in accelerated time\n"
-                          "(seed-000 Table 2 programme: warm-up 84 min, cool-down 42 min, warm-up 42 min).");
+                          "--rig CONFIG records a simulated rig described by a rig file (JSON) or a built-in\n"
+                          "preset name (see --list-rigs); --sim records the built-in baseline rig (seed-000\n"
+                          "Table 2 programme: warm-up 84 min, cool-down 42 min, warm-up 42 min).\n"
+                          "Without --speed the simulation runs as fast as possible (deterministic); --speed N\n"
+                          "runs one acquisition thread per simulated device on a session clock N times faster\n"
+                          "than real time.");
 }
 
 int RecordCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption sim(QStringLiteral("sim"), QStringLiteral("Record the simulated rig."));
+    const QCommandLineOption sim(QStringLiteral("sim"), QStringLiteral("Record the built-in baseline simulated rig."));
+    const QCommandLineOption rig(QStringLiteral("rig"), QStringLiteral("Rig file (JSON) or built-in preset name."),
+                                 QStringLiteral("config"));
+    const QCommandLineOption listRigs(QStringLiteral("list-rigs"), QStringLiteral("List the built-in rig presets and exit."));
     const QCommandLineOption duration(QStringLiteral("duration"), QStringLiteral("Simulated duration: SECONDS or H:MM:SS."),
                                       QStringLiteral("duration"));
+    const QCommandLineOption speed(QStringLiteral("speed"),
+                                   QStringLiteral("Time acceleration N for simulated devices (default: as fast as possible)."),
+                                   QStringLiteral("N"));
     const QCommandLineOption out(QStringList{QStringLiteral("out"), QStringLiteral("db")},
                                  QStringLiteral("Session database to write (default: driftlab.sqlite in the user's data directory)."),
                                  QStringLiteral("file"));
-    const QCommandLineOption feed(QStringLiteral("feed"), QStringLiteral("Warm-up feed in mm/min (default 6000)."),
-                                  QStringLiteral("mm_per_min"), QStringLiteral("6000"));
-    const QCommandLineOption seed(QStringLiteral("seed"), QStringLiteral("Noise seed (default 1)."), QStringLiteral("n"),
-                                  QStringLiteral("1"));
+    const QCommandLineOption feed(QStringLiteral("feed"),
+                                  QStringLiteral("Replace the programme by seed-000 Table 2 at this warm-up feed (mm/min)."),
+                                  QStringLiteral("mm_per_min"));
+    const QCommandLineOption seed(QStringLiteral("seed"), QStringLiteral("Noise and machine seed (default: the rig's)."),
+                                  QStringLiteral("n"));
     const QCommandLineOption name(QStringLiteral("name"), QStringLiteral("Session name."), QStringLiteral("text"));
+    const QCommandLineOption exportOpt(QStringLiteral("export"), QStringLiteral("Also export the session as a bundle (dir or .zip)."),
+                                       QStringLiteral("bundle"));
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
                                   QStringLiteral("file"));
-    p.addOptions({sim, duration, out, feed, seed, name, json});
+    p.addOptions({sim, rig, listRigs, duration, speed, out, feed, seed, name, exportOpt, json});
     if (!parse(p, args))
         return 0;
     if (!p.positionalArguments().isEmpty())
         throw UsageError(QStringLiteral("record: unexpected argument '%1'").arg(p.positionalArguments().first()));
-    if (!p.isSet(sim))
-        throw UsageError(QStringLiteral("record: only the simulated rig (--sim) is available in this version"));
+    if (p.isSet(listRigs)) {
+        for (const QString &n : RigConfigLoader::presetNames())
+            QTextStream(stdout) << n << '\n';
+        return 0;
+    }
+    if (p.isSet(sim) == p.isSet(rig))
+        throw UsageError(QStringLiteral("record: give either --sim or --rig CONFIG.json"));
     if (!p.isSet(duration))
         throw UsageError(QStringLiteral("record: --duration is required"));
     const double seconds = CliSupport::parseDuration(p.value(duration), QStringLiteral("duration"));
     bool ok = false;
-    const double feedValue = p.value(feed).toDouble(&ok);
-    if (!ok || feedValue <= 0 || feedValue > 60000)
-        throw UsageError(QStringLiteral("record: --feed must be a number in (0, 60000] mm/min, got '%1'").arg(p.value(feed)));
-    const unsigned seedValue = p.value(seed).toUInt(&ok);
-    if (!ok)
-        throw UsageError(QStringLiteral("record: --seed must be a non-negative integer, got '%1'").arg(p.value(seed)));
+    double speedValue = 0.0;
+    if (p.isSet(speed)) {
+        speedValue = p.value(speed).toDouble(&ok);
+        if (!ok || !(speedValue > 0.0) || speedValue > 1e7)
+            throw UsageError(QStringLiteral("record: --speed must be a number in (0, 1e7], got '%1'").arg(p.value(speed)));
+    }
+
+    RigConfig config;
+    if (p.isSet(rig)) {
+        try {
+            config = RigConfigLoader::load(p.value(rig));
+        } catch (const std::exception &e) { // unreadable or invalid rig file: bad input
+            throw UsageError(QStringLiteral("record: %1").arg(QString::fromUtf8(e.what())));
+        }
+    }
+    if (p.isSet(feed)) {
+        const double feedValue = p.value(feed).toDouble(&ok);
+        if (!ok || feedValue <= 0 || feedValue > 60000)
+            throw UsageError(QStringLiteral("record: --feed must be a number in (0, 60000] mm/min, got '%1'").arg(p.value(feed)));
+        config.program = FeedProgram::seed000Table2(feedValue, config.travelLow_mm, config.travelHigh_mm);
+    }
+    if (p.isSet(seed)) {
+        config.seed = p.value(seed).toUInt(&ok);
+        if (!ok)
+            throw UsageError(QStringLiteral("record: --seed must be a non-negative integer, got '%1'").arg(p.value(seed)));
+    }
+    std::unique_ptr<SimulatedRig> simRig;
+    try {
+        simRig = std::make_unique<SimulatedRig>(config);
+    } catch (const std::invalid_argument &e) {
+        throw UsageError(QStringLiteral("record: %1: %2").arg(p.isSet(rig) ? p.value(rig) : QStringLiteral("--sim"),
+                                                               QString::fromUtf8(e.what())));
+    }
 
     const QString path = CliSupport::databasePath(p.value(out), QString(), false);
-    RigConfig config;
-    config.program = FeedProgram::seed000Table2(feedValue, config.travelLow_mm, config.travelHigh_mm);
-    config.seed = seedValue;
-    SimulatedRig rig(config);
-    SessionStore store(path);
-    SessionRecorder recorder(store, rig);
-    const QString sessionName = p.isSet(name) ? p.value(name)
-                                              : QStringLiteral("Simulated rig, %1 mm/min, %2 s").arg(feedValue).arg(seconds);
-    CliSupport::progress(QStringLiteral("recording %1 s of the simulated rig into %2").arg(seconds).arg(path));
+    const QString sessionName =
+        p.isSet(name) ? p.value(name) : QStringLiteral("Simulated rig '%1', %2").arg(config.name, hms(seconds));
+    CliSupport::progress(QStringLiteral("recording %1 of simulated rig '%2' into %3%4")
+                             .arg(hms(seconds), config.name, path,
+                                  speedValue > 0.0 ? QStringLiteral(" at %1x real time (device threads)").arg(speedValue)
+                                                   : QString()));
     QElapsedTimer timer;
     timer.start();
-    int lastPercent = -1;
-    const qint64 id = recorder.record(sessionName, seconds, [&](double done, double total) {
-        const int percent = static_cast<int>(100.0 * done / total);
-        if (percent / 10 != lastPercent / 10 || done >= total) {
-            CliSupport::progress(QStringLiteral("  %1 / %2 s simulated (%3 %)").arg(done).arg(total).arg(percent));
-            lastPercent = percent;
+    qint64 lastReport = -1000000;
+    auto report = [&](double done, double total, long long samples) {
+        if (timer.elapsed() - lastReport >= 2000 || done >= total) {
+            const double wall = std::max(1e-3, static_cast<double>(timer.elapsed()) / 1000.0);
+            CliSupport::progress(QStringLiteral("  %1 / %2 simulated (%3 %), %4 samples, %5x real time")
+                                     .arg(hms(std::min(done, total)), hms(total))
+                                     .arg(static_cast<int>(100.0 * std::min(done, total) / total))
+                                     .arg(samples)
+                                     .arg(done / wall, 0, 'f', 0));
+            lastReport = timer.elapsed();
         }
-        return true;
-    });
+    };
+    qint64 id = 0;
+    long long samples = 0;
+    int points = -1, frames = -1; // unknown in threaded mode until read back
+    std::unique_ptr<SessionStore> store;
+    if (speedValue > 0.0) {
+        // Real-time style: one worker thread per simulated device on one session clock.
+        const SessionInfo info = RigRecorder::sessionInfo(*simRig, sessionName);
+        simRig.reset();
+        auto hub = std::make_shared<SimulatedRigHub>(config);
+        DeviceRegistry registry;
+        SimulatedDevice::registerTypes(registry, hub);
+        AcquisitionEngine::Options options;
+        options.speed = speedValue;
+        options.end_s = seconds;
+        AcquisitionEngine engine(options);
+        const SimulatedRigHub::Group groups[] = {SimulatedRigHub::Group::Pt100, SimulatedRigHub::Group::Probe,
+                                                 SimulatedRigHub::Group::Cnc, SimulatedRigHub::Group::Interferometer,
+                                                 SimulatedRigHub::Group::Infrared};
+        const QStringList types = SimulatedDevice::typeNames();
+        for (int i = 0; i < types.size(); ++i)
+            if (hub->hasGroup(groups[i]))
+                engine.addDevice(registry.create(types[i], types[i].mid(4)));
+        id = engine.start(path, info);
+        while (engine.now_s() < seconds) {
+            QThread::msleep(100);
+            report(engine.now_s(), seconds, engine.samplesWritten());
+        }
+        engine.stop();
+        samples = engine.samplesWritten();
+        for (const DeviceHealth &h : engine.health())
+            if (h.gaps > 0)
+                CliSupport::progress(QStringLiteral("  warning: a device had %1 gap(s)").arg(h.gaps));
+        store = std::make_unique<SessionStore>(path);
+        points = store->interferometerPoints(id).size();
+        frames = store->irFrames(id).size();
+    } else {
+        store = std::make_unique<SessionStore>(path);
+        RigRecorder recorder(*store, *simRig);
+        id = recorder.record(sessionName, seconds, [&](double done, double total) {
+            report(done, total, recorder.sink()->samplesWritten());
+            return true;
+        });
+        samples = recorder.sink()->samplesWritten();
+        points = recorder.sink()->pointsWritten();
+        frames = recorder.sink()->framesWritten();
+    }
     const double wall = static_cast<double>(timer.elapsed()) / 1000.0;
-    CliSupport::progress(QStringLiteral("session %1 recorded in %2 s wall time: %3").arg(id).arg(wall).arg(path));
-    const QJsonObject result{{QStringLiteral("database"), path},
-                             {QStringLiteral("session"), static_cast<double>(id)},
-                             {QStringLiteral("duration_s"), seconds},
-                             {QStringLiteral("wall_s"), wall}};
+    CliSupport::progress(QStringLiteral("session %1 recorded in %2 s wall time: %3 samples, %4 interferometer points, %5 IR frames")
+                             .arg(id)
+                             .arg(wall)
+                             .arg(samples)
+                             .arg(points)
+                             .arg(frames));
+    QJsonObject result{{QStringLiteral("database"), path},
+                       {QStringLiteral("session"), static_cast<double>(id)},
+                       {QStringLiteral("rig"), config.name},
+                       {QStringLiteral("seed"), static_cast<double>(config.seed)},
+                       {QStringLiteral("duration_s"), seconds},
+                       {QStringLiteral("wall_s"), wall},
+                       {QStringLiteral("samples"), static_cast<double>(samples)},
+                       {QStringLiteral("interferometer_points"), points},
+                       {QStringLiteral("ir_frames"), frames}};
+    if (p.isSet(exportOpt)) {
+        BundleTransfer::exportBundle(*store, id, p.value(exportOpt));
+        CliSupport::progress(QStringLiteral("exported session %1 to %2").arg(id).arg(p.value(exportOpt)));
+        result.insert(QStringLiteral("bundle"), p.value(exportOpt));
+    }
     if (p.isSet(json))
         CliSupport::writeJson(QJsonDocument(result), p.value(json));
     else

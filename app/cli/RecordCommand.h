@@ -3,7 +3,8 @@
 
 namespace driftlab {
 
-// driftlab-cli record --sim --duration SECONDS [--out DB]: records the simulated rig.
+// driftlab-cli record (--sim | --rig CONFIG) --duration H:MM:SS [--speed N] [--out DB]
+// [--export BUNDLE]: records a simulated rig into a session database.
 class RecordCommand : public CliCommand {
 public:
     QString name() const override { return QStringLiteral("record"); }

@@ -115,11 +115,14 @@ void TestCli::recordInfoAnalyse()
     r = run({QStringLiteral("analyse"), QStringLiteral("--db"), db, QStringLiteral("--json"), QStringLiteral("-")});
     QVERIFY2(r.code == 0, r.err.constData());
     const QJsonObject a = QJsonDocument::fromJson(r.out).object();
-    // The rig's screw physics is the seed-000 model with Table-3 parameters, so the model
-    // reproduces the probe to within its noise (0.1 um) plus the ambient sensor's noise.
+    // The rig is an independent truth model (steel lambda, housings, its own grid), so the
+    // seed-000 model with the paper's Table-3 X-axis parameters is only roughly right: the
+    // analysis reports both peaks and the difference; fitting is `fit`'s job (tested there).
     const double peak = a.value(QStringLiteral("measured_peak_um")).toDouble();
-    QVERIFY2(peak > 10.0, qPrintable(QString::number(peak)));
-    QVERIFY2(a.value(QStringLiteral("elongation_rms_error_um")).toDouble() < 0.4, r.out.constData());
+    const double predicted = a.value(QStringLiteral("predicted_peak_um")).toDouble();
+    QVERIFY2(peak > 5.0 && peak < 80.0, qPrintable(QString::number(peak)));   // 20 min at 6000 mm/min
+    QVERIFY2(predicted > 0.5 * peak && predicted < 2.0 * peak, r.out.constData());
+    QVERIFY2(a.value(QStringLiteral("elongation_rms_error_um")).toDouble() < peak, r.out.constData());
     QCOMPARE(a.value(QStringLiteral("samples")).toInt(), 1201);
 
     r = run({QStringLiteral("analyse"), QStringLiteral("--db"), db, QStringLiteral("--session"), QStringLiteral("99")});

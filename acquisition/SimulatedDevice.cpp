@@ -1,0 +1,164 @@
+#include "SimulatedDevice.h"
+
+#include "DeviceRegistry.h"
+#include "SessionClock.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+namespace driftlab {
+
+namespace {
+struct TypeInfo {
+    const char *type;
+    SimulatedRigHub::Group group;
+    double latency_s; // declared default
+    bool deviceStamped;
+    const char *description;
+};
+const TypeInfo kTypes[] = {
+    {"sim-pt100", SimulatedRigHub::Group::Pt100, 0.050, true, "simulated PT100 module (all PT100 channels of the rig)"},
+    {"sim-probe", SimulatedRigHub::Group::Probe, 0.002, true, "simulated eddy-current probe on the screw end"},
+    {"sim-cnc", SimulatedRigHub::Group::Cnc, 0.010, true, "simulated CNC: axis position, feed, programme events"},
+    {"sim-interferometer", SimulatedRigHub::Group::Interferometer, 0.100, true, "simulated laser interferometer runs"},
+    {"sim-infrared", SimulatedRigHub::Group::Infrared, 0.030, true, "simulated 16-bit infrared camera"},
+};
+const TypeInfo &typeInfo(const QString &type)
+{
+    for (const TypeInfo &t : kTypes)
+        if (type == QLatin1String(t.type))
+            return t;
+    throw std::invalid_argument(QStringLiteral("unknown simulated device type '%1'").arg(type).toStdString());
+}
+double number(const QJsonObject &s, const char *key, double fallback, double lo, double hi, const QString &id)
+{
+    const QJsonValue v = s.value(QLatin1String(key));
+    if (v.isUndefined())
+        return fallback;
+    if (!v.isDouble() || v.toDouble() < lo || v.toDouble() > hi)
+        throw std::invalid_argument(
+            QStringLiteral("device '%1': %2 must be a number in [%3, %4]").arg(id, QLatin1String(key)).arg(lo).arg(hi).toStdString());
+    return v.toDouble();
+}
+} // namespace
+
+SimulatedDevice::SimulatedDevice(const QString &id, const QString &type, std::shared_ptr<SimulatedRigHub> hub)
+    : m_id(id), m_type(type), m_hub(std::move(hub))
+{
+    const TypeInfo &t = typeInfo(type);
+    m_group = t.group;
+    m_declared_s = t.latency_s;
+    m_true_s = t.latency_s;
+    m_deviceStamped = t.deviceStamped;
+    m_hub->withRig([&](const SimulatedRig &rig) {
+        const RigConfig &c = rig.config();
+        switch (m_group) {
+        case SimulatedRigHub::Group::Pt100:
+            m_rate_Hz = 0.0;
+            for (const Pt100Config &p : c.pt100)
+                m_rate_Hz = std::max(m_rate_Hz, p.rate_Hz);
+            if (m_rate_Hz <= 0.0)
+                m_rate_Hz = 1.0;
+            break;
+        case SimulatedRigHub::Group::Probe: m_rate_Hz = c.probe.rate_Hz; break;
+        case SimulatedRigHub::Group::Cnc: m_rate_Hz = c.cnc.rate_Hz; break;
+        default: m_rate_Hz = 1.0; break;
+        }
+    });
+}
+
+QStringList SimulatedDevice::typeNames()
+{
+    QStringList n;
+    for (const TypeInfo &t : kTypes)
+        n << QLatin1String(t.type);
+    return n;
+}
+
+void SimulatedDevice::registerTypes(DeviceRegistry &registry, const std::shared_ptr<SimulatedRigHub> &hub)
+{
+    for (const TypeInfo &t : kTypes) {
+        const QString type = QLatin1String(t.type);
+        registry.registerType(type, QLatin1String(t.description), [hub, type](const QString &id, const QJsonObject &) {
+            return std::unique_ptr<Device>(new SimulatedDevice(id, type, hub));
+        });
+    }
+}
+
+void SimulatedDevice::configure(const QJsonObject &s)
+{
+    m_declared_s = number(s, "latency_s", m_declared_s, 0.0, 60.0, m_id);
+    m_true_s = number(s, "true_latency_s", m_declared_s, 0.0, 60.0, m_id);
+    m_jitter_s = number(s, "latency_jitter_s", 0.0, 0.0, 10.0, m_id);
+    m_rate_Hz = number(s, "rate_Hz", m_rate_Hz, 1e-4, 10000.0, m_id);
+    m_maxBlockWall_s = number(s, "max_block_wall_s", m_maxBlockWall_s, 1e-4, 10.0, m_id);
+    m_failAt_s = number(s, "fail_at_s", -1.0, -1.0, 1e9, m_id);
+    m_failFor_s = number(s, "fail_for_s", 0.0, 0.0, 1e9, m_id);
+    const QJsonValue stamping = s.value(QLatin1String("stamping"));
+    if (stamping.isString() && stamping.toString() == QLatin1String("receipt"))
+        m_deviceStamped = false;
+    else if (stamping.isString() && stamping.toString() == QLatin1String("device"))
+        m_deviceStamped = true;
+    else if (!stamping.isUndefined())
+        throw std::invalid_argument(
+            QStringLiteral("device '%1': stamping must be \"device\" or \"receipt\"").arg(m_id).toStdString());
+}
+
+bool SimulatedDevice::failing() const
+{
+    if (m_killed)
+        return true;
+    if (m_failAt_s < 0.0 || !m_clock)
+        return false;
+    const double now = m_clock->now_s();
+    return now >= m_failAt_s && now < m_failAt_s + m_failFor_s;
+}
+
+void SimulatedDevice::open()
+{
+    if (failing())
+        throw DeviceError(QStringLiteral("%1: no answer on open").arg(m_id).toStdString());
+    m_open = true;
+}
+
+void SimulatedDevice::start(const SessionClock &clock)
+{
+    m_clock = &clock;
+    const double now = clock.now_s();
+    // First tick at or after now; whatever the device missed while away is gone.
+    m_next_s = std::ceil(now * m_rate_Hz - 1e-9) / m_rate_Hz;
+    m_hub->discardBefore(m_group, now);
+}
+
+void SimulatedDevice::stop() {}
+
+void SimulatedDevice::close()
+{
+    m_open = false;
+}
+
+DeviceBlock SimulatedDevice::read(double timeoutWall_s)
+{
+    if (!m_open || !m_clock)
+        throw DeviceError(QStringLiteral("%1: read on a closed device").arg(m_id).toStdString());
+    if (failing()) {
+        // A device that stopped answering: the read times out.
+        std::this_thread::sleep_for(std::chrono::duration<double>(std::min(timeoutWall_s, 0.05)));
+        throw DeviceError(QStringLiteral("%1: no answer").arg(m_id).toStdString());
+    }
+    // Collect every tick that fits into max_block_wall_s of wall time (at least one).
+    // A block holds the ticks of max_block_wall_s of wall time (at least one): at high
+    // speed factors blocks get longer, never more frequent.
+    const double ticks = std::max(1.0, std::floor(m_clock->speed() * m_maxBlockWall_s * m_rate_Hz + 1e-9));
+    const double last = m_next_s + (ticks - 1.0) / m_rate_Hz;
+    std::normal_distribution<double> jitter(0.0, 1.0);
+    const double latency = std::max(0.0, m_true_s + m_jitter_s * jitter(m_rng));
+    if (!m_clock->sleepUntil(last + latency, timeoutWall_s))
+        return DeviceBlock{}; // nothing yet
+    DeviceBlock b = m_hub->collect(m_group, last);
+    m_next_s = last + 1.0 / m_rate_Hz;
+    return b;
+}
+
+} // namespace driftlab

@@ -1,0 +1,279 @@
+#include "AcquisitionPanel.h"
+
+#include "AcquisitionEngine.h"
+#include "DeviceRegistry.h"
+#include "RigConfigLoader.h"
+#include "RigRecorder.h"
+#include "SessionStore.h"
+#include "SimulatedDevice.h"
+#include "SimulatedRigHub.h"
+#include "TimeSeriesPlot.h"
+
+#include <QComboBox>
+#include <QDateTime>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QInputDialog>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QStandardPaths>
+#include <QTableWidget>
+#include <QTimer>
+#include <QVBoxLayout>
+
+#include <qwt_plot_curve.h>
+
+#include <cmath>
+
+namespace driftlab {
+
+namespace {
+constexpr int kTick_ms = 40;        // status refresh: at most 25 per second
+constexpr int kPlotPeriod_ms = 100; // data re-read and plot redraw
+const char *kBrowse = "Rig file...";
+
+QString hms(double s)
+{
+    const qint64 t = static_cast<qint64>(std::floor(s));
+    return QStringLiteral("%1:%2:%3").arg(t / 3600).arg((t / 60) % 60, 2, 10, QLatin1Char('0')).arg(t % 60, 2, 10, QLatin1Char('0'));
+}
+} // namespace
+
+AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
+{
+    m_rig = new QComboBox(this);
+    m_rig->addItems(RigConfigLoader::presetNames());
+    m_rig->addItem(QString::fromLatin1(kBrowse));
+    m_db = new QLineEdit(this);
+    m_db->setText(QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + QStringLiteral("/driftlab.sqlite"));
+    m_speed = new QDoubleSpinBox(this);
+    m_speed->setRange(1.0, 100000.0);
+    m_speed->setDecimals(0);
+    m_speed->setValue(60.0);
+    m_speed->setSuffix(QStringLiteral(" x"));
+    m_start = new QPushButton(tr("Start"), this);
+    m_pause = new QPushButton(tr("Pause"), this);
+    m_pause->setCheckable(true);
+    m_marker = new QPushButton(tr("Marker..."), this);
+    m_stop = new QPushButton(tr("Stop"), this);
+    m_elapsed = new QLabel(tr("not recording"), this);
+    m_devices = new QTableWidget(0, 5, this);
+    m_devices->setHorizontalHeaderLabels({tr("Device"), tr("State"), tr("Rate (Hz)"), tr("Samples"), tr("Gaps")});
+    m_devices->horizontalHeader()->setStretchLastSection(true);
+    m_devices->verticalHeader()->hide();
+    m_devices->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    m_plot = new TimeSeriesPlot(this);
+    m_plot->setAxisTitles(tr("Temperature (degC)"), tr("Elongation (um)"));
+
+    auto *form = new QFormLayout;
+    form->addRow(tr("Rig"), m_rig);
+    form->addRow(tr("Database"), m_db);
+    form->addRow(tr("Simulation speed"), m_speed);
+    auto *buttons = new QHBoxLayout;
+    for (QWidget *w : {static_cast<QWidget *>(m_start), static_cast<QWidget *>(m_pause), static_cast<QWidget *>(m_marker),
+                       static_cast<QWidget *>(m_stop)})
+        buttons->addWidget(w);
+    buttons->addStretch();
+    buttons->addWidget(m_elapsed);
+    auto *layout = new QVBoxLayout(this);
+    layout->addLayout(form);
+    layout->addLayout(buttons);
+    layout->addWidget(m_devices, 1);
+    layout->addWidget(m_plot, 3);
+
+    m_timer = new QTimer(this);
+    m_timer->setInterval(kTick_ms);
+    connect(m_timer, &QTimer::timeout, this, &AcquisitionPanel::onTick);
+    connect(m_rig, QOverload<int>::of(&QComboBox::activated), this, [this](int index) {
+        if (m_rig->itemText(index) != QLatin1String(kBrowse))
+            return;
+        const QString f = QFileDialog::getOpenFileName(this, tr("Rig file"), QString(), tr("Rig files (*.json)"));
+        if (!f.isEmpty()) {
+            m_rig->insertItem(index, f);
+            m_rig->setCurrentIndex(index);
+        } else {
+            m_rig->setCurrentIndex(0);
+        }
+    });
+    connect(m_start, &QPushButton::clicked, this, [this] {
+        startRecording(m_rig->currentText(), m_db->text(), m_speed->value());
+    });
+    connect(m_stop, &QPushButton::clicked, this, &AcquisitionPanel::stopRecording);
+    connect(m_pause, &QPushButton::toggled, this, &AcquisitionPanel::setPaused);
+    connect(m_marker, &QPushButton::clicked, this, [this] {
+        bool ok = false;
+        const QString label = QInputDialog::getText(this, tr("Marker"), tr("Label"), QLineEdit::Normal, QString(), &ok);
+        if (ok && !label.isEmpty())
+            addMarker(label);
+    });
+    updateButtons();
+}
+
+AcquisitionPanel::~AcquisitionPanel()
+{
+    stopRecording();
+}
+
+bool AcquisitionPanel::startRecording(const QString &rigNameOrPath, const QString &dbPath, double speed)
+{
+    if (m_engine)
+        return false;
+    try {
+        const RigConfig config = RigConfigLoader::load(rigNameOrPath);
+        auto hub = std::make_shared<SimulatedRigHub>(config);
+        DeviceRegistry registry;
+        SimulatedDevice::registerTypes(registry, hub);
+        AcquisitionEngine::Options options;
+        options.speed = speed;
+        auto engine = std::make_unique<AcquisitionEngine>(options);
+        const SimulatedRigHub::Group groups[] = {SimulatedRigHub::Group::Pt100, SimulatedRigHub::Group::Probe,
+                                                 SimulatedRigHub::Group::Cnc, SimulatedRigHub::Group::Interferometer,
+                                                 SimulatedRigHub::Group::Infrared};
+        const QStringList types = SimulatedDevice::typeNames();
+        for (int i = 0; i < types.size(); ++i)
+            if (hub->hasGroup(groups[i]))
+                engine->addDevice(registry.create(types[i], types[i].mid(4)));
+        SessionInfo info;
+        hub->withRig([&](const SimulatedRig &rig) {
+            info = RigRecorder::sessionInfo(rig, tr("Simulated rig '%1', %2").arg(config.name, QDateTime::currentDateTime().toString(Qt::ISODate)));
+        });
+        m_session = engine->start(dbPath, info);
+        m_engine = std::move(engine);
+        m_dbPath = dbPath;
+        m_reader = std::make_unique<SessionStore>(dbPath);
+    } catch (const std::exception &e) {
+        m_lastError = QString::fromUtf8(e.what());
+        m_elapsed->setText(tr("error: %1").arg(m_lastError));
+        return false;
+    }
+    m_devices->setRowCount(m_engine->deviceCount());
+    for (int i = 0; i < m_engine->deviceCount(); ++i) {
+        m_devices->setItem(i, 0, new QTableWidgetItem(m_engine->device(i).id()));
+        for (int c = 1; c < 5; ++c)
+            m_devices->setItem(i, c, new QTableWidgetItem);
+    }
+    m_plot->clearCurves();
+    m_plotRefreshes = 0;
+    m_lastPlot_ms = 0;
+    m_timer->start();
+    updateButtons();
+    emit recordingStarted(m_session);
+    return true;
+}
+
+void AcquisitionPanel::stopRecording()
+{
+    if (!m_engine)
+        return;
+    m_timer->stop();
+    try {
+        m_engine->stop();
+    } catch (const std::exception &e) {
+        m_lastError = QString::fromUtf8(e.what());
+    }
+    onTick(); // final state of the table
+    refreshPlot();
+    m_engine.reset();
+    m_reader.reset();
+    m_pause->setChecked(false);
+    updateButtons();
+    m_elapsed->setText(tr("stopped: session %1").arg(m_session));
+    emit recordingStopped(m_session);
+}
+
+void AcquisitionPanel::addMarker(const QString &label)
+{
+    if (m_engine)
+        m_engine->addMarker(label);
+}
+
+void AcquisitionPanel::setPaused(bool paused)
+{
+    if (!m_engine)
+        return;
+    if (paused)
+        m_engine->pause();
+    else
+        m_engine->resume();
+}
+
+double AcquisitionPanel::elapsed_s() const
+{
+    return m_engine ? m_engine->now_s() : 0.0;
+}
+
+int AcquisitionPanel::deviceRowCount() const
+{
+    return m_devices->rowCount();
+}
+
+QString AcquisitionPanel::deviceCell(int row, int column) const
+{
+    const QTableWidgetItem *item = m_devices->item(row, column);
+    return item ? item->text() : QString();
+}
+
+void AcquisitionPanel::updateButtons()
+{
+    const bool rec = static_cast<bool>(m_engine);
+    m_start->setEnabled(!rec);
+    m_rig->setEnabled(!rec);
+    m_db->setEnabled(!rec);
+    m_speed->setEnabled(!rec);
+    m_pause->setEnabled(rec);
+    m_marker->setEnabled(rec);
+    m_stop->setEnabled(rec);
+}
+
+void AcquisitionPanel::onTick()
+{
+    if (!m_engine)
+        return;
+    m_elapsed->setText(tr("%1 elapsed%2").arg(hms(m_engine->now_s()), m_engine->paused() ? tr(" (paused)") : QString()));
+    const QVector<DeviceHealth> health = m_engine->health();
+    for (int i = 0; i < health.size() && i < m_devices->rowCount(); ++i) {
+        const DeviceHealth &h = health[i];
+        m_devices->item(i, 1)->setText(DeviceHealth::stateName(h.state) +
+                                       (h.message.isEmpty() || h.state == DeviceHealth::State::Running ? QString()
+                                                                                                      : QStringLiteral(": ") + h.message));
+        m_devices->item(i, 2)->setText(QString::number(h.rate_Hz, 'f', 1));
+        m_devices->item(i, 3)->setText(QString::number(h.samples));
+        m_devices->item(i, 4)->setText(QString::number(h.gaps));
+    }
+    const qint64 now = QDateTime::currentMSecsSinceEpoch();
+    if (now - m_lastPlot_ms >= kPlotPeriod_ms) {
+        m_lastPlot_ms = now;
+        refreshPlot();
+    }
+}
+
+void AcquisitionPanel::refreshPlot()
+{
+    if (!m_reader || m_session <= 0)
+        return;
+    try {
+        const double t1 = std::max(1.0, m_engine ? m_engine->now_s() : 1e300);
+        const int buckets = std::max(100, m_plot->width() / 2);
+        for (const ChannelInfo &c : m_reader->channels(m_session)) {
+            if (c.kind != QLatin1String("temperature") && c.kind != QLatin1String("displacement"))
+                continue;
+            const DecimatedSeries d = m_reader->decimated(c.id, 0.0, t1, buckets);
+            QVector<double> x, y;
+            TimeSeriesPlot::envelopePoints(d, x, y);
+            if (QwtPlotCurve *curve = m_plot->curve(c.key))
+                curve->setSamples(x, y);
+            else
+                m_plot->addCurve(c.key, x, y, c.kind == QLatin1String("displacement"));
+        }
+        m_plot->replot();
+        ++m_plotRefreshes;
+    } catch (const std::exception &) {
+        // The writer may hold the database for a moment: try again at the next tick.
+    }
+}
+
+} // namespace driftlab
