@@ -152,7 +152,7 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
     m_timeSeries->clearCurves();
     if (!m_store || !m_data)
         return;
-    QString leftUnits, rightUnits;
+    QString leftUnits, rightUnits, rightKinds;
     for (const ChannelInfo &c : m_data->channels()) {
         if (!channelIds.contains(c.id))
             continue;
@@ -170,12 +170,15 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
             const SampleBlock block = m_store->samples(c.id);
             m_timeSeries->addCurve(c.key, block.t, block.v, right);
         }
+        if (right && !rightKinds.contains(c.kind))
+            rightKinds += (rightKinds.isEmpty() ? QString() : QStringLiteral(", ")) + c.kind;
         QString &units = right ? rightUnits : leftUnits;
         if (!units.contains(c.unit))
             units += (units.isEmpty() ? QString() : QStringLiteral(", ")) + c.unit;
     }
     m_timeSeries->enableAxis(QwtPlot::yRight, !rightUnits.isEmpty());
-    m_timeSeries->setAxisTitles(leftUnits.isEmpty() ? QString() : tr("temperature (%1)").arg(leftUnits), rightUnits);
+    m_timeSeries->setAxisTitles(leftUnits.isEmpty() ? QString() : tr("temperature (%1)").arg(leftUnits),
+                                rightUnits.isEmpty() ? QString() : QStringLiteral("%1 (%2)").arg(rightKinds, rightUnits));
     m_timeSeries->zoomToData();
 }
 
