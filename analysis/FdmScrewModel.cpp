@@ -9,6 +9,33 @@ namespace driftlab {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
+// T'_i = a T_i + r (T_{i-1} + T_{i+1}) + b for i in [i0, i1): the hot loop of eq. (10).
+// Source and target never overlap (two buffers); __restrict__ lets the compiler vectorise.
+// Four cells per iteration as independent statements (straight-line code the SLP
+// vectoriser packs into SIMD pairs at -O2), then the remainder.
+void updateRun(const double *__restrict__ T, double *__restrict__ Tn, int i0, int i1, double a, double r, double b)
+{
+    int i = i0;
+    for (; i + 4 <= i1; i += 4) {
+        const double t0 = T[i - 1], t1 = T[i], t2 = T[i + 1], t3 = T[i + 2], t4 = T[i + 3], t5 = T[i + 4];
+        Tn[i] = a * t1 + r * (t0 + t2) + b;
+        Tn[i + 1] = a * t2 + r * (t1 + t3) + b;
+        Tn[i + 2] = a * t3 + r * (t2 + t4) + b;
+        Tn[i + 3] = a * t4 + r * (t3 + t5) + b;
+    }
+    for (; i < i1; ++i)
+        Tn[i] = a * T[i] + r * (T[i - 1] + T[i + 1]) + b;
+}
+
+// floor(x) for a cell index: x is first clamped to [-2, n + 2] (beyond that only "outside
+// the screw" matters), so the int conversion is defined and no libm call is needed.
+inline int cellFloor(double x, int n)
+{
+    const double c = std::min(std::max(x, -2.0), n + 2.0);
+    const int k = static_cast<int>(c); // truncates toward zero
+    return k > c ? k - 1 : k;
+}
+
 void require(bool ok, const char *what)
 {
     if (!ok)
@@ -37,6 +64,8 @@ FdmScrewModel::FdmScrewModel(const ScrewGeometry &geometry, const FdmParameters 
     m_area = kPi * geometry.diameter_m * geometry.diameter_m / 4.0;
     m_rhoC = geometry.density_kg_m3 * geometry.specificHeat_J_kgK;
     m_bearingCells = std::min(n, static_cast<int>(std::floor(geometry.fixedBearingLength_m / settings.dx_m + 1e-9)));
+    m_r = parameters.conductivity_W_mK * settings.dt_s / (m_rhoC * settings.dx_m * settings.dx_m);
+    m_srcScale = settings.dt_s / (m_rhoC * m_area); // 4 dt / (pi D^2 rho c)
     reset(20.0);
 }
 
@@ -93,46 +122,82 @@ void FdmScrewModel::step(double axisPosition_mm, double feed_mm_min, double ambi
         m_checkedFeed = v;
     }
 
+    if (v != m_coeffFeed)
+        updateCoefficients(v);
+
     const int n = cellCount();
+    const double nutCentre = std::fabs(axisPosition_mm - m_parameters.fixedEndPosition_mm) / 1000.0;
+    // Same cell range as heatedCells() (eq. 10 with its 1e-9 guard), without libm calls.
+    const double halfNut = m_geometry.nutLength_m / 2.0;
+    const double dx = m_settings.dx_m;
+    const int bearingCells = m_bearingCells;
+    int firstNut = std::max(cellFloor((nutCentre - halfNut) / dx + 1e-9, n) + 1, 1) - 1;
+    int lastNut = std::min(cellFloor((nutCentre + halfNut) / dx + 1e-9, n), n) - 1;
+    if (lastNut < firstNut)
+        firstNut = lastNut = n + 1; // no nut cell: an empty range past the end
+
+    // Branch-free runs: the cells split into at most five runs of equal kind (under the
+    // bearing, convective, under the nut, convective, ...); within a run eq. (10) is
+    //   T'_i = a T_i + r (T_{i-1} + T_{i+1}) + b,  a = 1 - 2r - c,  b = c T_a + s,
+    // with c the convection and s the source increment of the run. The fixed-end cell
+    // (adiabatic face) and the free-end cell (convective face) are done apart.
+    const double r = m_r;
+    const double Ta = m_ambient; // boundary value at time t (explicit)
+    const double *T = m_T.data();
+    double *Tn = m_next.data();
+    const int lastNut1 = lastNut + 1;
+    auto kindAt = [&](int i, double &c, double &src) {
+        const bool underBearing = i < bearingCells;
+        const bool underNut = i >= firstNut && i < lastNut1;
+        c = (underBearing || underNut) ? 0.0 : m_conv;
+        src = (underBearing ? m_bearingSrc : 0.0) + (underNut ? m_nutSrc : 0.0);
+    };
+    // Run boundaries inside [1, n-1).
+    int cuts[5] = {1, std::clamp(bearingCells, 1, n - 1), std::clamp(firstNut, 1, n - 1),
+                   std::clamp(lastNut1, 1, n - 1), n - 1};
+    const int nc = 5;
+    // Sorting network for the three middle entries (the ends are already extreme).
+    if (cuts[1] > cuts[2])
+        std::swap(cuts[1], cuts[2]);
+    if (cuts[2] > cuts[3])
+        std::swap(cuts[2], cuts[3]);
+    if (cuts[1] > cuts[2])
+        std::swap(cuts[1], cuts[2]);
+    for (int k = 0; k + 1 < nc; ++k) {
+        const int i0 = cuts[k], i1 = cuts[k + 1];
+        if (i1 <= i0)
+            continue;
+        double c, src;
+        kindAt(i0, c, src);
+        updateRun(T, Tn, i0, i1, 1.0 - 2.0 * r - c, r, c * Ta + src);
+    }
+    {
+        double c, src;
+        kindAt(0, c, src);
+        Tn[0] = T[0] + r * (T[1] - T[0]) + src - c * (T[0] - Ta);
+        kindAt(n - 1, c, src);
+        // Free-end face: h dt / (rho c dx) always; lateral convection unless heated.
+        const double cEnd = c + m_face;
+        Tn[n - 1] = T[n - 1] + r * (T[n - 2] - T[n - 1]) + src - cEnd * (T[n - 1] - Ta);
+    }
+    m_T.swap(m_next);
+    m_ambient = ambient_C;
+    m_time += m_settings.dt_s;
+}
+
+void FdmScrewModel::updateCoefficients(double v)
+{
     const double dx = m_settings.dx_m;
     const double dt = m_settings.dt_s;
     const double D = m_geometry.diameter_m;
     const double h = m_parameters.k1 * v + m_parameters.k2;
+    m_conv = 4.0 * h * dt / (m_rhoC * D);
+    m_face = m_conv * D / (4.0 * dx);
     const double qB = m_parameters.k3 * v;
     const double qN = m_parameters.k4 * v;
-    const double r = m_parameters.conductivity_W_mK * dt / (m_rhoC * dx * dx);
-    const double conv = 4.0 * h * dt / (m_rhoC * D);
-    const double convEnd = conv * (1.0 + D / (4.0 * dx));
-    const double srcScale = dt / (m_rhoC * m_area); // 4 dt / (pi D^2 rho c)
-    const double bearingSrc = m_geometry.fixedBearingLength_m > 0 ? srcScale * qB / m_geometry.fixedBearingLength_m : 0.0;
-    const double nutSrc = m_geometry.nutLength_m > 0 ? srcScale * qN / m_geometry.nutLength_m : 0.0;
-
-    const double nutCentre = std::fabs(axisPosition_mm - m_parameters.fixedEndPosition_mm) / 1000.0;
-    int firstNut = 0, lastNut = -1, bearingCells = 0;
-    heatedCells(nutCentre, firstNut, lastNut, bearingCells);
-
-    const double Ta = m_ambient; // boundary value at time t (explicit)
-    const double *T = m_T.data();
-    double *Tn = m_next.data();
-    for (int i = 0; i < n; ++i) {
-        const double left = i > 0 ? T[i - 1] - T[i] : 0.0;       // adiabatic fixed end
-        const double right = i < n - 1 ? T[i + 1] - T[i] : 0.0;  // free-end face handled below
-        double dT = r * (left + right);
-        const bool underBearing = i < bearingCells;
-        const bool underNut = i >= firstNut && i <= lastNut;
-        if (underBearing)
-            dT += bearingSrc;
-        if (underNut)
-            dT += nutSrc;
-        if (i == n - 1)
-            dT -= (underBearing || underNut ? conv * D / (4.0 * dx) : convEnd) * (T[i] - Ta);
-        else if (!underBearing && !underNut)
-            dT -= conv * (T[i] - Ta);
-        Tn[i] = T[i] + dT;
-    }
-    m_T.swap(m_next);
-    m_ambient = ambient_C;
-    m_time += dt;
+    m_bearingSrc = m_geometry.fixedBearingLength_m > 0 ? m_srcScale * qB / m_geometry.fixedBearingLength_m : 0.0;
+    m_nutSrc = m_geometry.nutLength_m > 0 ? m_srcScale * qN / m_geometry.nutLength_m : 0.0;
+    m_coeffFeed = v;
 }
 
 double FdmScrewModel::expansionAt_um(double distanceFromFixedEnd_m) const

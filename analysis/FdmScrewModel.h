@@ -65,6 +65,13 @@ private:
     double m_area = 0.0;         // A_s = pi D^2 / 4
     double m_rhoC = 0.0;
     int m_bearingCells = 0;
+    // Step coefficients cached per feed (eq. 10): conduction r, lateral convection, free-end
+    // face convection, bearing and nut source increments per step.
+    double m_r = 0.0;
+    double m_srcScale = 0.0;     // dt / (rho c A_s)
+    double m_coeffFeed = -1.0;   // feed the cached coefficients belong to
+    double m_conv = 0.0, m_face = 0.0, m_bearingSrc = 0.0, m_nutSrc = 0.0;
+    void updateCoefficients(double feed);
 };
 
 } // namespace driftlab

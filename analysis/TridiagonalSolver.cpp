@@ -37,4 +37,29 @@ void TridiagonalSolver::solve(double *x) const
         x[i] -= c[i] * x[i + 1];
 }
 
+void TridiagonalSolver::solveInterleaved(double *x, int columns) const
+{
+    const int n = m_n;
+    const int C = columns;
+    const double *a = m_lower.data();
+    const double *inv = m_invPivot.data();
+    const double *c = m_upperMod.data();
+    for (int k = 0; k < C; ++k)
+        x[k] *= inv[0];
+    for (int i = 1; i < n; ++i) {
+        double *xi = x + static_cast<size_t>(i) * C;
+        const double *xp = xi - C;
+        const double ai = a[i], ii = inv[i];
+        for (int k = 0; k < C; ++k)
+            xi[k] = (xi[k] - ai * xp[k]) * ii;
+    }
+    for (int i = n - 2; i >= 0; --i) {
+        double *xi = x + static_cast<size_t>(i) * C;
+        const double *xn = xi + C;
+        const double ci = c[i];
+        for (int k = 0; k < C; ++k)
+            xi[k] -= ci * xn[k];
+    }
+}
+
 } // namespace driftlab

@@ -14,6 +14,9 @@ public:
     void factor(const double *lower, const double *diag, const double *upper, int n);
     // Solves in place: rhs becomes x. Must follow factor() with the same n.
     void solve(double *rhs) const;
+    // Solves `columns` right-hand sides stored interleaved (x[i * columns + c]) in place:
+    // the independent recurrences run side by side (instruction-level parallelism).
+    void solveInterleaved(double *x, int columns) const;
     int size() const { return m_n; }
 
 private:

@@ -1,0 +1,297 @@
+#include "FitCommand.h"
+
+#include "CliSupport.h"
+#include "SessionAnalysis.h"
+#include "SessionStore.h"
+#include "ThermalErrorTable.h"
+
+#include <QCommandLineParser>
+#include <QDateTime>
+#include <QJsonArray>
+#include <QTextStream>
+
+#include <cmath>
+#include <limits>
+
+namespace driftlab {
+
+namespace {
+
+qint64 sessionIdArg(const SessionStore &store, const QString &text, const QString &what)
+{
+    bool ok = false;
+    const qint64 id = text.toLongLong(&ok);
+    if (!ok)
+        throw UsageError(QStringLiteral("fit: %1 must be a session id, got '%2'").arg(what, text));
+    for (const SessionInfo &s : store.sessions())
+        if (s.id == id)
+            return id;
+    throw UsageError(QStringLiteral("fit: %1 has no session %2").arg(store.path()).arg(id));
+}
+
+QJsonObject statsJson(const FitStatistics &s)
+{
+    return QJsonObject{{QStringLiteral("interferometer_points"), s.interferometerPoints},
+                       {QStringLiteral("interferometer_rms_um"), s.interferometerRms_um},
+                       {QStringLiteral("interferometer_peak_to_valley_um"), s.interferometerPeakToValley_um},
+                       {QStringLiteral("elongation_points"), s.elongationPoints},
+                       {QStringLiteral("elongation_rms_um"), s.elongationRms_um},
+                       {QStringLiteral("elongation_peak_um"), s.elongationPeak_um}};
+}
+
+QString statsLine(const FitStatistics &s)
+{
+    QString line;
+    if (s.interferometerPoints > 0)
+        line += QStringLiteral("interferometer RMS %1 um over %2 points (P-V %3 um)")
+                    .arg(s.interferometerRms_um, 0, 'f', 3)
+                    .arg(s.interferometerPoints)
+                    .arg(s.interferometerPeakToValley_um, 0, 'f', 1);
+    if (s.elongationPoints > 0)
+        line += QStringLiteral("%1elongation RMS %2 um over %3 samples (peak %4 um)")
+                    .arg(line.isEmpty() ? QString() : QStringLiteral("; "))
+                    .arg(s.elongationRms_um, 0, 'f', 3)
+                    .arg(s.elongationPoints)
+                    .arg(s.elongationPeak_um, 0, 'f', 1);
+    return line;
+}
+
+} // namespace
+
+QString FitCommand::summary() const
+{
+    return QStringLiteral(
+        "Identify the seed-000 finite-difference screw model (k1..k4, lambda, P_f; eq. 20) from one or\n"
+        "several sessions: interferometer thermal errors (run minus reference run) and the screw-end\n"
+        "elongation channel are the observations (sigma 1 um each, probe decimated to one sample a\n"
+        "minute). Without interferometer runs the fit uses the elongation alone and holds P_f at the\n"
+        "machine block's value. Prints parameters with standard errors; --json writes MODEL.json for\n"
+        "'simulate --model'. The fitted model is stored with each session.");
+}
+
+ScrewRecording FitCommand::loadRecording(const SessionStore &store, qint64 sessionId, QString *note)
+{
+    SessionAnalysis analysis(store, sessionId);
+    ScrewRecording rec;
+    const SessionInfo info = store.session(sessionId);
+    rec.name = QStringLiteral("session %1 (%2)").arg(sessionId).arg(info.name).toStdString();
+    rec.drive = analysis.drive();
+    QStringList used;
+    try {
+        rec.elongation_um = analysis.channelByRole(QStringLiteral("screw_elongation"));
+        // The probe reads relative to its own zero: model elongation is relative to the start.
+        if (!rec.elongation_um.empty()) {
+            const double zero = rec.elongation_um.v.front();
+            for (double &v : rec.elongation_um.v)
+                v -= zero;
+        }
+        used << QStringLiteral("%1 screw_elongation samples").arg(rec.elongation_um.size());
+    } catch (const std::runtime_error &) {
+        // no probe channel: interferometer only
+    }
+    const QVector<InterferometerPoint> raw = store.interferometerPoints(sessionId);
+    if (!raw.isEmpty()) {
+        std::vector<InterferometerReading> readings;
+        for (const InterferometerPoint &p : raw)
+            readings.push_back({p.t, p.run, p.position_mm, p.error_um,
+                                p.direction == QLatin1String("+") ? 1 : (p.direction == QLatin1String("-") ? -1 : 0)});
+        int referenceRun = readings.front().run;
+        double earliest = readings.front().time_s;
+        for (const InterferometerReading &r : readings)
+            if (r.time_s < earliest) {
+                earliest = r.time_s;
+                referenceRun = r.run;
+            }
+        const QJsonValue ref = info.manifest.value(QStringLiteral("interferometer")).toObject().value(QStringLiteral("reference_run"));
+        if (ref.isDouble())
+            referenceRun = ref.toInt();
+        const ThermalErrorTable table = ThermalErrorTable::build(readings, referenceRun);
+        for (const ThermalErrorTable::Cell &c : table.measurements()) {
+            if (!c.valid)
+                continue;
+            PositioningErrorPoint p;
+            p.t_s = c.time_s;
+            p.position_mm = c.position_mm;
+            p.error_um = c.thermal_um;
+            // When the reference run measured this target (nearest reference reading).
+            double best = std::numeric_limits<double>::infinity();
+            for (const InterferometerReading &r : readings)
+                if (r.run == referenceRun && std::fabs(r.position_mm - c.position_mm) < best) {
+                    best = std::fabs(r.position_mm - c.position_mm);
+                    p.referenceTime_s = r.time_s;
+                }
+            rec.interferometer.push_back(p);
+        }
+        used << QStringLiteral("%1 interferometer points (reference run %2)").arg(rec.interferometer.size()).arg(referenceRun);
+    } else {
+        used << QStringLiteral("no interferometer runs");
+    }
+    if (note)
+        *note = used.join(QStringLiteral(", "));
+    return rec;
+}
+
+QJsonObject FitCommand::modelJson(const IdentificationResult &r, const ScrewGeometry &g, const IdentificationOptions &o)
+{
+    const FdmParameters &p = r.parameters;
+    QJsonObject stdErr;
+    for (const IdentifiedParameter &e : r.all)
+        stdErr.insert(QString::fromStdString(e.name), e.fitted ? QJsonValue(e.standardError) : QJsonValue());
+    QJsonArray names, matrix;
+    for (const std::string &n : r.correlationNames)
+        names.append(QString::fromStdString(n));
+    for (Eigen::Index a = 0; a < r.correlation.rows(); ++a) {
+        QJsonArray row;
+        for (Eigen::Index b = 0; b < r.correlation.cols(); ++b)
+            row.append(r.correlation(a, b));
+        matrix.append(row);
+    }
+    return QJsonObject{
+        {QStringLiteral("model"), QStringLiteral("fdm-seed000")},
+        {QStringLiteral("parameters"),
+         QJsonObject{{QStringLiteral("k1"), p.k1},
+                     {QStringLiteral("k2"), p.k2},
+                     {QStringLiteral("k3"), p.k3},
+                     {QStringLiteral("k4"), p.k4},
+                     {QStringLiteral("lambda_W_mK"), p.conductivity_W_mK},
+                     {QStringLiteral("fixed_end_position_mm"), p.fixedEndPosition_mm}}},
+        {QStringLiteral("standard_errors"), stdErr},
+        {QStringLiteral("correlation"), QJsonObject{{QStringLiteral("names"), names}, {QStringLiteral("matrix"), matrix}}},
+        {QStringLiteral("screw"),
+         QJsonObject{{QStringLiteral("length_m"), g.length_m},
+                     {QStringLiteral("diameter_m"), g.diameter_m},
+                     {QStringLiteral("nut_length_m"), g.nutLength_m},
+                     {QStringLiteral("fixed_bearing_length_m"), g.fixedBearingLength_m},
+                     {QStringLiteral("density_kg_m3"), g.density_kg_m3},
+                     {QStringLiteral("specific_heat_J_kgK"), g.specificHeat_J_kgK},
+                     {QStringLiteral("expansion_per_K"), g.expansion_per_K}}},
+        {QStringLiteral("grid"), QJsonObject{{QStringLiteral("dx_m"), o.simulator.grid.dx_m},
+                                             {QStringLiteral("dt_s"), o.simulator.grid.dt_s},
+                                             {QStringLiteral("scheme"), QStringLiteral("crank-nicolson, step-averaged nut")}}},
+        {QStringLiteral("weights"), QJsonObject{{QStringLiteral("interferometer_sigma_um"), o.simulator.interferometerSigma_um},
+                                                {QStringLiteral("elongation_sigma_um"), o.simulator.elongationSigma_um},
+                                                {QStringLiteral("elongation_interval_s"), o.simulator.elongationInterval_s}}},
+        {QStringLiteral("fit"), statsJson(r.fit)},
+        {QStringLiteral("weighted_rms"), r.weightedRms},
+        {QStringLiteral("iterations"), r.iterations},
+        {QStringLiteral("converged"), r.converged},
+        {QStringLiteral("wall_time_s"), r.wallTime_s},
+    };
+}
+
+int FitCommand::run(const QStringList &args)
+{
+    QCommandLineParser p;
+    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
+    const QCommandLineOption model(QStringLiteral("model"), QStringLiteral("Model to fit: fdm (seed-000 screw model)."),
+                                   QStringLiteral("name"), QStringLiteral("fdm"));
+    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write MODEL.json to FILE ('-' = stdout)."),
+                                  QStringLiteral("file"));
+    const QCommandLineOption holdout(QStringLiteral("holdout"),
+                                     QStringLiteral("Session predicted with the fitted model (validation), not fitted."),
+                                     QStringLiteral("id"));
+    const QCommandLineOption fixPf(QStringLiteral("fix-pf"),
+                                   QStringLiteral("Hold P_f at the machine block's fixed_end_position_mm."));
+    const QCommandLineOption dt(QStringLiteral("dt"), QStringLiteral("Implicit time step of the fit, s (default 20)."),
+                                QStringLiteral("seconds"), QStringLiteral("20"));
+    p.addOptions({db, model, json, holdout, fixPf, dt});
+    p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session ids to fit."), QStringLiteral("SESSION..."));
+    if (!parse(p, args))
+        return 0;
+    if (p.value(model) != QLatin1String("fdm"))
+        throw UsageError(QStringLiteral("fit: unknown --model '%1' (known: fdm)").arg(p.value(model)));
+    if (p.positionalArguments().isEmpty())
+        throw UsageError(QStringLiteral("fit: name at least one SESSION id (see 'driftlab-cli fit --help')"));
+    bool ok = false;
+    const double step = p.value(dt).toDouble(&ok);
+    if (!ok || !(step > 0) || step > 600)
+        throw UsageError(QStringLiteral("fit: --dt must be a time step in (0, 600] s, got '%1'").arg(p.value(dt)));
+
+    const QString path = CliSupport::databasePath(p.value(db), QString(), true);
+    SessionStore store(path);
+    std::vector<qint64> ids;
+    for (const QString &a : p.positionalArguments())
+        ids.push_back(sessionIdArg(store, a, QStringLiteral("SESSION")));
+    const qint64 holdoutId = p.isSet(holdout) ? sessionIdArg(store, p.value(holdout), QStringLiteral("--holdout")) : -1;
+
+    std::vector<ScrewRecording> recs;
+    bool anyInterferometer = false;
+    for (qint64 id : ids) {
+        QString note;
+        recs.push_back(loadRecording(store, id, &note));
+        anyInterferometer = anyInterferometer || !recs.back().interferometer.empty();
+        CliSupport::progress(QStringLiteral("session %1: %2").arg(id).arg(note));
+    }
+    SessionAnalysis first(store, ids.front());
+    const ScrewGeometry geometry = first.geometry();
+    IdentificationOptions options;
+    options.simulator.grid.dt_s = step;
+    options.initial = first.defaultParameters(); // Table 3 (X) start, P_f from the machine block
+    options.fitFixedEnd = !p.isSet(fixPf);
+    if (!anyInterferometer) {
+        options.fitFixedEnd = false;
+        CliSupport::progress(QStringLiteral(
+            "no interferometer runs in the fitted sessions: fitting on the screw_elongation channel alone; "
+            "P_f (which only the positioning error reveals) is held at %1 mm from the machine block")
+                                 .arg(options.initial.fixedEndPosition_mm));
+    }
+    CliSupport::progress(QStringLiteral("fitting k1, k2, lambda%1 (k3, k4 by linear least squares)...")
+                             .arg(options.fitFixedEnd ? QStringLiteral(", P_f") : QString()));
+    ScrewModelIdentifier identifier(geometry, options);
+    const IdentificationResult result = identifier.fit(recs);
+    QJsonObject out = modelJson(result, geometry, options);
+    QJsonArray sessionList;
+    for (qint64 id : ids)
+        sessionList.append(static_cast<double>(id));
+    out.insert(QStringLiteral("sessions"), sessionList);
+    out.insert(QStringLiteral("database"), path);
+    out.insert(QStringLiteral("observations"), anyInterferometer ? QStringLiteral("interferometer+screw_elongation")
+                                                                 : QStringLiteral("screw_elongation"));
+    FitStatistics validation;
+    if (holdoutId >= 0) {
+        QString note;
+        const ScrewRecording held = loadRecording(store, holdoutId, &note);
+        CliSupport::progress(QStringLiteral("held-out session %1: %2").arg(holdoutId).arg(note));
+        validation = identifier.predict(result, {held});
+        QJsonObject v = statsJson(validation);
+        v.insert(QStringLiteral("session"), static_cast<double>(holdoutId));
+        out.insert(QStringLiteral("validation"), v);
+    }
+
+    // Store with every fitted session.
+    FittedModel fm;
+    fm.model = QStringLiteral("fdm-seed000");
+    fm.parameters = out.value(QStringLiteral("parameters")).toObject();
+    fm.uncertainties = QJsonObject{{QStringLiteral("standard_errors"), out.value(QStringLiteral("standard_errors"))},
+                                   {QStringLiteral("correlation"), out.value(QStringLiteral("correlation"))}};
+    fm.provenance = QJsonObject{{QStringLiteral("sessions"), sessionList},
+                                {QStringLiteral("observations"), out.value(QStringLiteral("observations"))},
+                                {QStringLiteral("grid"), out.value(QStringLiteral("grid"))},
+                                {QStringLiteral("weights"), out.value(QStringLiteral("weights"))},
+                                {QStringLiteral("software"), QStringLiteral("driftlab-cli " DRIFTLAB_VERSION)}};
+    fm.metrics = out.value(QStringLiteral("fit")).toObject();
+    if (holdoutId >= 0)
+        fm.metrics.insert(QStringLiteral("validation"), out.value(QStringLiteral("validation")));
+    for (qint64 id : ids)
+        store.addFittedModel(id, fm);
+
+    if (p.isSet(json)) {
+        CliSupport::writeJson(QJsonDocument(out), p.value(json));
+    }
+    if (!p.isSet(json) || p.value(json) != QLatin1String("-")) {
+        QTextStream o(stdout);
+        o << "fdm-seed000 fitted to " << ids.size() << " session(s) in " << QString::number(result.wallTime_s, 'f', 2)
+          << " s (" << result.iterations << " iterations, " << (result.converged ? "converged" : "NOT converged")
+          << ")\n";
+        for (const IdentifiedParameter &e : result.all)
+            o << "  " << QString::fromStdString(e.name).leftJustified(8) << QString::number(e.value, 'g', 6).rightJustified(12)
+              << (e.fitted ? QStringLiteral(" +- %1").arg(e.standardError, 0, 'g', 3) : QStringLiteral(" (held)"))
+              << ' ' << QString::fromStdString(e.unit) << '\n';
+        o << "  fit: " << statsLine(result.fit) << '\n';
+        if (holdoutId >= 0)
+            o << "  held-out session " << holdoutId << ": " << statsLine(validation) << '\n';
+    }
+    return 0;
+}
+
+} // namespace driftlab

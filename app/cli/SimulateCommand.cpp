@@ -1,0 +1,190 @@
+#include "SimulateCommand.h"
+
+#include "BearingHeatSource.h"
+#include "CliSupport.h"
+#include "FitCommand.h"
+#include "NutHeatSource.h"
+#include "ScrewResponseSimulator.h"
+#include "SessionStore.h"
+
+#include <QCommandLineParser>
+#include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QTextStream>
+
+#include <cmath>
+
+namespace driftlab {
+
+namespace {
+
+double number(const QJsonObject &o, const char *key, const QString &where, bool required = true, double fallback = 0.0)
+{
+    const QJsonValue v = o.value(QLatin1String(key));
+    if (v.isUndefined() && !required)
+        return fallback;
+    if (!v.isDouble() || !std::isfinite(v.toDouble()))
+        throw UsageError(QStringLiteral("simulate: %1: '%2' must be a number").arg(where, QLatin1String(key)));
+    return v.toDouble();
+}
+
+} // namespace
+
+QString SimulateCommand::summary() const
+{
+    return QStringLiteral(
+        "Run a fitted seed-000 screw model (MODEL.json from 'fit --json') over a session's recorded axis\n"
+        "position, feed and ambient, and compare the predicted screw-end elongation and interferometer\n"
+        "thermal errors with the measured ones (RMS). --json writes the predicted series.");
+}
+
+int SimulateCommand::run(const QStringList &args)
+{
+    QCommandLineParser p;
+    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
+    const QCommandLineOption modelOpt(QStringLiteral("model"), QStringLiteral("MODEL.json written by 'fit --json'."),
+                                      QStringLiteral("file"));
+    const QCommandLineOption json(QStringLiteral("json"),
+                                  QStringLiteral("Write predictions as JSON to FILE ('-' = stdout)."),
+                                  QStringLiteral("file"));
+    const QCommandLineOption interval(QStringLiteral("interval"),
+                                      QStringLiteral("Elongation output interval, s (default 60)."),
+                                      QStringLiteral("seconds"), QStringLiteral("60"));
+    p.addOptions({db, modelOpt, json, interval});
+    p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
+    if (!parse(p, args))
+        return 0;
+    if (!p.isSet(modelOpt))
+        throw UsageError(QStringLiteral("simulate: --model MODEL.json is required"));
+    if (p.positionalArguments().size() != 1)
+        throw UsageError(QStringLiteral("simulate: name exactly one SESSION id"));
+    bool ok = false;
+    const double every = p.value(interval).toDouble(&ok);
+    if (!ok || !(every > 0))
+        throw UsageError(QStringLiteral("simulate: --interval must be > 0 s, got '%1'").arg(p.value(interval)));
+
+    const QString modelPath = p.value(modelOpt);
+    QFile file(modelPath);
+    if (!file.open(QIODevice::ReadOnly))
+        throw UsageError(QStringLiteral("simulate: cannot read %1: %2").arg(modelPath, file.errorString()));
+    QJsonParseError perr;
+    const QJsonDocument doc = QJsonDocument::fromJson(file.readAll(), &perr);
+    if (!doc.isObject())
+        throw UsageError(QStringLiteral("simulate: %1 is not a JSON object (%2 at offset %3)")
+                             .arg(modelPath, perr.errorString())
+                             .arg(perr.offset));
+    const QJsonObject m = doc.object();
+    if (m.value(QStringLiteral("model")).toString() != QLatin1String("fdm-seed000"))
+        throw UsageError(QStringLiteral("simulate: %1: 'model' must be \"fdm-seed000\"").arg(modelPath));
+    const QJsonObject par = m.value(QStringLiteral("parameters")).toObject();
+    const QString where = modelPath + QStringLiteral(" parameters");
+    FdmParameters fp;
+    fp.k1 = number(par, "k1", where);
+    fp.k2 = number(par, "k2", where);
+    fp.k3 = number(par, "k3", where);
+    fp.k4 = number(par, "k4", where);
+    fp.conductivity_W_mK = number(par, "lambda_W_mK", where);
+    fp.fixedEndPosition_mm = number(par, "fixed_end_position_mm", where);
+    if (!(fp.conductivity_W_mK > 0))
+        throw UsageError(QStringLiteral("simulate: %1: lambda_W_mK must be > 0").arg(where));
+    ScrewGeometry g;
+    const QJsonObject screw = m.value(QStringLiteral("screw")).toObject();
+    const QString sw = modelPath + QStringLiteral(" screw");
+    g.length_m = number(screw, "length_m", sw, false, g.length_m);
+    g.diameter_m = number(screw, "diameter_m", sw, false, g.diameter_m);
+    g.nutLength_m = number(screw, "nut_length_m", sw, false, g.nutLength_m);
+    g.fixedBearingLength_m = number(screw, "fixed_bearing_length_m", sw, false, g.fixedBearingLength_m);
+    g.density_kg_m3 = number(screw, "density_kg_m3", sw, false, g.density_kg_m3);
+    g.specificHeat_J_kgK = number(screw, "specific_heat_J_kgK", sw, false, g.specificHeat_J_kgK);
+    g.expansion_per_K = number(screw, "expansion_per_K", sw, false, g.expansion_per_K);
+    ResponseSimulatorOptions so;
+    const QJsonObject grid = m.value(QStringLiteral("grid")).toObject();
+    so.grid.dx_m = number(grid, "dx_m", modelPath + QStringLiteral(" grid"), false, so.grid.dx_m);
+    so.grid.dt_s = number(grid, "dt_s", modelPath + QStringLiteral(" grid"), false, so.grid.dt_s);
+    so.elongationInterval_s = every;
+
+    const QString path = CliSupport::databasePath(p.value(db), QString(), true);
+    SessionStore store(path);
+    const qint64 id = p.positionalArguments().front().toLongLong(&ok);
+    if (!ok)
+        throw UsageError(QStringLiteral("simulate: SESSION must be a session id, got '%1'").arg(p.positionalArguments().front()));
+    bool found = false;
+    for (const SessionInfo &s : store.sessions())
+        found = found || s.id == id;
+    if (!found)
+        throw UsageError(QStringLiteral("simulate: %1 has no session %2").arg(path).arg(id));
+
+    QString note;
+    ScrewRecording rec = FitCommand::loadRecording(store, id, &note);
+    CliSupport::progress(QStringLiteral("session %1: %2").arg(id).arg(note));
+    const bool measuredProbe = !rec.elongation_um.empty();
+    if (!measuredProbe) {
+        // Prediction only: an output grid over the drive.
+        const double t0 = rec.drive.position_mm.t.front(), t1 = rec.drive.position_mm.t.back();
+        for (double t = t0; t <= t1 + 1e-9; t += every) {
+            rec.elongation_um.t.push_back(t);
+            rec.elongation_um.v.push_back(0.0);
+        }
+    }
+    ScrewResponseSimulator sim(g, {rec}, so,
+                               {std::make_shared<BearingHeatSource>(), std::make_shared<NutHeatSource>()});
+    Eigen::MatrixXd phi;
+    sim.simulate(fp.k1, fp.k2, fp.conductivity_W_mK, fp.fixedEndPosition_mm, phi);
+    const Eigen::VectorXd pred = phi.col(0) + fp.k3 * phi.col(1) + fp.k4 * phi.col(2);
+
+    QJsonArray elong, interf;
+    double se = 0, si = 0, peak = 0, maxTe = 0;
+    int ne = 0, ni = 0;
+    for (int r = 0; r < sim.rowCount(); ++r) {
+        const ResponseObservation &o = sim.observations()[static_cast<size_t>(r)];
+        const double e = pred[r] - o.measured_um;
+        if (o.elongation) {
+            peak = std::max(peak, std::fabs(pred[r]));
+            QJsonObject row{{QStringLiteral("t_s"), o.t_s}, {QStringLiteral("predicted_um"), pred[r]}};
+            if (measuredProbe) {
+                row.insert(QStringLiteral("measured_um"), o.measured_um);
+                se += e * e;
+                ++ne;
+            }
+            elong.append(row);
+        } else {
+            maxTe = std::max(maxTe, std::fabs(pred[r]));
+            si += e * e;
+            ++ni;
+            interf.append(QJsonObject{{QStringLiteral("t_s"), o.t_s},
+                                      {QStringLiteral("position_mm"), o.position_mm},
+                                      {QStringLiteral("predicted_um"), pred[r]},
+                                      {QStringLiteral("measured_um"), o.measured_um}});
+        }
+    }
+    const double rmsE = ne ? std::sqrt(se / ne) : 0.0, rmsI = ni ? std::sqrt(si / ni) : 0.0;
+    if (p.isSet(json)) {
+        QJsonObject out{{QStringLiteral("session"), static_cast<double>(id)},
+                        {QStringLiteral("model"), modelPath},
+                        {QStringLiteral("parameters"), par},
+                        {QStringLiteral("elongation"), elong},
+                        {QStringLiteral("interferometer"), interf},
+                        {QStringLiteral("predicted_peak_elongation_um"), peak},
+                        {QStringLiteral("predicted_max_abs_error_um"), maxTe}};
+        if (ne)
+            out.insert(QStringLiteral("elongation_rms_um"), rmsE);
+        if (ni)
+            out.insert(QStringLiteral("interferometer_rms_um"), rmsI);
+        CliSupport::writeJson(QJsonDocument(out), p.value(json));
+    }
+    if (!p.isSet(json) || p.value(json) != QLatin1String("-")) {
+        QTextStream o(stdout);
+        o << "session " << id << ": predicted peak elongation " << QString::number(peak, 'f', 2) << " um";
+        if (ne)
+            o << ", RMS against the probe " << QString::number(rmsE, 'f', 3) << " um over " << ne << " samples";
+        if (ni)
+            o << "; positioning error max " << QString::number(maxTe, 'f', 2) << " um, RMS against the interferometer "
+              << QString::number(rmsI, 'f', 3) << " um over " << ni << " points";
+        o << '\n';
+    }
+    return 0;
+}
+
+} // namespace driftlab
