@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job on the embedded default: build, record a session from the simulated rig
-# into driftlab.sqlite in the user's data directory, analyse it, then open the GUI on it
+# into driftlab.sqlite in the user's data directory, fit the seed-000 model to it, then open the GUI on it
 # (or, with no display, render the main window to a PNG and say where).
 set -euo pipefail
 src="$(cd "$(dirname "$0")/.." && pwd)"
@@ -13,15 +13,18 @@ db="$data/driftlab.sqlite"
 cli="$build/app/driftlab-cli"
 gui="$build/app/driftlab"
 
-"$cli" record --sim --duration 2:48:00 --out "$db"
-"$cli" analyse --db "$db"
-echo "session database: $db"
+# Seed-000 Table 2 programme (warm-up 84 min, cool-down 42 min, warm-up 42 min at 6000 mm/min)
+# on the simulated rig, accelerated; then identify the seed-000 model on it.
+id=$("$cli" record --sim --duration 2:48:00 --out "$db" | sed -n 's/^session \([0-9][0-9]*\) .*/\1/p')
+[ -n "$id" ] || { echo "demo: recording failed" >&2; exit 1; }
+"$cli" fit "$id" --model fdm --db "$db"
+echo "session $id recorded and fitted in $db"
 
 if [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
-  exec "$gui" --db "$db"
+  exec "$gui" --db "$db" --session "$id"
 else
   png="$data/driftlab-main-window.png"
   export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
-  QT_QPA_PLATFORM=offscreen "$gui" --db "$db" --screenshot "$png"
+  QT_QPA_PLATFORM=offscreen "$gui" --db "$db" --session "$id" --screenshot "$png"
   echo "no display: main window rendered to $png"
 fi
