@@ -59,6 +59,66 @@ CREATE TABLE analysis_results (
   result_json TEXT NOT NULL
 );
 )"),
+        // 1 -> 2: samples as per-channel blocks with a time index and min/max mipmap levels
+        // (the narrow table is kept empty for old readers: SessionStore moves its rows into
+        // blocks in the same transaction), infrared frames, interferometer points, fitted
+        // models, the imported manifest. See docs/storage.md.
+        QStringLiteral(R"(
+ALTER TABLE sessions ADD COLUMN manifest_json TEXT NOT NULL DEFAULT '{}';
+CREATE TABLE sample_blocks (
+  id INTEGER PRIMARY KEY,
+  channel_id INTEGER NOT NULL REFERENCES channels(id) ON DELETE CASCADE,
+  t_first REAL NOT NULL,
+  t_last REAL NOT NULL,
+  n INTEGER NOT NULL,
+  data BLOB NOT NULL
+);
+CREATE INDEX sample_blocks_channel_time ON sample_blocks(channel_id, t_last);
+CREATE TABLE sample_levels (
+  channel_id INTEGER NOT NULL REFERENCES channels(id) ON DELETE CASCADE,
+  level INTEGER NOT NULL,
+  seq INTEGER NOT NULL,
+  t_first REAL NOT NULL,
+  t_last REAL NOT NULL,
+  n_raw INTEGER NOT NULL,
+  data BLOB NOT NULL,
+  PRIMARY KEY(channel_id, level, seq)
+);
+CREATE INDEX sample_levels_time ON sample_levels(channel_id, level, t_last);
+CREATE TABLE ir_frames (
+  id INTEGER PRIMARY KEY,
+  session_id INTEGER NOT NULL REFERENCES sessions(id) ON DELETE CASCADE,
+  t REAL NOT NULL,
+  width INTEGER NOT NULL,
+  height INTEGER NOT NULL,
+  encoding TEXT NOT NULL,
+  source_name TEXT NOT NULL DEFAULT '',
+  data BLOB NOT NULL
+);
+CREATE INDEX ir_frames_session_time ON ir_frames(session_id, t);
+CREATE TABLE interferometer_points (
+  id INTEGER PRIMARY KEY,
+  session_id INTEGER NOT NULL REFERENCES sessions(id) ON DELETE CASCADE,
+  t REAL NOT NULL,
+  run INTEGER NOT NULL,
+  position_mm REAL NOT NULL,
+  error_um REAL NOT NULL,
+  direction TEXT NOT NULL DEFAULT ''
+);
+CREATE INDEX interferometer_points_session ON interferometer_points(session_id, id);
+CREATE TABLE fitted_models (
+  id INTEGER PRIMARY KEY,
+  session_id INTEGER NOT NULL REFERENCES sessions(id) ON DELETE CASCADE,
+  model TEXT NOT NULL,
+  created TEXT NOT NULL DEFAULT (strftime('%Y-%m-%dT%H:%M:%SZ','now')),
+  parameters_json TEXT NOT NULL,
+  uncertainties_json TEXT NOT NULL,
+  provenance_json TEXT NOT NULL,
+  metrics_json TEXT NOT NULL
+);
+CREATE INDEX events_session_time ON events(session_id, t);
+CREATE INDEX analysis_results_session ON analysis_results(session_id, kind)
+)"),
     };
     return list;
 }
@@ -89,7 +149,7 @@ int SchemaMigrator::version(QSqlDatabase &db)
     return q.value(0).toInt();
 }
 
-void SchemaMigrator::migrate(QSqlDatabase &db)
+void SchemaMigrator::migrate(QSqlDatabase &db, const DataStep &dataStep)
 {
     const int have = version(db);
     if (have > currentVersion())
@@ -110,6 +170,8 @@ void SchemaMigrator::migrate(QSqlDatabase &db)
                 if (!s.trimmed().isEmpty())
                     exec(db, s);
             }
+            if (dataStep)
+                dataStep(v + 1);
             exec(db, QStringLiteral("PRAGMA user_version = %1").arg(v + 1));
         } catch (...) {
             db.rollback();

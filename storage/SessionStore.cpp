@@ -1,6 +1,9 @@
 #include "SessionStore.h"
 
+#include "IrFrameCodec.h"
+#include "SampleChannels.h"
 #include "SchemaMigrator.h"
+#include "SqlSupport.h"
 #include "StorageError.h"
 
 #include <QAtomicInteger>
@@ -10,29 +13,25 @@
 #include <QSqlQuery>
 #include <QVariant>
 
+#include <algorithm>
+#include <cmath>
+
 namespace driftlab {
 
 namespace {
 
 QAtomicInteger<quint64> g_connectionCounter;
 
-[[noreturn]] void fail(const QString &path, const QString &what, const QSqlError &error)
+constexpr int kLegacyBlockSamples = 8192;
+
+QString json(const QJsonObject &o)
 {
-    throw StorageError(QStringLiteral("%1: %2: %3").arg(path, what, error.text()).toStdString());
+    return QString::fromUtf8(QJsonDocument(o).toJson(QJsonDocument::Compact));
 }
 
-QSqlQuery prepared(const QSqlDatabase &db, const QString &path, const QString &sql)
+QJsonObject object(const QVariant &v)
 {
-    QSqlQuery q(db);
-    if (!q.prepare(sql))
-        fail(path, QStringLiteral("cannot prepare statement"), q.lastError());
-    return q;
-}
-
-void run(QSqlQuery &q, const QString &path, const QString &what)
-{
-    if (!q.exec())
-        fail(path, what, q.lastError());
+    return QJsonDocument::fromJson(v.toString().toUtf8()).object();
 }
 
 // A null QString binds as SQL NULL; text columns are NOT NULL.
@@ -58,18 +57,61 @@ SessionStore::SessionStore(const QString &path) : m_path(path)
     if (!dir.isDir())
         throw StorageError(QStringLiteral("%1: folder %2 does not exist").arg(path, dir.filePath()).toStdString());
     if (!m_db.open())
-        fail(path, QStringLiteral("cannot open database"), m_db.lastError());
+        SqlSupport::fail(path, QStringLiteral("cannot open database"), m_db.lastError());
     QSqlQuery pragma(m_db);
     // WAL: readers see committed data while a recording writes.
     if (!pragma.exec(QStringLiteral("PRAGMA journal_mode=WAL")))
-        fail(path, QStringLiteral("cannot enable WAL (not an SQLite database?)"), pragma.lastError());
+        SqlSupport::fail(path, QStringLiteral("cannot enable WAL (not an SQLite database?)"), pragma.lastError());
     pragma.exec(QStringLiteral("PRAGMA foreign_keys=ON"));
     pragma.exec(QStringLiteral("PRAGMA synchronous=NORMAL"));
-    SchemaMigrator::migrate(m_db);
+    m_samples = std::make_unique<SampleChannels>(m_db, m_path);
+    SchemaMigrator::migrate(m_db, [this](int toVersion) {
+        if (toVersion == 2)
+            convertLegacySamples();
+    });
+}
+
+void SessionStore::failSql(const QString &what, const QSqlError &error) const
+{
+    SqlSupport::fail(m_path, what, error);
+}
+
+// Moves the rows of the version-1 narrow table into blocks and mipmap levels.
+void SessionStore::convertLegacySamples()
+{
+    QSqlQuery q(m_db);
+    q.setForwardOnly(true);
+    if (!q.exec(QStringLiteral("SELECT channel_id, t, value FROM samples ORDER BY channel_id, t, rowid")))
+        failSql(QStringLiteral("cannot read version-1 samples"), q.lastError());
+    qint64 channel = -1;
+    QVector<double> t;
+    QVector<double> v;
+    auto flush = [&] {
+        if (!t.isEmpty())
+            m_samples->append(channel, t, v);
+        t.clear();
+        v.clear();
+    };
+    while (q.next()) {
+        const qint64 c = q.value(0).toLongLong();
+        if (c != channel || t.size() >= kLegacyBlockSamples) {
+            flush();
+            channel = c;
+        }
+        t.push_back(q.value(1).toDouble());
+        v.push_back(q.value(2).toDouble());
+    }
+    flush();
+    q.finish();
+    m_samples->flush();
+    if (!q.exec(QStringLiteral("DELETE FROM samples")))
+        failSql(QStringLiteral("cannot empty the version-1 sample table"), q.lastError());
 }
 
 SessionStore::~SessionStore()
 {
+    m_queries.clear();
+    m_samples.reset();
     if (m_inTransaction)
         m_db.rollback();
     m_db.close();
@@ -82,7 +124,7 @@ void SessionStore::begin()
     if (m_inTransaction)
         throw StorageError(QStringLiteral("%1: nested transaction").arg(m_path).toStdString());
     if (!m_db.transaction())
-        fail(m_path, QStringLiteral("cannot begin transaction"), m_db.lastError());
+        SqlSupport::fail(m_path, QStringLiteral("cannot begin transaction"), m_db.lastError());
     m_inTransaction = true;
 }
 
@@ -90,11 +132,18 @@ void SessionStore::commit()
 {
     if (!m_inTransaction)
         return;
+    try {
+        m_samples->flush();
+    } catch (...) {
+        rollback();
+        throw;
+    }
     m_inTransaction = false;
     if (!m_db.commit()) {
         const QSqlError error = m_db.lastError();
         m_db.rollback();
-        fail(m_path, QStringLiteral("commit failed"), error);
+        m_samples->reset();
+        SqlSupport::fail(m_path, QStringLiteral("commit failed"), error);
     }
 }
 
@@ -104,26 +153,37 @@ void SessionStore::rollback()
         return;
     m_inTransaction = false;
     m_db.rollback();
+    m_samples->reset(); // the pending samples and open mipmap rows may hold rolled-back data
+}
+
+QSqlQuery &SessionStore::cached(const char *sql)
+{
+    auto it = m_queries.find(sql);
+    if (it == m_queries.end()) {
+        it = m_queries.insert(sql, SqlSupport::prepared(m_db, m_path, QString::fromLatin1(sql)));
+    }
+    return it.value();
 }
 
 qint64 SessionStore::createSession(const SessionInfo &info)
 {
-    QSqlQuery q = prepared(m_db, m_path,
-                           QStringLiteral("INSERT INTO sessions(name, started, operator, notes, machine_json, complete) "
-                                          "VALUES(?, ?, ?, ?, ?, ?)"));
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
+                           QStringLiteral("INSERT INTO sessions(name, started, operator, notes, machine_json, complete, "
+                                          "manifest_json) VALUES(?, ?, ?, ?, ?, ?, ?)"));
     q.addBindValue(text(info.name));
     q.addBindValue(text(info.started));
     q.addBindValue(text(info.operatorName));
     q.addBindValue(text(info.notes));
     q.addBindValue(QString::fromUtf8(QJsonDocument(info.machine).toJson(QJsonDocument::Compact)));
     q.addBindValue(info.complete ? 1 : 0);
-    run(q, m_path, QStringLiteral("cannot create session"));
+    q.addBindValue(json(info.manifest));
+    SqlSupport::run(q, m_path, QStringLiteral("cannot create session"));
     return q.lastInsertId().toLongLong();
 }
 
 qint64 SessionStore::addChannel(qint64 sessionId, const ChannelInfo &c)
 {
-    QSqlQuery q = prepared(m_db, m_path,
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
                            QStringLiteral("INSERT INTO channels(session_id, key, kind, sensor, unit, location, role, "
                                           "screw_position_m) VALUES(?, ?, ?, ?, ?, ?, ?, ?)"));
     q.addBindValue(sessionId);
@@ -134,26 +194,82 @@ qint64 SessionStore::addChannel(qint64 sessionId, const ChannelInfo &c)
     q.addBindValue(text(c.location));
     q.addBindValue(text(c.role));
     q.addBindValue(optionalReal(c.screwPosition_m));
-    run(q, m_path, QStringLiteral("cannot add channel '%1'").arg(c.key));
+    SqlSupport::run(q, m_path, QStringLiteral("cannot add channel '%1'").arg(c.key));
+    return q.lastInsertId().toLongLong();
+}
+
+qint64 SessionStore::addIrFrame(qint64 sessionId, const IrFrame &frame)
+{
+    if (frame.width <= 0 || frame.height <= 0 || frame.pixels.size() != frame.width * frame.height)
+        throw StorageError(QStringLiteral("%1: infrared frame at %2 s: %3 pixels for %4 x %5")
+                               .arg(m_path).arg(frame.t).arg(frame.pixels.size()).arg(frame.width).arg(frame.height)
+                               .toStdString());
+    return addCompressedIrFrame(sessionId, frame, IrFrameCodec::compress(frame.pixels, frame.width, frame.height));
+}
+
+qint64 SessionStore::addCompressedIrFrame(qint64 sessionId, const IrFrame &frame, const QByteArray &compressed)
+{
+    QSqlQuery &q = cached("INSERT INTO ir_frames(session_id, t, width, height, encoding, source_name, data) "
+                          "VALUES(?, ?, ?, ?, ?, ?, ?)");
+    q.bindValue(0, sessionId);
+    q.bindValue(1, frame.t);
+    q.bindValue(2, frame.width);
+    q.bindValue(3, frame.height);
+    q.bindValue(4, IrFrameCodec::storeEncoding());
+    q.bindValue(5, text(frame.sourceName));
+    q.bindValue(6, compressed);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot store infrared frame at %1 s").arg(frame.t));
+    return q.lastInsertId().toLongLong();
+}
+
+void SessionStore::addInterferometerPoints(qint64 sessionId, const QVector<InterferometerPoint> &points)
+{
+    const bool own = !m_inTransaction;
+    if (own)
+        begin();
+    try {
+        QSqlQuery &q = cached("INSERT INTO interferometer_points(session_id, t, run, position_mm, error_um, direction) "
+                              "VALUES(?, ?, ?, ?, ?, ?)");
+        for (const InterferometerPoint &p : points) {
+            q.bindValue(0, sessionId);
+            q.bindValue(1, p.t);
+            q.bindValue(2, p.run);
+            q.bindValue(3, p.position_mm);
+            q.bindValue(4, p.error_um);
+            q.bindValue(5, text(p.direction));
+            SqlSupport::run(q, m_path, QStringLiteral("cannot store interferometer point"));
+        }
+    } catch (...) {
+        if (own)
+            rollback();
+        throw;
+    }
+    if (own)
+        commit();
+}
+
+qint64 SessionStore::addFittedModel(qint64 sessionId, const FittedModel &model)
+{
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
+                           QStringLiteral("INSERT INTO fitted_models(session_id, model, parameters_json, uncertainties_json, "
+                                          "provenance_json, metrics_json) VALUES(?, ?, ?, ?, ?, ?)"));
+    q.addBindValue(sessionId);
+    q.addBindValue(text(model.model));
+    q.addBindValue(json(model.parameters));
+    q.addBindValue(json(model.uncertainties));
+    q.addBindValue(json(model.provenance));
+    q.addBindValue(json(model.metrics));
+    SqlSupport::run(q, m_path, QStringLiteral("cannot store fitted model '%1'").arg(model.model));
     return q.lastInsertId().toLongLong();
 }
 
 void SessionStore::appendSamples(qint64 channelId, const QVector<double> &t, const QVector<double> &v)
 {
-    if (t.size() != v.size())
-        throw StorageError(QStringLiteral("%1: %2 times but %3 values for channel %4")
-                               .arg(m_path).arg(t.size()).arg(v.size()).arg(channelId).toStdString());
     const bool own = !m_inTransaction;
     if (own)
         begin();
     try {
-        QSqlQuery q = prepared(m_db, m_path, QStringLiteral("INSERT INTO samples(channel_id, t, value) VALUES(?, ?, ?)"));
-        for (int i = 0; i < t.size(); ++i) {
-            q.bindValue(0, channelId);
-            q.bindValue(1, t[i]);
-            q.bindValue(2, v[i]);
-            run(q, m_path, QStringLiteral("cannot append samples to channel %1").arg(channelId));
-        }
+        m_samples->append(channelId, t, v);
     } catch (...) {
         if (own)
             rollback();
@@ -165,29 +281,29 @@ void SessionStore::appendSamples(qint64 channelId, const QVector<double> &t, con
 
 void SessionStore::addEvent(qint64 sessionId, const EventRecord &event)
 {
-    QSqlQuery q = prepared(m_db, m_path, QStringLiteral("INSERT INTO events(session_id, t, label) VALUES(?, ?, ?)"));
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("INSERT INTO events(session_id, t, label) VALUES(?, ?, ?)"));
     q.addBindValue(sessionId);
     q.addBindValue(event.t);
     q.addBindValue(text(event.label));
-    run(q, m_path, QStringLiteral("cannot add event"));
+    SqlSupport::run(q, m_path, QStringLiteral("cannot add event"));
 }
 
 void SessionStore::setComplete(qint64 sessionId, bool complete)
 {
-    QSqlQuery q = prepared(m_db, m_path, QStringLiteral("UPDATE sessions SET complete = ? WHERE id = ?"));
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("UPDATE sessions SET complete = ? WHERE id = ?"));
     q.addBindValue(complete ? 1 : 0);
     q.addBindValue(sessionId);
-    run(q, m_path, QStringLiteral("cannot mark session %1").arg(sessionId));
+    SqlSupport::run(q, m_path, QStringLiteral("cannot mark session %1").arg(sessionId));
 }
 
 qint64 SessionStore::addAnalysisResult(qint64 sessionId, const QString &kind, const QJsonObject &result)
 {
-    QSqlQuery q = prepared(m_db, m_path,
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
                            QStringLiteral("INSERT INTO analysis_results(session_id, kind, result_json) VALUES(?, ?, ?)"));
     q.addBindValue(sessionId);
     q.addBindValue(text(kind));
     q.addBindValue(QString::fromUtf8(QJsonDocument(result).toJson(QJsonDocument::Compact)));
-    run(q, m_path, QStringLiteral("cannot store analysis result"));
+    SqlSupport::run(q, m_path, QStringLiteral("cannot store analysis result"));
     return q.lastInsertId().toLongLong();
 }
 
@@ -202,15 +318,16 @@ SessionInfo sessionFromQuery(const QSqlQuery &q)
     s.notes = q.value(4).toString();
     s.machine = QJsonDocument::fromJson(q.value(5).toString().toUtf8()).object();
     s.complete = q.value(6).toInt() != 0;
+    s.manifest = object(q.value(7));
     return s;
 }
-const char *kSessionColumns = "id, name, started, operator, notes, machine_json, complete";
+const char *kSessionColumns = "id, name, started, operator, notes, machine_json, complete, manifest_json";
 } // namespace
 
 QVector<SessionInfo> SessionStore::sessions() const
 {
-    QSqlQuery q = prepared(m_db, m_path, QStringLiteral("SELECT %1 FROM sessions ORDER BY id").arg(QLatin1String(kSessionColumns)));
-    run(q, m_path, QStringLiteral("cannot list sessions"));
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT %1 FROM sessions ORDER BY id").arg(QLatin1String(kSessionColumns)));
+    SqlSupport::run(q, m_path, QStringLiteral("cannot list sessions"));
     QVector<SessionInfo> out;
     while (q.next())
         out.push_back(sessionFromQuery(q));
@@ -219,9 +336,9 @@ QVector<SessionInfo> SessionStore::sessions() const
 
 SessionInfo SessionStore::session(qint64 sessionId) const
 {
-    QSqlQuery q = prepared(m_db, m_path, QStringLiteral("SELECT %1 FROM sessions WHERE id = ?").arg(QLatin1String(kSessionColumns)));
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT %1 FROM sessions WHERE id = ?").arg(QLatin1String(kSessionColumns)));
     q.addBindValue(sessionId);
-    run(q, m_path, QStringLiteral("cannot read session %1").arg(sessionId));
+    SqlSupport::run(q, m_path, QStringLiteral("cannot read session %1").arg(sessionId));
     if (!q.next())
         throw StorageError(QStringLiteral("%1: no session with id %2").arg(m_path).arg(sessionId).toStdString());
     return sessionFromQuery(q);
@@ -229,11 +346,11 @@ SessionInfo SessionStore::session(qint64 sessionId) const
 
 QVector<ChannelInfo> SessionStore::channels(qint64 sessionId) const
 {
-    QSqlQuery q = prepared(m_db, m_path,
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
                            QStringLiteral("SELECT id, session_id, key, kind, sensor, unit, location, role, screw_position_m "
                                           "FROM channels WHERE session_id = ? ORDER BY id"));
     q.addBindValue(sessionId);
-    run(q, m_path, QStringLiteral("cannot list channels of session %1").arg(sessionId));
+    SqlSupport::run(q, m_path, QStringLiteral("cannot list channels of session %1").arg(sessionId));
     QVector<ChannelInfo> out;
     while (q.next()) {
         ChannelInfo c;
@@ -254,35 +371,123 @@ QVector<ChannelInfo> SessionStore::channels(qint64 sessionId) const
 
 SampleBlock SessionStore::samples(qint64 channelId, double t0, double t1) const
 {
-    QSqlQuery q = prepared(m_db, m_path,
-                           QStringLiteral("SELECT t, value FROM samples WHERE channel_id = ? AND t >= ? AND t <= ? "
-                                          "ORDER BY t, rowid"));
-    q.setForwardOnly(true);
-    q.addBindValue(channelId);
-    q.addBindValue(t0);
-    q.addBindValue(t1);
-    run(q, m_path, QStringLiteral("cannot read samples of channel %1").arg(channelId));
-    SampleBlock b;
-    while (q.next()) {
-        b.t.push_back(q.value(0).toDouble());
-        b.v.push_back(q.value(1).toDouble());
-    }
-    return b;
+    return m_samples->samples(channelId, t0, t1);
+}
+
+DecimatedSeries SessionStore::decimated(qint64 channelId, double t0, double t1, int maxPoints) const
+{
+    return m_samples->decimated(channelId, t0, t1, maxPoints);
 }
 
 qint64 SessionStore::sampleCount(qint64 channelId) const
 {
-    QSqlQuery q = prepared(m_db, m_path, QStringLiteral("SELECT count(*) FROM samples WHERE channel_id = ?"));
-    q.addBindValue(channelId);
-    run(q, m_path, QStringLiteral("cannot count samples"));
-    return q.next() ? q.value(0).toLongLong() : 0;
+    return m_samples->count(channelId);
+}
+
+QVector<IrFrame> SessionStore::irFrames(qint64 sessionId) const
+{
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
+                           QStringLiteral("SELECT id, t, width, height, source_name FROM ir_frames WHERE session_id = ? "
+                                          "ORDER BY t, id"));
+    q.addBindValue(sessionId);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot list infrared frames of session %1").arg(sessionId));
+    QVector<IrFrame> out;
+    while (q.next()) {
+        IrFrame f;
+        f.id = q.value(0).toLongLong();
+        f.t = q.value(1).toDouble();
+        f.width = q.value(2).toInt();
+        f.height = q.value(3).toInt();
+        f.sourceName = q.value(4).toString();
+        out.push_back(f);
+    }
+    return out;
+}
+
+IrFrame SessionStore::irFrame(qint64 frameId) const
+{
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
+                           QStringLiteral("SELECT id, t, width, height, source_name, encoding, data FROM ir_frames WHERE id = ?"));
+    q.addBindValue(frameId);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot read infrared frame %1").arg(frameId));
+    if (!q.next())
+        throw StorageError(QStringLiteral("%1: no infrared frame with id %2").arg(m_path).arg(frameId).toStdString());
+    IrFrame f;
+    f.id = q.value(0).toLongLong();
+    f.t = q.value(1).toDouble();
+    f.width = q.value(2).toInt();
+    f.height = q.value(3).toInt();
+    f.sourceName = q.value(4).toString();
+    const QString what = QStringLiteral("%1: infrared frame %2").arg(m_path).arg(frameId);
+    if (q.value(5).toString() != IrFrameCodec::storeEncoding())
+        throw StorageError(QStringLiteral("%1: unknown encoding '%2'").arg(what, q.value(5).toString()).toStdString());
+    f.pixels = IrFrameCodec::decompress(q.value(6).toByteArray(), f.width, f.height, what);
+    return f;
+}
+
+QVector<InterferometerPoint> SessionStore::interferometerPoints(qint64 sessionId) const
+{
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
+                           QStringLiteral("SELECT t, run, position_mm, error_um, direction FROM interferometer_points "
+                                          "WHERE session_id = ? ORDER BY id"));
+    q.addBindValue(sessionId);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot read interferometer points of session %1").arg(sessionId));
+    QVector<InterferometerPoint> out;
+    while (q.next())
+        out.push_back({q.value(0).toDouble(), q.value(1).toInt(), q.value(2).toDouble(), q.value(3).toDouble(),
+                       q.value(4).toString()});
+    return out;
+}
+
+QVector<FittedModel> SessionStore::fittedModels(qint64 sessionId) const
+{
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
+                           QStringLiteral("SELECT id, model, created, parameters_json, uncertainties_json, provenance_json, "
+                                          "metrics_json FROM fitted_models WHERE session_id = ? ORDER BY id"));
+    q.addBindValue(sessionId);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot read fitted models of session %1").arg(sessionId));
+    QVector<FittedModel> out;
+    while (q.next()) {
+        FittedModel m;
+        m.id = q.value(0).toLongLong();
+        m.model = q.value(1).toString();
+        m.created = q.value(2).toString();
+        m.parameters = object(q.value(3));
+        m.uncertainties = object(q.value(4));
+        m.provenance = object(q.value(5));
+        m.metrics = object(q.value(6));
+        out.push_back(m);
+    }
+    return out;
+}
+
+void SessionStore::setSizeLimit(qint64 bytes)
+{
+    QSqlQuery q(m_db);
+    if (!q.exec(QStringLiteral("PRAGMA page_size")) || !q.next())
+        failSql(QStringLiteral("cannot read page size"), q.lastError());
+    const qint64 pages = std::max<qint64>(1, bytes / q.value(0).toLongLong());
+    q.finish();
+    if (!q.exec(QStringLiteral("PRAGMA max_page_count = %1").arg(pages)))
+        failSql(QStringLiteral("cannot set size limit"), q.lastError());
+}
+
+QString SessionStore::integrityCheck() const
+{
+    QSqlQuery q(m_db);
+    if (!q.exec(QStringLiteral("PRAGMA integrity_check")))
+        failSql(QStringLiteral("cannot run integrity check"), q.lastError());
+    QStringList lines;
+    while (q.next())
+        lines << q.value(0).toString();
+    return lines.join(QLatin1Char('\n'));
 }
 
 QVector<EventRecord> SessionStore::events(qint64 sessionId) const
 {
-    QSqlQuery q = prepared(m_db, m_path, QStringLiteral("SELECT t, label FROM events WHERE session_id = ? ORDER BY t, id"));
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT t, label FROM events WHERE session_id = ? ORDER BY t, id"));
     q.addBindValue(sessionId);
-    run(q, m_path, QStringLiteral("cannot read events"));
+    SqlSupport::run(q, m_path, QStringLiteral("cannot read events"));
     QVector<EventRecord> out;
     while (q.next())
         out.push_back({q.value(0).toDouble(), q.value(1).toString()});
@@ -291,12 +496,12 @@ QVector<EventRecord> SessionStore::events(qint64 sessionId) const
 
 QJsonObject SessionStore::latestAnalysisResult(qint64 sessionId, const QString &kind) const
 {
-    QSqlQuery q = prepared(m_db, m_path,
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
                            QStringLiteral("SELECT result_json FROM analysis_results WHERE session_id = ? AND kind = ? "
                                           "ORDER BY id DESC LIMIT 1"));
     q.addBindValue(sessionId);
     q.addBindValue(text(kind));
-    run(q, m_path, QStringLiteral("cannot read analysis result"));
+    SqlSupport::run(q, m_path, QStringLiteral("cannot read analysis result"));
     if (!q.next())
         return {};
     return QJsonDocument::fromJson(q.value(0).toString().toUtf8()).object();

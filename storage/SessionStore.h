@@ -4,11 +4,18 @@
 
 #include "StorageTypes.h"
 
+#include <QHash>
+#include <QSqlError>
 #include <QSqlDatabase>
+#include <QSqlQuery>
 #include <QString>
 #include <QVector>
 
+#include <memory>
+
 namespace driftlab {
+
+class SampleChannels;
 
 class SessionStore {
 public:
@@ -22,8 +29,17 @@ public:
 
     qint64 createSession(const SessionInfo &info);
     qint64 addChannel(qint64 sessionId, const ChannelInfo &channel);
-    // Appends samples of one channel in one transaction.
+    // Appends samples of one channel (in one transaction unless begin() was called). Times
+    // must be non-decreasing and not before the channel's last stored sample; values finite
+    // (else StorageError and nothing is appended). Inside begin()/commit() the samples are
+    // buffered and written as blocks at commit(), so they become readable then.
     void appendSamples(qint64 channelId, const QVector<double> &t, const QVector<double> &v);
+    qint64 addIrFrame(qint64 sessionId, const IrFrame &frame);
+    // Same with the pixels already compressed by IrFrameCodec::compress (frame.pixels unused),
+    // so that a writer thread's producers can compress in parallel.
+    qint64 addCompressedIrFrame(qint64 sessionId, const IrFrame &frame, const QByteArray &compressed);
+    void addInterferometerPoints(qint64 sessionId, const QVector<InterferometerPoint> &points);
+    qint64 addFittedModel(qint64 sessionId, const FittedModel &model);
     void addEvent(qint64 sessionId, const EventRecord &event);
     void setComplete(qint64 sessionId, bool complete);
     qint64 addAnalysisResult(qint64 sessionId, const QString &kind, const QJsonObject &result);
@@ -38,15 +54,35 @@ public:
     QVector<ChannelInfo> channels(qint64 sessionId) const;
     // Samples of a channel with t0 <= t <= t1, in time order.
     SampleBlock samples(qint64 channelId, double t0 = -1e300, double t1 = 1e300) const;
+    // Min/max of the samples in [t0, t1] in at most maxPoints time buckets, read from the
+    // coarsest mipmap level that still gives maxPoints buckets (never the whole channel).
+    DecimatedSeries decimated(qint64 channelId, double t0, double t1, int maxPoints) const;
     qint64 sampleCount(qint64 channelId) const;
+    // Frames of a session in time order, without pixels; irFrame() reads one with pixels.
+    QVector<IrFrame> irFrames(qint64 sessionId) const;
+    IrFrame irFrame(qint64 frameId) const;
+    QVector<InterferometerPoint> interferometerPoints(qint64 sessionId) const;
+    QVector<FittedModel> fittedModels(qint64 sessionId) const;
     QVector<EventRecord> events(qint64 sessionId) const;
     QJsonObject latestAnalysisResult(qint64 sessionId, const QString &kind) const;
 
+    // Caps the database file (PRAGMA max_page_count) for quotas and disk-full tests; a
+    // write past it fails with a StorageError saying the disk is full.
+    void setSizeLimit(qint64 bytes);
+    // PRAGMA integrity_check: "ok" or the problems found.
+    QString integrityCheck() const;
+
 private:
+    QSqlQuery &cached(const char *sql);
+    void convertLegacySamples();
+    [[noreturn]] void failSql(const QString &what, const QSqlError &error) const;
+
     QString m_path;
     QString m_connection;
     QSqlDatabase m_db;
     bool m_inTransaction = false;
+    QHash<const char *, QSqlQuery> m_queries;   // prepared write statements, reused
+    std::unique_ptr<SampleChannels> m_samples;  // blocks + mipmap of every channel
 };
 
 } // namespace driftlab

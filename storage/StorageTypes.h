@@ -17,6 +17,9 @@ struct SessionInfo {
     QString notes;
     QJsonObject machine;  // manifest "machine" block: screw, fixed_end_position_mm, travel_mm, ...
     bool complete = false;
+    // The bundle manifest a session was imported from, unknown keys included (empty for
+    // recorded sessions); kept so that export and the GUI can show every key.
+    QJsonObject manifest;
 };
 
 struct ChannelInfo {
@@ -39,6 +42,47 @@ struct SampleBlock {
 struct EventRecord {
     double t = 0.0;
     QString label;
+};
+
+// Min/max per bucket of a decimated range query: bucket i covers the samples with
+// tFirst[i] <= t <= tLast[i]; level is the mipmap level read (0 = raw samples).
+struct DecimatedSeries {
+    QVector<double> tFirst;
+    QVector<double> tLast;
+    QVector<double> min;
+    QVector<double> max;
+    int level = 0;
+};
+
+// One infrared frame: 16-bit pixels, row-major, width * height values.
+struct IrFrame {
+    qint64 id = 0;
+    double t = 0.0;
+    int width = 0;
+    int height = 0;
+    QString sourceName;       // file name in the bundle it came from, if any
+    QVector<quint16> pixels;  // empty when only the frame list was asked for
+};
+
+// One laser-interferometer target measurement.
+struct InterferometerPoint {
+    double t = 0.0;
+    int run = 0;
+    double position_mm = 0.0;
+    double error_um = 0.0;
+    QString direction;        // "+", "-" or empty
+};
+
+// A model fitted to a session: parameters, their uncertainties, where it came from
+// (data window, channels, software version) and fit metrics (RMS, R^2, ...).
+struct FittedModel {
+    qint64 id = 0;
+    QString model;
+    QString created;          // ISO 8601, UTC (set by the store)
+    QJsonObject parameters;
+    QJsonObject uncertainties;
+    QJsonObject provenance;
+    QJsonObject metrics;
 };
 
 } // namespace driftlab

@@ -1,0 +1,193 @@
+#include "BundleArchive.h"
+
+#include "BundleError.h"
+
+#include <QDir>
+#include <QFile>
+#include <QFileInfo>
+
+#include <zip.h>
+
+#include <cstdlib>
+#include <cstring>
+
+namespace driftlab {
+
+namespace {
+
+constexpr qint64 kMaxEntryBytes = qint64(1) << 31; // QByteArray limit
+
+QString zipError(zip_t *z)
+{
+    return QString::fromUtf8(zip_strerror(z));
+}
+
+} // namespace
+
+bool BundleArchive::isSafeRelativePath(const QString &path)
+{
+    if (path.isEmpty() || path.startsWith(QLatin1Char('/')) || path.contains(QLatin1Char('\\')) ||
+        (path.size() >= 2 && path.at(1) == QLatin1Char(':')))
+        return false;
+    for (const QString &part : path.split(QLatin1Char('/'))) {
+        if (part == QLatin1String(".."))
+            return false;
+    }
+    return true;
+}
+
+BundleArchive::BundleArchive(const QString &path, Mode mode) : m_path(path), m_mode(mode)
+{
+    const bool zipPath = path.endsWith(QLatin1String(".zip"), Qt::CaseInsensitive);
+    const QString name = QFileInfo(path).fileName();
+    if (mode == Mode::Write) {
+        if (QFileInfo::exists(path))
+            throw BundleError(name, 0, QString(), QStringLiteral("already exists; not overwriting %1").arg(path));
+        if (zipPath) {
+            int error = 0;
+            m_zip = zip_open(QFile::encodeName(path).constData(), ZIP_CREATE | ZIP_EXCL, &error);
+            if (!m_zip) {
+                zip_error_t ze;
+                zip_error_init_with_code(&ze, error);
+                const QString what = QString::fromUtf8(zip_error_strerror(&ze));
+                zip_error_fini(&ze);
+                throw BundleError(name, 0, QString(), QStringLiteral("cannot create zip: %1").arg(what));
+            }
+        } else if (!QDir().mkpath(path)) {
+            throw BundleError(name, 0, QString(), QStringLiteral("cannot create directory %1").arg(path));
+        }
+        return;
+    }
+    const QFileInfo info(path);
+    if (info.isDir())
+        return;
+    if (!info.exists())
+        throw BundleError(name, 0, QString(), QStringLiteral("no such bundle directory or zip: %1").arg(path));
+    int error = 0;
+    m_zip = zip_open(QFile::encodeName(path).constData(), ZIP_RDONLY | ZIP_CHECKCONS, &error);
+    if (!m_zip) {
+        zip_error_t ze;
+        zip_error_init_with_code(&ze, error);
+        const QString what = QString::fromUtf8(zip_error_strerror(&ze));
+        zip_error_fini(&ze);
+        throw BundleError(name, 0, QString(), QStringLiteral("not a readable zip bundle: %1").arg(what));
+    }
+    const zip_int64_t n = zip_get_num_entries(m_zip, 0);
+    QHash<QString, qint64> all;
+    for (zip_int64_t i = 0; i < n; ++i) {
+        const char *raw = zip_get_name(m_zip, static_cast<zip_uint64_t>(i), ZIP_FL_ENC_GUESS);
+        const QString entry = raw ? QString::fromUtf8(raw) : QString();
+        if (!isSafeRelativePath(entry)) {
+            zip_discard(m_zip);
+            m_zip = nullptr;
+            throw BundleError(name, 0, QStringLiteral("entry %1").arg(i),
+                              QStringLiteral("unsafe zip entry name '%1' (absolute path or '..'): refused").arg(entry));
+        }
+        if (!entry.endsWith(QLatin1Char('/')))
+            all.insert(entry, i);
+    }
+    // The bundle is at the root or in one top-level folder (a zipped NAME.bundle/).
+    if (!all.contains(QStringLiteral("manifest.json"))) {
+        for (auto it = all.cbegin(); it != all.cend(); ++it) {
+            const QString &entry = it.key();
+            if (entry.count(QLatin1Char('/')) == 1 && entry.endsWith(QLatin1String("/manifest.json"))) {
+                m_prefix = entry.left(entry.size() - static_cast<int>(std::strlen("manifest.json")));
+                break;
+            }
+        }
+    }
+    for (auto it = all.cbegin(); it != all.cend(); ++it) {
+        if (it.key().startsWith(m_prefix))
+            m_entries.insert(it.key().mid(m_prefix.size()), it.value());
+    }
+}
+
+BundleArchive::~BundleArchive()
+{
+    if (m_zip)
+        zip_discard(m_zip);
+}
+
+bool BundleArchive::exists(const QString &relativePath) const
+{
+    if (!isSafeRelativePath(relativePath))
+        return false;
+    if (m_zip)
+        return m_entries.contains(relativePath);
+    return QFileInfo(QDir(m_path).filePath(relativePath)).isFile();
+}
+
+QByteArray BundleArchive::read(const QString &relativePath) const
+{
+    if (!isSafeRelativePath(relativePath))
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("unsafe path (absolute or '..'): refused"));
+    if (!m_zip) {
+        QFile f(QDir(m_path).filePath(relativePath));
+        if (!f.exists())
+            throw BundleError(relativePath, 0, QString(), QStringLiteral("missing from the bundle"));
+        if (!f.open(QIODevice::ReadOnly))
+            throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot read: %1").arg(f.errorString()));
+        return f.readAll();
+    }
+    const auto it = m_entries.constFind(relativePath);
+    if (it == m_entries.cend())
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("missing from the bundle"));
+    zip_stat_t st;
+    zip_stat_init(&st);
+    if (zip_stat_index(m_zip, static_cast<zip_uint64_t>(it.value()), 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE))
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot stat zip entry: %1").arg(zipError(m_zip)));
+    if (static_cast<qint64>(st.size) >= kMaxEntryBytes)
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("zip entry too large (%1 bytes)").arg(st.size));
+    zip_file_t *f = zip_fopen_index(m_zip, static_cast<zip_uint64_t>(it.value()), 0);
+    if (!f)
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot open zip entry: %1").arg(zipError(m_zip)));
+    QByteArray data(static_cast<int>(st.size), Qt::Uninitialized);
+    const zip_int64_t got = zip_fread(f, data.data(), st.size);
+    const QString err = QString::fromUtf8(zip_file_strerror(f));
+    zip_fclose(f);
+    if (got < 0 || static_cast<zip_uint64_t>(got) != st.size)
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot read zip entry: %1").arg(err));
+    return data;
+}
+
+void BundleArchive::write(const QString &relativePath, const QByteArray &data)
+{
+    if (!isSafeRelativePath(relativePath))
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("unsafe path (absolute or '..'): refused"));
+    if (!m_zip) {
+        const QString full = QDir(m_path).filePath(relativePath);
+        QDir().mkpath(QFileInfo(full).absolutePath());
+        QFile f(full);
+        if (!f.open(QIODevice::WriteOnly) || f.write(data) != data.size())
+            throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot write: %1").arg(f.errorString()));
+        return;
+    }
+    void *copy = std::malloc(static_cast<size_t>(std::max(1, data.size())));
+    if (!copy)
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("out of memory"));
+    std::memcpy(copy, data.constData(), static_cast<size_t>(data.size()));
+    zip_source_t *src = zip_source_buffer(m_zip, copy, static_cast<zip_uint64_t>(data.size()), 1);
+    if (!src) {
+        std::free(copy);
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot add to zip: %1").arg(zipError(m_zip)));
+    }
+    if (zip_file_add(m_zip, relativePath.toUtf8().constData(), src, ZIP_FL_ENC_UTF_8 | ZIP_FL_OVERWRITE) < 0) {
+        zip_source_free(src);
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot add to zip: %1").arg(zipError(m_zip)));
+    }
+}
+
+void BundleArchive::finish()
+{
+    if (!m_zip || m_mode != Mode::Write)
+        return;
+    if (zip_close(m_zip) != 0) {
+        const QString what = zipError(m_zip);
+        zip_discard(m_zip);
+        m_zip = nullptr;
+        throw BundleError(QFileInfo(m_path).fileName(), 0, QString(), QStringLiteral("cannot write zip: %1").arg(what));
+    }
+    m_zip = nullptr;
+}
+
+} // namespace driftlab

@@ -1,0 +1,43 @@
+#pragma once
+// File access to a recording bundle: a directory or a .zip of it (libzip), for reading or
+// writing. Zip entries with absolute paths, '..' components or backslashes are refused.
+
+#include <QByteArray>
+#include <QHash>
+#include <QString>
+#include <QStringList>
+
+struct zip;
+
+namespace driftlab {
+
+class BundleArchive {
+public:
+    enum class Mode { Read, Write };
+    // Read: path is a bundle directory or a .zip (the bundle at the root or in one top-level
+    // folder). Write: creates the directory or .zip, which must not exist yet. Throws BundleError.
+    BundleArchive(const QString &path, Mode mode);
+    ~BundleArchive();
+    BundleArchive(const BundleArchive &) = delete;
+    BundleArchive &operator=(const BundleArchive &) = delete;
+
+    bool isZip() const { return m_zip != nullptr; }
+    bool exists(const QString &relativePath) const;
+    // Throws BundleError naming the file if it is missing or unreadable.
+    QByteArray read(const QString &relativePath) const;
+    void write(const QString &relativePath, const QByteArray &data);
+    // Writes the zip's central directory (Write mode); throws BundleError on failure.
+    void finish();
+
+    // True for a safe bundle-relative path: not empty, not absolute, no '..', no backslash.
+    static bool isSafeRelativePath(const QString &path);
+
+private:
+    QString m_path;
+    Mode m_mode;
+    zip *m_zip = nullptr;
+    QString m_prefix;                  // zip: top-level folder holding manifest.json, with '/'
+    QHash<QString, qint64> m_entries;  // zip: bundle-relative name -> entry index
+};
+
+} // namespace driftlab

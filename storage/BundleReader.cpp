@@ -1,0 +1,470 @@
+#include "BundleReader.h"
+
+#include "BundleError.h"
+#include "IrFrameCodec.h"
+
+#include <QDateTime>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonParseError>
+#include <QSet>
+
+#include <charconv>
+#include <cmath>
+#include <string>
+
+namespace driftlab {
+
+namespace {
+
+const QString kManifest = QStringLiteral("manifest.json");
+const QString kChannels = QStringLiteral("channels.csv");
+
+// One CSV file split into lines of fields (RFC 4180 quotes allowed, for event labels).
+class CsvFile {
+public:
+    CsvFile(const QString &name, const QByteArray &data) : m_name(name)
+    {
+        if (data.trimmed().isEmpty())
+            throw BundleError(name, 1, QString(), QStringLiteral("empty file, expected a header line"));
+        int start = 0;
+        int lineNo = 0;
+        while (start < data.size()) {
+            int end = data.indexOf('\n', start);
+            if (end < 0)
+                end = data.size();
+            ++lineNo;
+            QByteArray line = data.mid(start, end - start);
+            if (line.endsWith('\r'))
+                line.chop(1);
+            start = end + 1;
+            if (line.trimmed().isEmpty())
+                continue;
+            m_lines.push_back({lineNo, split(line, lineNo)});
+        }
+    }
+    struct Line {
+        int number;
+        QVector<QByteArray> fields;
+    };
+    const QVector<Line> &lines() const { return m_lines; }
+    const QString &name() const { return m_name; }
+
+    // Column index of each required header name; optional ones give -1.
+    QHash<QString, int> header(const QStringList &required, const QStringList &optional) const
+    {
+        const Line &h = m_lines.front();
+        QHash<QString, int> cols;
+        for (int i = 0; i < h.fields.size(); ++i) {
+            const QString f = QString::fromUtf8(h.fields[i]).trimmed();
+            if (cols.contains(f))
+                throw BundleError(m_name, h.number, f, QStringLiteral("duplicate column"));
+            cols.insert(f, i);
+        }
+        for (const QString &r : required) {
+            if (!cols.contains(r))
+                throw BundleError(m_name, h.number, r, QStringLiteral("missing column (header must have %1)")
+                                                            .arg(required.join(QLatin1Char(','))));
+        }
+        for (auto it = cols.cbegin(); it != cols.cend(); ++it) {
+            if (!required.contains(it.key()) && !optional.contains(it.key()))
+                throw BundleError(m_name, h.number, it.key(), QStringLiteral("unknown column"));
+        }
+        for (const QString &o : optional) {
+            if (!cols.contains(o))
+                cols.insert(o, -1);
+        }
+        return cols;
+    }
+    void checkWidth(const Line &line, int width) const
+    {
+        if (line.fields.size() != width)
+            throw BundleError(m_name, line.number, QString(),
+                              QStringLiteral("expected %1 fields, found %2 (truncated or malformed line)")
+                                  .arg(width)
+                                  .arg(line.fields.size()));
+    }
+
+private:
+    QVector<QByteArray> split(const QByteArray &line, int lineNo) const
+    {
+        QVector<QByteArray> out;
+        QByteArray cur;
+        bool quoted = false;
+        for (int i = 0; i < line.size(); ++i) {
+            const char c = line[i];
+            if (quoted) {
+                if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+                    cur += '"';
+                    ++i;
+                } else if (c == '"') {
+                    quoted = false;
+                } else {
+                    cur += c;
+                }
+            } else if (c == '"' && cur.trimmed().isEmpty()) {
+                quoted = true;
+                cur.clear();
+            } else if (c == ',') {
+                out.push_back(cur);
+                cur.clear();
+            } else {
+                cur += c;
+            }
+        }
+        if (quoted)
+            throw BundleError(m_name, lineNo, QString(), QStringLiteral("unterminated quoted field"));
+        out.push_back(cur);
+        return out;
+    }
+
+    QString m_name;
+    QVector<Line> m_lines;
+};
+
+// Strict number: the whole (trimmed) cell, finite. empty/nan -> missing when allowed.
+bool parseNumber(const QByteArray &cell, double &out, bool &missing)
+{
+    QByteArray s = cell.trimmed();
+    missing = s.isEmpty() || s.compare("nan", Qt::CaseInsensitive) == 0;
+    if (missing)
+        return true;
+    const char *begin = s.constData();
+    const char *end = begin + s.size();
+    if (*begin == '+')
+        ++begin;
+    const auto r = std::from_chars(begin, end, out);
+    return r.ec == std::errc() && r.ptr == end && std::isfinite(out);
+}
+
+QString describe(const QByteArray &cell)
+{
+    const QByteArray s = cell.trimmed();
+    double v = 0;
+    const char *b = s.constData();
+    const auto r = std::from_chars(b + (s.startsWith('+') ? 1 : 0), b + s.size(), v);
+    if (r.ptr == b + s.size() && (r.ec == std::errc::result_out_of_range || !std::isfinite(v)))
+        return QStringLiteral("value '%1' out of range (not a finite double)").arg(QString::fromUtf8(s.left(40)));
+    return QStringLiteral("non-numeric value '%1'").arg(QString::fromUtf8(s.left(40)));
+}
+
+double number(const CsvFile &f, const CsvFile::Line &line, int col, const QString &field)
+{
+    double v = 0;
+    bool missing = false;
+    if (!parseNumber(line.fields[col], v, missing))
+        throw BundleError(f.name(), line.number, field, describe(line.fields[col]));
+    if (missing)
+        throw BundleError(f.name(), line.number, field, QStringLiteral("empty value"));
+    return v;
+}
+
+int jsonLine(const QByteArray &data, int offset)
+{
+    return 1 + static_cast<int>(data.left(offset).count('\n'));
+}
+
+QString str(const QJsonObject &o, const QString &key, const QString &field, bool required)
+{
+    const QJsonValue v = o.value(key);
+    if (v.isUndefined() && !required)
+        return QString();
+    if (!v.isString())
+        throw BundleError(kManifest, 0, field, v.isUndefined() ? QStringLiteral("missing") : QStringLiteral("must be a string"));
+    return v.toString();
+}
+
+void checkNumber(const QJsonObject &o, const QString &key, const QString &field, bool nullable)
+{
+    const QJsonValue v = o.value(key);
+    if (v.isUndefined() || v.isDouble() || (nullable && v.isNull()))
+        return;
+    throw BundleError(kManifest, 0, field, QStringLiteral("must be a number%1").arg(nullable ? QStringLiteral(" or null") : QString()));
+}
+
+} // namespace
+
+BundleReader::BundleReader(const QString &path) : m_archive(std::make_unique<BundleArchive>(path, BundleArchive::Mode::Read))
+{
+    readManifest();
+    readChannels();
+    const QJsonObject &m = m_content.manifest;
+    const auto optionalFile = [&](const QString &key, const QString &sub, const QString &fallback) {
+        QString file;
+        if (m.contains(key)) {
+            file = sub.isEmpty() ? m.value(key).toString() : m.value(key).toObject().value(sub).toString();
+            const QString field = sub.isEmpty() ? key : key + QLatin1Char('.') + sub;
+            if (file.isEmpty() || !BundleArchive::isSafeRelativePath(file))
+                throw BundleError(kManifest, 0, field, QStringLiteral("must be a relative file path inside the bundle"));
+            if (!m_archive->exists(file))
+                throw BundleError(file, 0, QString(), QStringLiteral("named by manifest field '%1' but missing").arg(field));
+            return file;
+        }
+        return m_archive->exists(fallback) ? fallback : QString();
+    };
+    const QString interf = optionalFile(QStringLiteral("interferometer"), QStringLiteral("file"), QStringLiteral("interferometer.csv"));
+    if (!interf.isEmpty())
+        readInterferometer(interf);
+    const QString events = optionalFile(QStringLiteral("events"), QString(), QStringLiteral("events.csv"));
+    if (!events.isEmpty())
+        readEvents(events);
+    const QString ir = optionalFile(QStringLiteral("infrared"), QStringLiteral("index"), QStringLiteral("ir/index.csv"));
+    if (!ir.isEmpty())
+        readFrames(ir);
+}
+
+BundleReader::~BundleReader() = default;
+
+void BundleReader::readManifest()
+{
+    if (!m_archive->exists(kManifest))
+        throw BundleError(kManifest, 0, QString(), QStringLiteral("missing: not a recording bundle"));
+    const QByteArray data = m_archive->read(kManifest);
+    if (data.trimmed().isEmpty())
+        throw BundleError(kManifest, 1, QString(), QStringLiteral("empty file"));
+    QJsonParseError pe;
+    const QJsonDocument doc = QJsonDocument::fromJson(data, &pe);
+    if (pe.error != QJsonParseError::NoError)
+        throw BundleError(kManifest, jsonLine(data, pe.offset), QString(), QStringLiteral("invalid JSON: %1").arg(pe.errorString()));
+    if (!doc.isObject())
+        throw BundleError(kManifest, 1, QString(), QStringLiteral("must be a JSON object"));
+    const QJsonObject m = doc.object();
+    m_content.manifest = m;
+    if (m.value(QStringLiteral("format")).toString() != QLatin1String("thermal-error-bundle"))
+        throw BundleError(kManifest, 0, QStringLiteral("format"), QStringLiteral("must be \"thermal-error-bundle\""));
+    const QJsonValue version = m.value(QStringLiteral("version"));
+    if (!version.isDouble() || version.toDouble() != 1.0)
+        throw BundleError(kManifest, 0, QStringLiteral("version"),
+                          QStringLiteral("unsupported format version %1 (this DriftLab reads version 1)")
+                              .arg(version.isDouble() ? QString::number(version.toDouble())
+                                   : version.isUndefined() ? QStringLiteral("(missing)")
+                                                           : QStringLiteral("'%1'").arg(version.toVariant().toString())));
+    if (!m.value(QStringLiteral("session")).isObject())
+        throw BundleError(kManifest, 0, QStringLiteral("session"), QStringLiteral("missing or not an object"));
+    const QJsonObject s = m.value(QStringLiteral("session")).toObject();
+    SessionInfo &info = m_content.session;
+    info.name = str(s, QStringLiteral("name"), QStringLiteral("session.name"), true);
+    info.started = str(s, QStringLiteral("started"), QStringLiteral("session.started"), true);
+    if (!QDateTime::fromString(info.started, Qt::ISODate).isValid())
+        throw BundleError(kManifest, 0, QStringLiteral("session.started"),
+                          QStringLiteral("'%1' is not an ISO 8601 date-time").arg(info.started));
+    info.operatorName = str(s, QStringLiteral("operator"), QStringLiteral("session.operator"), false);
+    info.notes = str(s, QStringLiteral("notes"), QStringLiteral("session.notes"), false);
+    info.complete = true;
+    info.manifest = m;
+    const QJsonValue machine = m.value(QStringLiteral("machine"));
+    if (!machine.isUndefined() && !machine.isObject())
+        throw BundleError(kManifest, 0, QStringLiteral("machine"), QStringLiteral("must be an object"));
+    info.machine = machine.toObject();
+    checkNumber(info.machine, QStringLiteral("fixed_end_position_mm"), QStringLiteral("machine.fixed_end_position_mm"), false);
+    const QJsonValue screw = info.machine.value(QStringLiteral("screw"));
+    if (!screw.isUndefined() && !screw.isObject())
+        throw BundleError(kManifest, 0, QStringLiteral("machine.screw"), QStringLiteral("must be an object"));
+    for (const char *key : {"length_m", "diameter_m", "nut_length_m", "fixed_bearing_length_m", "density_kg_m3",
+                            "specific_heat_J_kgK", "expansion_per_K", "conductivity_W_mK"})
+        checkNumber(screw.toObject(), QLatin1String(key), QStringLiteral("machine.screw.") + QLatin1String(key), true);
+    const QJsonValue travel = info.machine.value(QStringLiteral("travel_mm"));
+    if (!travel.isUndefined() &&
+        (!travel.isArray() || travel.toArray().size() != 2 || !travel.toArray()[0].isDouble() || !travel.toArray()[1].isDouble()))
+        throw BundleError(kManifest, 0, QStringLiteral("machine.travel_mm"), QStringLiteral("must be [min, max] in mm"));
+
+    const QJsonValue channels = m.value(QStringLiteral("channels"));
+    if (!channels.isArray() || channels.toArray().isEmpty())
+        throw BundleError(kManifest, 0, QStringLiteral("channels"), QStringLiteral("missing or empty"));
+    static const QStringList kinds{QStringLiteral("temperature"), QStringLiteral("displacement"), QStringLiteral("position"),
+                                   QStringLiteral("feed"), QStringLiteral("other")};
+    QSet<QString> ids;
+    int i = 0;
+    for (const QJsonValue &cv : channels.toArray()) {
+        const QString field = QStringLiteral("channels[%1]").arg(i++);
+        if (!cv.isObject())
+            throw BundleError(kManifest, 0, field, QStringLiteral("must be an object"));
+        const QJsonObject c = cv.toObject();
+        ChannelInfo ch;
+        ch.key = str(c, QStringLiteral("id"), field + QStringLiteral(".id"), true);
+        if (ch.key.isEmpty() || ch.key.contains(QLatin1Char(',')) || ch.key.contains(QLatin1Char('"')) ||
+            ch.key == QLatin1String("time_s") || ch.key.trimmed() != ch.key)
+            throw BundleError(kManifest, 0, field + QStringLiteral(".id"), QStringLiteral("invalid channel id '%1'").arg(ch.key));
+        if (ids.contains(ch.key))
+            throw BundleError(kManifest, 0, field + QStringLiteral(".id"), QStringLiteral("duplicate channel id '%1'").arg(ch.key));
+        ids.insert(ch.key);
+        ch.kind = str(c, QStringLiteral("kind"), field + QStringLiteral(".kind"), true);
+        if (!kinds.contains(ch.kind))
+            throw BundleError(kManifest, 0, field + QStringLiteral(".kind"),
+                              QStringLiteral("unknown kind '%1' (expected %2)").arg(ch.kind, kinds.join(QStringLiteral(", "))));
+        ch.sensor = str(c, QStringLiteral("sensor"), field + QStringLiteral(".sensor"), false);
+        ch.unit = str(c, QStringLiteral("unit"), field + QStringLiteral(".unit"), false);
+        ch.location = str(c, QStringLiteral("location"), field + QStringLiteral(".location"), false);
+        ch.role = str(c, QStringLiteral("role"), field + QStringLiteral(".role"), false);
+        checkNumber(c, QStringLiteral("screw_position_m"), field + QStringLiteral(".screw_position_m"), false);
+        if (c.contains(QStringLiteral("screw_position_m")))
+            ch.screwPosition_m = c.value(QStringLiteral("screw_position_m")).toDouble();
+        m_content.channels.push_back(ch);
+    }
+    for (const char *block : {"infrared", "interferometer"}) {
+        const QJsonValue b = m.value(QLatin1String(block));
+        if (!b.isUndefined() && !b.isObject())
+            throw BundleError(kManifest, 0, QLatin1String(block), QStringLiteral("must be an object"));
+    }
+    const QJsonObject ir = m.value(QStringLiteral("infrared")).toObject();
+    checkNumber(ir, QStringLiteral("scale"), QStringLiteral("infrared.scale"), false);
+    checkNumber(ir, QStringLiteral("offset"), QStringLiteral("infrared.offset"), false);
+    const QJsonObject in = m.value(QStringLiteral("interferometer")).toObject();
+    const QJsonValue ref = in.value(QStringLiteral("reference_run"));
+    if (!ref.isUndefined() && (!ref.isDouble() || ref.toDouble() != std::floor(ref.toDouble()) || ref.toDouble() < 0))
+        throw BundleError(kManifest, 0, QStringLiteral("interferometer.reference_run"), QStringLiteral("must be a run number"));
+    const QJsonValue events = m.value(QStringLiteral("events"));
+    if (!events.isUndefined() && !events.isString())
+        throw BundleError(kManifest, 0, QStringLiteral("events"), QStringLiteral("must be a file name"));
+}
+
+void BundleReader::readChannels()
+{
+    const CsvFile f(kChannels, m_archive->read(kChannels));
+    const CsvFile::Line &h = f.lines().front();
+    int timeCol = -1;
+    for (int col = 0; col < h.fields.size(); ++col) {
+        if (QString::fromUtf8(h.fields[col]).trimmed() == QLatin1String("time_s")) {
+            if (timeCol >= 0)
+                throw BundleError(kChannels, h.number, QStringLiteral("time_s"), QStringLiteral("duplicate column"));
+            timeCol = col;
+        }
+    }
+    if (timeCol < 0)
+        throw BundleError(kChannels, h.number, QStringLiteral("time_s"), QStringLiteral("missing column (header must be time_s,<id>,...)"));
+    QVector<int> channelOf(h.fields.size(), -1);
+    for (int col = 0; col < h.fields.size(); ++col) {
+        const QString name = QString::fromUtf8(h.fields[col]).trimmed();
+        if (col == timeCol)
+            continue;
+        int index = -1;
+        for (int c = 0; c < m_content.channels.size(); ++c) {
+            if (m_content.channels[c].key == name)
+                index = c;
+        }
+        if (index < 0)
+            throw BundleError(kChannels, h.number, name, QStringLiteral("unknown channel id in the header (not in manifest.json)"));
+        if (channelOf.contains(index))
+            throw BundleError(kChannels, h.number, name, QStringLiteral("duplicate column"));
+        channelOf[col] = index;
+    }
+    m_content.samples.resize(m_content.channels.size());
+    double last = -INFINITY;
+    const int width = h.fields.size();
+    for (int l = 1; l < f.lines().size(); ++l) {
+        const CsvFile::Line &line = f.lines()[l];
+        f.checkWidth(line, width);
+        const double t = number(f, line, timeCol, QStringLiteral("time_s"));
+        if (t < last)
+            throw BundleError(kChannels, line.number, QStringLiteral("time_s"),
+                              QStringLiteral("time goes backwards (%1 after %2)").arg(t, 0, 'g', 17).arg(last, 0, 'g', 17));
+        last = t;
+        for (int col = 0; col < width; ++col) {
+            if (channelOf[col] < 0)
+                continue;
+            double v = 0;
+            bool missing = false;
+            if (!parseNumber(line.fields[col], v, missing))
+                throw BundleError(kChannels, line.number, m_content.channels[channelOf[col]].key, describe(line.fields[col]));
+            if (!missing) {
+                m_content.samples[channelOf[col]].t.push_back(t);
+                m_content.samples[channelOf[col]].v.push_back(v);
+            }
+        }
+    }
+}
+
+void BundleReader::readInterferometer(const QString &file)
+{
+    const CsvFile f(file, m_archive->read(file));
+    const auto cols = f.header({QStringLiteral("time_s"), QStringLiteral("run"), QStringLiteral("position_mm"), QStringLiteral("error_um")},
+                               {QStringLiteral("direction")});
+    const int width = f.lines().front().fields.size();
+    double last = -INFINITY;
+    QSet<int> runs;
+    for (int l = 1; l < f.lines().size(); ++l) {
+        const CsvFile::Line &line = f.lines()[l];
+        f.checkWidth(line, width);
+        InterferometerPoint p;
+        p.t = number(f, line, cols.value(QStringLiteral("time_s")), QStringLiteral("time_s"));
+        if (p.t < last)
+            throw BundleError(file, line.number, QStringLiteral("time_s"),
+                              QStringLiteral("time goes backwards (%1 after %2)").arg(p.t, 0, 'g', 17).arg(last, 0, 'g', 17));
+        last = p.t;
+        const double run = number(f, line, cols.value(QStringLiteral("run")), QStringLiteral("run"));
+        if (run != std::floor(run) || run < 0 || run > 1e9)
+            throw BundleError(file, line.number, QStringLiteral("run"), QStringLiteral("run must be a non-negative integer"));
+        p.run = static_cast<int>(run);
+        runs.insert(p.run);
+        p.position_mm = number(f, line, cols.value(QStringLiteral("position_mm")), QStringLiteral("position_mm"));
+        p.error_um = number(f, line, cols.value(QStringLiteral("error_um")), QStringLiteral("error_um"));
+        const int dc = cols.value(QStringLiteral("direction"));
+        if (dc >= 0) {
+            p.direction = QString::fromUtf8(line.fields[dc]).trimmed();
+            if (!p.direction.isEmpty() && p.direction != QLatin1String("+") && p.direction != QLatin1String("-"))
+                throw BundleError(file, line.number, QStringLiteral("direction"),
+                                  QStringLiteral("must be '+' or '-', got '%1'").arg(p.direction.left(20)));
+        }
+        m_content.interferometer.push_back(p);
+    }
+    const QJsonValue ref = m_content.manifest.value(QStringLiteral("interferometer")).toObject().value(QStringLiteral("reference_run"));
+    if (!ref.isUndefined() && !m_content.interferometer.isEmpty() && !runs.contains(ref.toInt()))
+        throw BundleError(kManifest, 0, QStringLiteral("interferometer.reference_run"),
+                          QStringLiteral("run %1 does not occur in %2").arg(ref.toInt()).arg(file));
+}
+
+void BundleReader::readEvents(const QString &file)
+{
+    const CsvFile f(file, m_archive->read(file));
+    const auto cols = f.header({QStringLiteral("time_s"), QStringLiteral("label")}, {});
+    for (int l = 1; l < f.lines().size(); ++l) {
+        const CsvFile::Line &line = f.lines()[l];
+        f.checkWidth(line, 2);
+        EventRecord e;
+        e.t = number(f, line, cols.value(QStringLiteral("time_s")), QStringLiteral("time_s"));
+        e.label = QString::fromUtf8(line.fields[cols.value(QStringLiteral("label"))]);
+        m_content.events.push_back(e);
+    }
+}
+
+void BundleReader::readFrames(const QString &file)
+{
+    const CsvFile f(file, m_archive->read(file));
+    const auto cols = f.header({QStringLiteral("time_s"), QStringLiteral("file")}, {});
+    double last = -INFINITY;
+    for (int l = 1; l < f.lines().size(); ++l) {
+        const CsvFile::Line &line = f.lines()[l];
+        f.checkWidth(line, 2);
+        IrFrame frame;
+        frame.t = number(f, line, cols.value(QStringLiteral("time_s")), QStringLiteral("time_s"));
+        if (frame.t < last)
+            throw BundleError(file, line.number, QStringLiteral("time_s"),
+                              QStringLiteral("time goes backwards (%1 after %2)").arg(frame.t, 0, 'g', 17).arg(last, 0, 'g', 17));
+        last = frame.t;
+        frame.sourceName = QString::fromUtf8(line.fields[cols.value(QStringLiteral("file"))]).trimmed();
+        if (!BundleArchive::isSafeRelativePath(frame.sourceName))
+            throw BundleError(file, line.number, QStringLiteral("file"),
+                              QStringLiteral("'%1' is not a relative path inside the bundle").arg(frame.sourceName));
+        if (!m_archive->exists(frame.sourceName))
+            throw BundleError(file, line.number, QStringLiteral("file"), QStringLiteral("frame file '%1' is missing").arg(frame.sourceName));
+        QVector<quint16> pixels;
+        QString error;
+        if (!IrFrameCodec::fromImageFile(m_archive->read(frame.sourceName), frame.sourceName, pixels, frame.width, frame.height, error))
+            throw BundleError(file, line.number, QStringLiteral("file"), QStringLiteral("%1: %2").arg(frame.sourceName, error));
+        m_content.frames.push_back(frame);
+    }
+}
+
+IrFrame BundleReader::frame(int i) const
+{
+    IrFrame frame = m_content.frames.at(i);
+    QString error;
+    int w = 0;
+    int h = 0;
+    if (!IrFrameCodec::fromImageFile(m_archive->read(frame.sourceName), frame.sourceName, frame.pixels, w, h, error) ||
+        w != frame.width || h != frame.height)
+        throw BundleError(frame.sourceName, 0, QString(), QStringLiteral("changed while importing: %1").arg(error));
+    return frame;
+}
+
+} // namespace driftlab

@@ -1,0 +1,206 @@
+#include "BundleTransfer.h"
+
+#include "BundleArchive.h"
+#include "BundleReader.h"
+#include "IrFrameCodec.h"
+#include "SessionStore.h"
+
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QSet>
+
+#include <charconv>
+#include <cmath>
+
+namespace driftlab {
+
+namespace {
+
+QByteArray csvText(const QString &s)
+{
+    if (!s.contains(QLatin1Char(',')) && !s.contains(QLatin1Char('"')) && !s.contains(QLatin1Char('\n')) &&
+        s.trimmed() == s)
+        return s.toUtf8();
+    QString q = s;
+    q.replace(QLatin1Char('"'), QStringLiteral("\"\""));
+    return '"' + q.toUtf8() + '"';
+}
+
+QJsonObject channelJson(const ChannelInfo &c, const QJsonObject &original)
+{
+    QJsonObject o = original; // unknown keys survive
+    o.insert(QStringLiteral("id"), c.key);
+    o.insert(QStringLiteral("kind"), c.kind);
+    const auto put = [&](const char *key, const QString &v) {
+        if (!v.isEmpty() || original.contains(QLatin1String(key)))
+            o.insert(QLatin1String(key), v);
+    };
+    put("sensor", c.sensor);
+    put("unit", c.unit);
+    put("location", c.location);
+    put("role", c.role);
+    if (c.screwPosition_m)
+        o.insert(QStringLiteral("screw_position_m"), *c.screwPosition_m);
+    return o;
+}
+
+} // namespace
+
+QByteArray BundleTransfer::formatDouble(double v)
+{
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return QByteArray(buf, static_cast<int>(r.ptr - buf));
+}
+
+qint64 BundleTransfer::importBundle(SessionStore &store, const QString &bundlePath)
+{
+    const BundleReader reader(bundlePath); // validates everything first
+    const BundleContent &c = reader.content();
+    store.begin();
+    try {
+        const qint64 id = store.createSession(c.session);
+        for (int i = 0; i < c.channels.size(); ++i) {
+            const qint64 channel = store.addChannel(id, c.channels[i]);
+            store.appendSamples(channel, c.samples[i].t, c.samples[i].v);
+        }
+        store.addInterferometerPoints(id, c.interferometer);
+        for (const EventRecord &e : c.events)
+            store.addEvent(id, e);
+        for (int i = 0; i < c.frames.size(); ++i)
+            store.addIrFrame(id, reader.frame(i));
+        store.commit();
+        return id;
+    } catch (...) {
+        store.rollback();
+        throw;
+    }
+}
+
+void BundleTransfer::exportBundle(const SessionStore &store, qint64 sessionId, const QString &out)
+{
+    const SessionInfo info = store.session(sessionId);
+    const QVector<ChannelInfo> channels = store.channels(sessionId);
+    const QVector<InterferometerPoint> interf = store.interferometerPoints(sessionId);
+    const QVector<EventRecord> events = store.events(sessionId);
+    const QVector<IrFrame> frames = store.irFrames(sessionId);
+
+    BundleArchive archive(out, BundleArchive::Mode::Write);
+
+    // manifest.json: the imported manifest (unknown keys kept) updated from the store.
+    QJsonObject m = info.manifest;
+    m.insert(QStringLiteral("format"), QStringLiteral("thermal-error-bundle"));
+    m.insert(QStringLiteral("version"), 1);
+    QJsonObject s = m.value(QStringLiteral("session")).toObject();
+    s.insert(QStringLiteral("name"), info.name);
+    s.insert(QStringLiteral("started"), info.started);
+    if (!info.operatorName.isEmpty() || s.contains(QStringLiteral("operator")))
+        s.insert(QStringLiteral("operator"), info.operatorName);
+    if (!info.notes.isEmpty() || s.contains(QStringLiteral("notes")))
+        s.insert(QStringLiteral("notes"), info.notes);
+    m.insert(QStringLiteral("session"), s);
+    m.insert(QStringLiteral("machine"), info.machine);
+    QHash<QString, QJsonObject> originals;
+    for (const QJsonValue &v : m.value(QStringLiteral("channels")).toArray())
+        originals.insert(v.toObject().value(QStringLiteral("id")).toString(), v.toObject());
+    QJsonArray ch;
+    for (const ChannelInfo &c : channels)
+        ch.append(channelJson(c, originals.value(c.key)));
+    m.insert(QStringLiteral("channels"), ch);
+    if (!frames.isEmpty()) {
+        QJsonObject ir = m.value(QStringLiteral("infrared")).toObject();
+        ir.insert(QStringLiteral("index"), QStringLiteral("ir/index.csv"));
+        if (!ir.contains(QStringLiteral("unit")))
+            ir.insert(QStringLiteral("unit"), QStringLiteral("degC"));
+        m.insert(QStringLiteral("infrared"), ir);
+    } else {
+        m.remove(QStringLiteral("infrared"));
+    }
+    if (!interf.isEmpty()) {
+        QJsonObject in = m.value(QStringLiteral("interferometer")).toObject();
+        in.insert(QStringLiteral("file"), QStringLiteral("interferometer.csv"));
+        if (!in.contains(QStringLiteral("unit")))
+            in.insert(QStringLiteral("unit"), QStringLiteral("um"));
+        if (!in.contains(QStringLiteral("reference_run")))
+            in.insert(QStringLiteral("reference_run"), interf.front().run);
+        m.insert(QStringLiteral("interferometer"), in);
+    } else {
+        m.remove(QStringLiteral("interferometer"));
+    }
+    if (!events.isEmpty())
+        m.insert(QStringLiteral("events"), QStringLiteral("events.csv"));
+    else
+        m.remove(QStringLiteral("events"));
+    archive.write(QStringLiteral("manifest.json"), QJsonDocument(m).toJson(QJsonDocument::Indented));
+
+    // channels.csv: merge the channels on their time stamps (a channel with two samples at the
+    // same time gets two rows).
+    QVector<SampleBlock> data;
+    for (const ChannelInfo &c : channels)
+        data.push_back(store.samples(c.id));
+    QByteArray csv = "time_s";
+    for (const ChannelInfo &c : channels)
+        csv += ',' + c.key.toUtf8();
+    csv += '\n';
+    QVector<int> next(channels.size(), 0);
+    for (;;) {
+        double t = INFINITY;
+        for (int i = 0; i < data.size(); ++i) {
+            if (next[i] < data[i].t.size())
+                t = std::min(t, data[i].t[next[i]]);
+        }
+        if (std::isinf(t))
+            break;
+        csv += formatDouble(t);
+        for (int i = 0; i < data.size(); ++i) {
+            csv += ',';
+            if (next[i] < data[i].t.size() && data[i].t[next[i]] == t)
+                csv += formatDouble(data[i].v[next[i]++]);
+        }
+        csv += '\n';
+    }
+    archive.write(QStringLiteral("channels.csv"), csv);
+
+    if (!interf.isEmpty()) {
+        bool directions = false;
+        for (const InterferometerPoint &p : interf)
+            directions = directions || !p.direction.isEmpty();
+        QByteArray text = directions ? "time_s,run,position_mm,error_um,direction\n" : "time_s,run,position_mm,error_um\n";
+        for (const InterferometerPoint &p : interf) {
+            text += formatDouble(p.t) + ',' + QByteArray::number(p.run) + ',' + formatDouble(p.position_mm) + ',' +
+                    formatDouble(p.error_um);
+            if (directions)
+                text += ',' + p.direction.toUtf8();
+            text += '\n';
+        }
+        archive.write(QStringLiteral("interferometer.csv"), text);
+    }
+    if (!events.isEmpty()) {
+        QByteArray text = "time_s,label\n";
+        for (const EventRecord &e : events)
+            text += formatDouble(e.t) + ',' + csvText(e.label) + '\n';
+        archive.write(QStringLiteral("events.csv"), text);
+    }
+    if (!frames.isEmpty()) {
+        QByteArray index = "time_s,file\n";
+        QSet<QString> used;
+        int n = 0;
+        for (const IrFrame &meta : frames) {
+            QString name = meta.sourceName;
+            if (name.endsWith(QLatin1String(".tif"), Qt::CaseInsensitive) || name.endsWith(QLatin1String(".tiff"), Qt::CaseInsensitive))
+                name = name.left(name.lastIndexOf(QLatin1Char('.'))) + QStringLiteral(".png");
+            if (!BundleArchive::isSafeRelativePath(name) || !name.endsWith(QLatin1String(".png"), Qt::CaseInsensitive) ||
+                used.contains(name) || name == QLatin1String("manifest.json"))
+                name = QStringLiteral("ir/frame_%1.png").arg(n, 6, 10, QLatin1Char('0'));
+            ++n;
+            used.insert(name);
+            const IrFrame f = store.irFrame(meta.id);
+            archive.write(name, IrFrameCodec::toPng(f.pixels, f.width, f.height));
+            index += formatDouble(f.t) + ',' + csvText(name) + '\n';
+        }
+        archive.write(QStringLiteral("ir/index.csv"), index);
+    }
+    archive.finish();
+}
+
+} // namespace driftlab

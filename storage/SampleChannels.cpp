@@ -1,0 +1,274 @@
+#include "SampleChannels.h"
+
+#include "SqlSupport.h"
+#include "StorageError.h"
+
+#include <QSqlError>
+#include <QVariant>
+
+#include <algorithm>
+#include <cmath>
+
+namespace driftlab {
+
+namespace {
+constexpr int kMaxBlockSamples = 8192;
+} // namespace
+
+SampleChannels::SampleChannels(const QSqlDatabase &db, const QString &path) : m_db(db), m_path(path) {}
+
+SampleChannels::~SampleChannels() = default;
+
+void SampleChannels::reset()
+{
+    m_state.clear();
+}
+
+QSqlQuery &SampleChannels::cached(const char *sql)
+{
+    auto it = m_queries.find(sql);
+    if (it == m_queries.end())
+        it = m_queries.insert(sql, SqlSupport::prepared(m_db, m_path, QString::fromLatin1(sql)));
+    return it.value();
+}
+
+void SampleChannels::append(qint64 channelId, const QVector<double> &t, const QVector<double> &v)
+{
+    if (t.size() != v.size())
+        throw StorageError(QStringLiteral("%1: %2 times but %3 values for channel %4")
+                               .arg(m_path).arg(t.size()).arg(v.size()).arg(channelId).toStdString());
+    if (t.isEmpty())
+        return;
+    // Validate everything before touching anything: a refused block changes nothing.
+    double last = channelState(channelId).lastT;
+    for (int i = 0; i < t.size(); ++i) {
+        if (!(t[i] >= last) || !std::isfinite(t[i]))
+            throw StorageError(QStringLiteral("%1: channel %2: time %3 s goes backwards (after %4 s) or is not finite")
+                                   .arg(m_path).arg(channelId).arg(t[i], 0, 'g', 17).arg(last, 0, 'g', 17).toStdString());
+        if (!std::isfinite(v[i]))
+            throw StorageError(QStringLiteral("%1: channel %2: value at %3 s is not finite")
+                                   .arg(m_path).arg(channelId).arg(t[i], 0, 'g', 17).toStdString());
+        last = t[i];
+    }
+    writeSamples(channelId, t.constData(), v.constData(), t.size());
+}
+
+SampleChannels::ChannelState &SampleChannels::channelState(qint64 channelId)
+{
+    auto it = m_state.find(channelId);
+    if (it != m_state.end())
+        return it.value();
+    ChannelState state;
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT max(t_last) FROM sample_blocks WHERE channel_id = ?"));
+    q.addBindValue(channelId);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot read the end of channel %1").arg(channelId));
+    if (q.next() && !q.value(0).isNull())
+        state.lastT = q.value(0).toDouble();
+    q.finish();
+    QSqlQuery r = SqlSupport::prepared(m_db, m_path,
+                           QStringLiteral("SELECT seq, n_raw, data FROM sample_levels WHERE channel_id = ? AND level = ? "
+                                          "ORDER BY seq DESC LIMIT 1"));
+    for (int level = 1; level <= SampleMipmap::kLevels; ++level) {
+        r.bindValue(0, channelId);
+        r.bindValue(1, level);
+        SqlSupport::run(r, m_path, QStringLiteral("cannot read mipmap of channel %1").arg(channelId));
+        SampleMipmap::Row &row = state.levels[static_cast<size_t>(level)];
+        if (r.next()) {
+            row.seq = r.value(0).toLongLong();
+            row.nRaw = r.value(1).toLongLong();
+            row.entries = SampleMipmap::decodeEntries(r.value(2).toByteArray());
+        }
+        r.finish();
+    }
+    return m_state.insert(channelId, state).value();
+}
+
+void SampleChannels::flushLevelRow(qint64 channelId, int level, SampleMipmap::Row &row)
+{
+    if (!row.dirty || row.entries.isEmpty())
+        return;
+    QSqlQuery &q = cached("INSERT OR REPLACE INTO sample_levels(channel_id, level, seq, t_first, t_last, n_raw, data) "
+                          "VALUES(?, ?, ?, ?, ?, ?, ?)");
+    q.bindValue(0, channelId);
+    q.bindValue(1, level);
+    q.bindValue(2, row.seq);
+    q.bindValue(3, row.entries.front().tFirst);
+    q.bindValue(4, row.entries.back().tLast);
+    q.bindValue(5, row.nRaw);
+    q.bindValue(6, SampleMipmap::encodeEntries(row.entries));
+    SqlSupport::run(q, m_path, QStringLiteral("cannot write mipmap level %1 of channel %2").arg(level).arg(channelId));
+    row.dirty = false;
+}
+
+void SampleChannels::writeBlock(qint64 channelId, ChannelState &state, int n)
+{
+    QSqlQuery &q = cached("INSERT INTO sample_blocks(channel_id, t_first, t_last, n, data) VALUES(?, ?, ?, ?, ?)");
+    q.bindValue(0, channelId);
+    q.bindValue(1, state.pendingT.front());
+    q.bindValue(2, state.pendingT[n - 1]);
+    q.bindValue(3, n);
+    q.bindValue(4, SampleMipmap::encodeSamples(state.pendingT.constData(), state.pendingV.constData(), n));
+    SqlSupport::run(q, m_path, QStringLiteral("cannot append samples to channel %1").arg(channelId));
+    state.pendingT.remove(0, n);
+    state.pendingV.remove(0, n);
+}
+
+// Validated samples go to the channel's pending block (written when it holds kMaxBlockSamples,
+// else at commit) and into the in-memory open mipmap rows (full rows written at once, the
+// open ones at commit): a transaction writes each open row once, however many appends it has.
+void SampleChannels::writeSamples(qint64 channelId, const double *t, const double *v, int n)
+{
+    ChannelState &state = channelState(channelId);
+    for (int i = 0; i < n; ++i) {
+        state.pendingT.push_back(t[i]);
+        state.pendingV.push_back(v[i]);
+    }
+    while (state.pendingT.size() >= kMaxBlockSamples)
+        writeBlock(channelId, state, kMaxBlockSamples);
+    for (int level = 1; level <= SampleMipmap::kLevels; ++level) {
+        SampleMipmap::Row &row = state.levels[static_cast<size_t>(level)];
+        for (int i = 0; i < n; ++i) {
+            if (SampleMipmap::full(row, level)) {
+                flushLevelRow(channelId, level, row);
+                row = SampleMipmap::Row{row.seq + 1, 0, {}, false};
+            }
+            SampleMipmap::add(row, level, t[i], v[i]);
+        }
+    }
+    state.lastT = t[n - 1];
+    state.dirty = true;
+}
+
+void SampleChannels::flush()
+{
+    for (auto it = m_state.begin(); it != m_state.end(); ++it) {
+        ChannelState &state = it.value();
+        if (!state.dirty)
+            continue;
+        if (!state.pendingT.isEmpty())
+            writeBlock(it.key(), state, state.pendingT.size());
+        for (int level = 1; level <= SampleMipmap::kLevels; ++level)
+            flushLevelRow(it.key(), level, state.levels[static_cast<size_t>(level)]);
+        state.dirty = false;
+    }
+}
+
+SampleBlock SampleChannels::samples(qint64 channelId, double t0, double t1) const
+{
+    // Blocks of a channel never overlap in time: scan from the first block ending at or after
+    // t0 and stop at the first one starting after t1.
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
+                           QStringLiteral("SELECT t_first, n, data FROM sample_blocks WHERE channel_id = ? AND t_last >= ? "
+                                          "ORDER BY t_last, id"));
+    q.setForwardOnly(true);
+    q.addBindValue(channelId);
+    q.addBindValue(t0);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot read samples of channel %1").arg(channelId));
+    SampleBlock b;
+    QVector<double> t;
+    QVector<double> v;
+    while (q.next()) {
+        if (q.value(0).toDouble() > t1)
+            break;
+        t.clear();
+        v.clear();
+        SampleMipmap::decodeSamples(q.value(2).toByteArray(), q.value(1).toInt(), t, v);
+        const auto lo = static_cast<int>(std::lower_bound(t.cbegin(), t.cend(), t0) - t.cbegin());
+        const auto hi = static_cast<int>(std::upper_bound(t.cbegin(), t.cend(), t1) - t.cbegin());
+        if (hi > lo) {
+            b.t.append(t.mid(lo, hi - lo));
+            b.v.append(v.mid(lo, hi - lo));
+        }
+    }
+    return b;
+}
+
+QVector<SampleMipmap::Entry> SampleChannels::levelEntries(qint64 channelId, int level, double t0, double t1) const
+{
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
+                           QStringLiteral("SELECT t_first, data FROM sample_levels WHERE channel_id = ? AND level = ? AND "
+                                          "t_last >= ? ORDER BY t_last, seq"));
+    q.setForwardOnly(true);
+    q.addBindValue(channelId);
+    q.addBindValue(level);
+    q.addBindValue(t0);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot read mipmap level %1 of channel %2").arg(level).arg(channelId));
+    QVector<SampleMipmap::Entry> out;
+    while (q.next()) {
+        if (q.value(0).toDouble() > t1)
+            break;
+        for (const SampleMipmap::Entry &e : SampleMipmap::decodeEntries(q.value(1).toByteArray())) {
+            if (e.tLast >= t0 && e.tFirst <= t1)
+                out.push_back(e);
+        }
+    }
+    return out;
+}
+
+DecimatedSeries SampleChannels::decimated(qint64 channelId, double t0, double t1, int maxPoints) const
+{
+    if (maxPoints < 1)
+        throw StorageError(QStringLiteral("%1: decimated(): maxPoints must be >= 1, got %2").arg(m_path).arg(maxPoints)
+                               .toStdString());
+    // Coarsest level with at least maxPoints entries in the range; raw samples if even level 1
+    // has fewer (then the range holds fewer than 16 * maxPoints samples).
+    QVector<SampleMipmap::Entry> entries;
+    int level = SampleMipmap::kLevels;
+    for (; level >= 1; --level) {
+        entries = levelEntries(channelId, level, t0, t1);
+        if (entries.size() >= maxPoints)
+            break;
+    }
+    if (level < 1) {
+        level = 0;
+        const SampleBlock raw = samples(channelId, t0, t1);
+        entries.clear();
+        entries.reserve(raw.t.size());
+        for (int i = 0; i < raw.t.size(); ++i)
+            entries.push_back({raw.t[i], raw.t[i], raw.v[i], raw.v[i]});
+    }
+    DecimatedSeries out;
+    out.level = level;
+    if (entries.isEmpty())
+        return out;
+    if (entries.size() <= maxPoints) {
+        for (const SampleMipmap::Entry &e : entries) {
+            out.tFirst.push_back(e.tFirst);
+            out.tLast.push_back(e.tLast);
+            out.min.push_back(e.min);
+            out.max.push_back(e.max);
+        }
+        return out;
+    }
+    // Equal-width time buckets over the covered span; an entry goes to the bucket of its start.
+    const double a = std::max(t0, entries.front().tFirst);
+    const double b = std::min(t1, entries.back().tLast);
+    const double width = (b - a) / maxPoints;
+    int current = -1;
+    for (const SampleMipmap::Entry &e : entries) {
+        int k = width > 0 ? static_cast<int>((e.tFirst - a) / width) : 0;
+        k = std::clamp(k, 0, maxPoints - 1);
+        if (k != current) {
+            out.tFirst.push_back(e.tFirst);
+            out.tLast.push_back(e.tLast);
+            out.min.push_back(e.min);
+            out.max.push_back(e.max);
+            current = k;
+        } else {
+            out.tLast.back() = e.tLast;
+            out.min.back() = std::min(out.min.back(), e.min);
+            out.max.back() = std::max(out.max.back(), e.max);
+        }
+    }
+    return out;
+}
+
+qint64 SampleChannels::count(qint64 channelId) const
+{
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT coalesce(sum(n), 0) FROM sample_blocks WHERE channel_id = ?"));
+    q.addBindValue(channelId);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot count samples"));
+    return q.next() ? q.value(0).toLongLong() : 0;
+}
+
+} // namespace driftlab

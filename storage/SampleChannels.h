@@ -1,0 +1,56 @@
+#pragma once
+// The samples of every channel of one connection: per-channel blocks with a time index and
+// min/max mipmap levels (layouts in SampleMipmap.h, design in docs/storage.md). Appends are
+// buffered per channel and written by flush(), which SessionStore calls before each commit;
+// reset() forgets the buffers after a rollback. Used only by SessionStore.
+
+#include "SampleMipmap.h"
+#include "StorageTypes.h"
+
+#include <QHash>
+#include <QSqlDatabase>
+#include <QSqlQuery>
+#include <QString>
+
+#include <array>
+
+namespace driftlab {
+
+class SampleChannels {
+public:
+    SampleChannels(const QSqlDatabase &db, const QString &path);
+    ~SampleChannels();
+    SampleChannels(const SampleChannels &) = delete;
+    SampleChannels &operator=(const SampleChannels &) = delete;
+
+    // Throws StorageError (nothing appended) if times go backwards or a value is not finite.
+    void append(qint64 channelId, const QVector<double> &t, const QVector<double> &v);
+    void flush();
+    void reset();
+
+    SampleBlock samples(qint64 channelId, double t0, double t1) const;
+    DecimatedSeries decimated(qint64 channelId, double t0, double t1, int maxPoints) const;
+    qint64 count(qint64 channelId) const;
+
+private:
+    struct ChannelState {
+        double lastT = -1e300;
+        std::array<SampleMipmap::Row, SampleMipmap::kLevels + 1> levels; // index 1..kLevels
+        QVector<double> pendingT; // samples not yet in a block (written by flush())
+        QVector<double> pendingV;
+        bool dirty = false;
+    };
+    ChannelState &channelState(qint64 channelId);
+    void writeSamples(qint64 channelId, const double *t, const double *v, int n);
+    void writeBlock(qint64 channelId, ChannelState &state, int n);
+    void flushLevelRow(qint64 channelId, int level, SampleMipmap::Row &row);
+    QSqlQuery &cached(const char *sql);
+    QVector<SampleMipmap::Entry> levelEntries(qint64 channelId, int level, double t0, double t1) const;
+
+    QSqlDatabase m_db;
+    QString m_path;
+    QHash<qint64, ChannelState> m_state;
+    QHash<const char *, QSqlQuery> m_queries; // prepared write statements, reused
+};
+
+} // namespace driftlab

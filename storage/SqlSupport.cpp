@@ -1,0 +1,33 @@
+#include "SqlSupport.h"
+
+#include "StorageError.h"
+
+#include <QSqlError>
+
+namespace driftlab {
+
+void SqlSupport::fail(const QString &path, const QString &what, const QSqlError &error)
+{
+    if (error.nativeErrorCode() == QLatin1String("13")) // SQLITE_FULL
+        throw StorageError(QStringLiteral("%1: disk full (or database size limit reached): %2; the last "
+                                          "transaction was rolled back, the database is intact (%3)")
+                               .arg(path, what, error.text())
+                               .toStdString());
+    throw StorageError(QStringLiteral("%1: %2: %3").arg(path, what, error.text()).toStdString());
+}
+
+QSqlQuery SqlSupport::prepared(const QSqlDatabase &db, const QString &path, const QString &sql)
+{
+    QSqlQuery q(db);
+    if (!q.prepare(sql))
+        fail(path, QStringLiteral("cannot prepare statement"), q.lastError());
+    return q;
+}
+
+void SqlSupport::run(QSqlQuery &q, const QString &path, const QString &what)
+{
+    if (!q.exec())
+        fail(path, what, q.lastError());
+}
+
+} // namespace driftlab

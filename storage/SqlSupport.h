@@ -1,0 +1,20 @@
+#pragma once
+// QtSql plumbing shared by the store's classes: statements that throw StorageError naming
+// the database and what failed (a full disk is said so).
+
+#include <QSqlDatabase>
+#include <QSqlQuery>
+#include <QString>
+
+class QSqlError;
+
+namespace driftlab {
+
+class SqlSupport {
+public:
+    [[noreturn]] static void fail(const QString &path, const QString &what, const QSqlError &error);
+    static QSqlQuery prepared(const QSqlDatabase &db, const QString &path, const QString &sql);
+    static void run(QSqlQuery &q, const QString &path, const QString &what);
+};
+
+} // namespace driftlab

@@ -1,0 +1,338 @@
+// SessionStore schema v2: sample blocks + mipmap range queries, frames, interferometer,
+// fitted models, migration from the version-1 narrow table.
+
+#include "IrFrameCodec.h"
+#include "SchemaMigrator.h"
+#include "SessionStore.h"
+#include "StorageError.h"
+
+#include <QSqlDatabase>
+#include <QSqlQuery>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+using namespace driftlab;
+
+class TestSessionStore : public QObject {
+    Q_OBJECT
+
+private:
+    QTemporaryDir m_dir;
+    QString db(const QString &name) const { return m_dir.filePath(name); }
+
+    static qint64 makeSession(SessionStore &s, qint64 *channel)
+    {
+        SessionInfo info;
+        info.name = QStringLiteral("test");
+        info.started = QStringLiteral("2026-11-20T08:00:00Z");
+        const qint64 id = s.createSession(info);
+        ChannelInfo c;
+        c.key = QStringLiteral("S1");
+        c.kind = QStringLiteral("displacement");
+        *channel = s.addChannel(id, c);
+        return id;
+    }
+
+private slots:
+    void schemaVersionIsTwo()
+    {
+        SessionStore s(db(QStringLiteral("v.sqlite")));
+        QCOMPARE(SchemaMigrator::currentVersion(), 2);
+        QCOMPARE(s.integrityCheck(), QStringLiteral("ok"));
+    }
+
+    void rangeQueryReturnsExactlyTheSamplesInside()
+    {
+        SessionStore s(db(QStringLiteral("range.sqlite")));
+        qint64 ch = 0;
+        makeSession(s, &ch);
+        // Appended in uneven pieces (1, 7, 10000, ...) to cross block and mipmap-row edges.
+        QVector<double> all_t;
+        QVector<double> all_v;
+        std::mt19937 rng(7);
+        std::uniform_real_distribution<double> noise(-1.0, 1.0);
+        int i = 0;
+        for (int piece : {1, 7, 10000, 3, 20000, 500}) {
+            QVector<double> t;
+            QVector<double> v;
+            for (int k = 0; k < piece; ++k, ++i) {
+                t.push_back(i * 0.001);
+                v.push_back(std::sin(i * 0.01) + 0.1 * noise(rng));
+            }
+            s.appendSamples(ch, t, v);
+            all_t += t;
+            all_v += v;
+        }
+        QCOMPARE(s.sampleCount(ch), qint64(all_t.size()));
+        const SampleBlock full = s.samples(ch);
+        QCOMPARE(full.t, all_t);
+        QCOMPARE(full.v, all_v);
+        const double t0 = 8.0005;
+        const double t1 = 12.3;
+        const SampleBlock part = s.samples(ch, t0, t1);
+        QVector<double> expect;
+        for (int k = 0; k < all_t.size(); ++k) {
+            if (all_t[k] >= t0 && all_t[k] <= t1)
+                expect.push_back(all_v[k]);
+        }
+        QCOMPARE(part.v, expect);
+        QVERIFY(part.t.front() >= t0 && part.t.back() <= t1);
+        QVERIFY(s.samples(ch, 100.0, 200.0).t.isEmpty());
+    }
+
+    void timeGoingBackwardsIsRefused()
+    {
+        SessionStore s(db(QStringLiteral("back.sqlite")));
+        qint64 ch = 0;
+        makeSession(s, &ch);
+        s.appendSamples(ch, {1.0, 2.0}, {0.0, 0.0});
+        QVERIFY_EXCEPTION_THROWN(s.appendSamples(ch, {1.5}, {0.0}), StorageError);
+        QVERIFY_EXCEPTION_THROWN(s.appendSamples(ch, {3.0}, {NAN}), StorageError);
+        QCOMPARE(s.sampleCount(ch), qint64(2));
+        s.appendSamples(ch, {2.0, 3.0}, {1.0, 1.0}); // equal time is allowed
+        QCOMPARE(s.sampleCount(ch), qint64(4));
+    }
+
+    void decimatedMatchesBruteForceMinMax_data()
+    {
+        QTest::addColumn<double>("t0");
+        QTest::addColumn<double>("t1");
+        QTest::addColumn<int>("maxPoints");
+        QTest::newRow("all, 2000") << -1.0 << 1e9 << 2000;
+        QTest::newRow("window, 500") << 123.4 << 456.7 << 500;
+        QTest::newRow("small window -> raw") << 10.0 << 10.5 << 2000;
+        QTest::newRow("one point") << 0.0 << 1e9 << 1;
+    }
+    void decimatedMatchesBruteForceMinMax()
+    {
+        QFETCH(double, t0);
+        QFETCH(double, t1);
+        QFETCH(int, maxPoints);
+        static SessionStore *s = nullptr;
+        static qint64 ch = 0;
+        static QVector<double> T;
+        static QVector<double> V;
+        if (!s) {
+            s = new SessionStore(db(QStringLiteral("dec.sqlite")));
+            makeSession(*s, &ch);
+            std::mt19937 rng(3);
+            std::normal_distribution<double> n(0.0, 1.0);
+            s->begin();
+            for (int block = 0; block < 200; ++block) { // 1000 s at 1 kHz, 1 s blocks
+                QVector<double> t;
+                QVector<double> v;
+                for (int k = 0; k < 1000; ++k) {
+                    const int i = block * 1000 + k;
+                    t.push_back(i * 1e-3 * 5.0);
+                    v.push_back(10.0 * std::sin(i * 1e-4) + n(rng) + (i == 123457 ? 50.0 : 0.0));
+                }
+                s->appendSamples(ch, t, v);
+                T += t;
+                V += v;
+            }
+            s->commit();
+        }
+        const DecimatedSeries d = s->decimated(ch, t0, t1, maxPoints);
+        QVERIFY(d.tFirst.size() <= maxPoints);
+        QVERIFY(!d.tFirst.isEmpty());
+        // Every bucket's min/max is exactly that of the raw samples it spans.
+        for (int b = 0; b < d.tFirst.size(); ++b) {
+            const auto lo = std::lower_bound(T.cbegin(), T.cend(), d.tFirst[b]) - T.cbegin();
+            const auto hi = std::upper_bound(T.cbegin(), T.cend(), d.tLast[b]) - T.cbegin();
+            QVERIFY(hi > lo);
+            const double mn = *std::min_element(V.cbegin() + lo, V.cbegin() + hi);
+            const double mx = *std::max_element(V.cbegin() + lo, V.cbegin() + hi);
+            QCOMPARE(d.min[b], mn);
+            QCOMPARE(d.max[b], mx);
+            if (b > 0)
+                QVERIFY(d.tFirst[b] > d.tLast[b - 1]);
+        }
+        // The buckets cover the requested range without gaps.
+        const auto first = std::lower_bound(T.cbegin(), T.cend(), t0) - T.cbegin();
+        const auto last = std::upper_bound(T.cbegin(), T.cend(), t1) - T.cbegin() - 1;
+        QVERIFY(d.tFirst.front() <= T[static_cast<int>(first)]);
+        QVERIFY(d.tLast.back() >= T[static_cast<int>(last)]);
+        if (last - first + 1 > 16 * maxPoints)
+            QVERIFY2(d.level >= 1, "a large range must come from a mipmap level, not the raw samples");
+        if (t1 - t0 < 1.0)
+            QCOMPARE(d.level, 0);
+        if (maxPoints == 1) {
+            QCOMPARE(d.max[0], *std::max_element(V.cbegin(), V.cend()));
+            QCOMPARE(d.min[0], *std::min_element(V.cbegin(), V.cend()));
+        }
+        if (QTest::currentDataTag() == QLatin1String("one point")) {
+            delete s;
+            s = nullptr;
+        }
+    }
+
+    void mipmapSurvivesReopening()
+    {
+        // Appending after reopening continues the open mipmap rows.
+        const QString path = db(QStringLiteral("reopen.sqlite"));
+        qint64 ch = 0;
+        QVector<double> T;
+        QVector<double> V;
+        for (int round = 0; round < 3; ++round) {
+            SessionStore s(path);
+            if (round == 0)
+                makeSession(s, &ch);
+            QVector<double> t;
+            QVector<double> v;
+            for (int k = 0; k < 3001; ++k) {
+                const int i = round * 3001 + k;
+                t.push_back(i);
+                v.push_back(std::cos(i * 0.37) * i);
+            }
+            s.appendSamples(ch, t, v);
+            T += t;
+            V += v;
+        }
+        SessionStore s(path);
+        const DecimatedSeries d = s.decimated(ch, -1, 1e9, 50);
+        QVERIFY(d.level >= 1);
+        QCOMPARE(*std::max_element(d.max.cbegin(), d.max.cend()), *std::max_element(V.cbegin(), V.cend()));
+        QCOMPARE(*std::min_element(d.min.cbegin(), d.min.cend()), *std::min_element(V.cbegin(), V.cend()));
+        QCOMPARE(s.samples(ch).v, V);
+    }
+
+    void rollbackDropsSamplesAndKeepsMipmapConsistent()
+    {
+        SessionStore s(db(QStringLiteral("rb.sqlite")));
+        qint64 ch = 0;
+        makeSession(s, &ch);
+        s.appendSamples(ch, {0.0, 1.0}, {5.0, 6.0});
+        s.begin();
+        s.appendSamples(ch, {2.0, 3.0}, {100.0, -100.0});
+        s.rollback();
+        s.appendSamples(ch, {2.0}, {7.0});
+        const DecimatedSeries d = s.decimated(ch, -1, 10, 1);
+        QCOMPARE(d.max.value(0), 7.0);
+        QCOMPARE(d.min.value(0), 5.0);
+        QCOMPARE(s.samples(ch).v, (QVector<double>{5.0, 6.0, 7.0}));
+    }
+
+    void framesAreLossless()
+    {
+        SessionStore s(db(QStringLiteral("ir.sqlite")));
+        qint64 ch = 0;
+        const qint64 id = makeSession(s, &ch);
+        std::mt19937 rng(11);
+        IrFrame f;
+        f.t = 12.5;
+        f.width = 64;
+        f.height = 48;
+        f.sourceName = QStringLiteral("ir/a.png");
+        for (int i = 0; i < f.width * f.height; ++i)
+            f.pixels.push_back(static_cast<quint16>(i % 7 == 0 ? rng() : 29315 + (i % 64) * 3));
+        f.pixels[0] = 0;
+        f.pixels[1] = 65535;
+        const qint64 fid = s.addIrFrame(id, f);
+        const QVector<IrFrame> list = s.irFrames(id);
+        QCOMPARE(list.size(), 1);
+        QVERIFY(list[0].pixels.isEmpty());
+        const IrFrame back = s.irFrame(fid);
+        QCOMPARE(back.pixels, f.pixels);
+        QCOMPARE(back.width, 64);
+        QCOMPARE(back.t, 12.5);
+        QCOMPARE(back.sourceName, f.sourceName);
+        // PNG codec round trip too.
+        QVector<quint16> px;
+        int w = 0;
+        int h = 0;
+        QString err;
+        QVERIFY(IrFrameCodec::fromImageFile(IrFrameCodec::toPng(f.pixels, 64, 48), QStringLiteral("x.png"), px, w, h, err));
+        QCOMPARE(px, f.pixels);
+        // A damaged blob is an error, never wrong pixels.
+        QByteArray blob = IrFrameCodec::compress(f.pixels, 64, 48);
+        QCOMPARE(IrFrameCodec::decompress(blob, 64, 48, QStringLiteral("t")), f.pixels);
+        QVERIFY_EXCEPTION_THROWN(IrFrameCodec::decompress(blob.left(blob.size() / 2), 64, 48, QStringLiteral("t")), StorageError);
+        QVERIFY_EXCEPTION_THROWN(IrFrameCodec::decompress(blob, 64, 47, QStringLiteral("t")), StorageError);
+        blob[blob.size() / 2] = static_cast<char>(blob[blob.size() / 2] ^ 0x55);
+        QVERIFY_EXCEPTION_THROWN(IrFrameCodec::decompress(blob, 64, 48, QStringLiteral("t")), StorageError);
+    }
+
+    void interferometerAndModels()
+    {
+        SessionStore s(db(QStringLiteral("models.sqlite")));
+        qint64 ch = 0;
+        const qint64 id = makeSession(s, &ch);
+        s.addInterferometerPoints(id, {{0.0, 0, 10.0, 1.5, QStringLiteral("+")}, {5.0, 0, 20.0, -2.25, QStringLiteral("-")}});
+        const auto pts = s.interferometerPoints(id);
+        QCOMPARE(pts.size(), 2);
+        QCOMPARE(pts[1].error_um, -2.25);
+        QCOMPARE(pts[1].direction, QStringLiteral("-"));
+        FittedModel m;
+        m.model = QStringLiteral("seed-000 FDM");
+        m.parameters = QJsonObject{{QStringLiteral("h_W_m2K"), 12.5}};
+        m.uncertainties = QJsonObject{{QStringLiteral("h_W_m2K"), 0.5}};
+        m.provenance = QJsonObject{{QStringLiteral("window_s"), QJsonArray{0, 3600}}};
+        m.metrics = QJsonObject{{QStringLiteral("rms_um"), 1.25}};
+        s.addFittedModel(id, m);
+        const auto models = s.fittedModels(id);
+        QCOMPARE(models.size(), 1);
+        QCOMPARE(models[0].parameters, m.parameters);
+        QCOMPARE(models[0].metrics.value(QStringLiteral("rms_um")).toDouble(), 1.25);
+        QVERIFY(!models[0].created.isEmpty());
+    }
+
+    void migratesVersionOneNarrowTable()
+    {
+        const QString path = db(QStringLiteral("v1.sqlite"));
+        {
+            // A version-1 file as the walking skeleton wrote it.
+            QSqlDatabase d = QSqlDatabase::addDatabase(QStringLiteral("QSQLITE"), QStringLiteral("v1"));
+            d.setDatabaseName(path);
+            QVERIFY(d.open());
+            QSqlQuery q(d);
+            for (const char *sql :
+                 {"CREATE TABLE sessions (id INTEGER PRIMARY KEY, name TEXT NOT NULL, started TEXT NOT NULL, operator TEXT NOT "
+                  "NULL DEFAULT '', notes TEXT NOT NULL DEFAULT '', machine_json TEXT NOT NULL DEFAULT '{}', complete INTEGER NOT "
+                  "NULL DEFAULT 0, created TEXT NOT NULL DEFAULT '')",
+                  "CREATE TABLE channels (id INTEGER PRIMARY KEY, session_id INTEGER NOT NULL, key TEXT NOT NULL, kind TEXT NOT "
+                  "NULL, sensor TEXT NOT NULL DEFAULT '', unit TEXT NOT NULL DEFAULT '', location TEXT NOT NULL DEFAULT '', role "
+                  "TEXT NOT NULL DEFAULT '', screw_position_m REAL, UNIQUE(session_id, key))",
+                  "CREATE TABLE samples (channel_id INTEGER NOT NULL, t REAL NOT NULL, value REAL NOT NULL)",
+                  "CREATE INDEX samples_channel_time ON samples(channel_id, t)",
+                  "CREATE TABLE events (id INTEGER PRIMARY KEY, session_id INTEGER NOT NULL, t REAL NOT NULL, label TEXT NOT NULL)",
+                  "CREATE TABLE analysis_results (id INTEGER PRIMARY KEY, session_id INTEGER NOT NULL, kind TEXT NOT NULL, created "
+                  "TEXT NOT NULL DEFAULT '', result_json TEXT NOT NULL)",
+                  "INSERT INTO sessions(id, name, started, complete) VALUES(1, 'old', '2025-01-01T00:00:00Z', 1)",
+                  "INSERT INTO channels(id, session_id, key, kind) VALUES(1, 1, 'T_amb', 'temperature')",
+                  "INSERT INTO channels(id, session_id, key, kind) VALUES(2, 1, 'S1', 'displacement')",
+                  "PRAGMA user_version = 1"})
+                QVERIFY2(q.exec(QString::fromLatin1(sql)), sql);
+            QVERIFY(d.transaction());
+            q.prepare(QStringLiteral("INSERT INTO samples VALUES(?, ?, ?)"));
+            for (int i = 0; i < 20000; ++i) { // inserted out of time order on purpose
+                const int k = (i * 7919) % 20000;
+                q.addBindValue(1 + (k % 2));
+                q.addBindValue(k * 0.5);
+                q.addBindValue(k * 0.25 - 3.0);
+                QVERIFY(q.exec());
+            }
+            QVERIFY(d.commit());
+            q.finish();
+            d.close();
+        }
+        QSqlDatabase::removeDatabase(QStringLiteral("v1"));
+        SessionStore s(path);
+        const auto ch = s.channels(1);
+        QCOMPARE(ch.size(), 2);
+        const SampleBlock a = s.samples(ch[0].id);
+        QCOMPARE(a.t.size(), 10000);
+        for (int i = 0; i < a.t.size(); ++i) {
+            QCOMPARE(a.t[i], (2 * i) * 0.5);
+            QCOMPARE(a.v[i], (2 * i) * 0.25 - 3.0);
+        }
+        QCOMPARE(s.decimated(ch[1].id, -1, 1e9, 1).max.value(0), 19999 * 0.25 - 3.0);
+        QCOMPARE(s.session(1).name, QStringLiteral("old"));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestSessionStore)
+#include "tst_sessionstore.moc"
