@@ -14,6 +14,26 @@ namespace driftlab {
 
 namespace {
 
+// Forwards Ceres iterations to IdentificationOptions::progress; a false answer aborts.
+class ProgressCallback : public ceres::IterationCallback {
+public:
+    explicit ProgressCallback(const std::function<bool(int, double)> &progress) : m_progress(progress) {}
+    ceres::CallbackReturnType operator()(const ceres::IterationSummary &summary) override
+    {
+        if (m_progress && !m_progress(summary.iteration, summary.cost)) {
+            m_cancelled = true;
+            return ceres::SOLVER_ABORT;
+        }
+        return ceres::SOLVER_CONTINUE;
+    }
+    bool cancelled() const { return m_cancelled; }
+
+private:
+    const std::function<bool(int, double)> &m_progress;
+    bool m_cancelled = false;
+};
+
+
 constexpr int kBase = 4; // k1, k2, lambda, P_f
 
 // min |A a - z|^2 subject to lo <= a <= hi (simple active-set method for a handful of
@@ -289,8 +309,13 @@ IdentificationResult ScrewModelIdentifier::fit(const std::vector<ScrewRecording>
     so.parameter_tolerance = 1e-9;
     so.num_threads = 1;
     so.logging_type = ceres::SILENT;
+    ProgressCallback callback(o.progress);
+    if (o.progress)
+        so.callbacks.push_back(&callback);
     ceres::Solver::Summary summary;
     ceres::Solve(so, &ceresProblem, &summary);
+    if (callback.cancelled())
+        throw IdentificationCancelled();
     if (summary.termination_type == ceres::FAILURE)
         throw std::runtime_error("screw model identification failed: " + summary.message);
     for (int k = 0; k < nFree; ++k)

@@ -22,7 +22,9 @@
 
 #include <Eigen/Dense>
 
+#include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -37,6 +39,14 @@ struct IdentificationOptions {
     double fixedEndLower_mm = -3000.0, fixedEndUpper_mm = 3000.0;
     bool fitFixedEnd = true;             // false: P_f held at initial (e.g. known from the machine)
     int maxIterations = 100;
+    // Called after every solver iteration (from the fitting thread) with the iteration
+    // number and the cost; return false to cancel: fit() then throws IdentificationCancelled.
+    std::function<bool(int iteration, double cost)> progress;
+};
+
+class IdentificationCancelled : public std::runtime_error {
+public:
+    IdentificationCancelled() : std::runtime_error("identification cancelled") {}
 };
 
 struct IdentifiedParameter {

@@ -79,6 +79,7 @@ private slots:
     void identifiesTable2Programme();
     void addedComponentIsIdentified();
     void rejectsEmptyInput();
+    void reportsProgressAndCancels();
 
 private:
     std::vector<ScrewRecording> m_train;
@@ -213,6 +214,32 @@ void TestScrewModelIdentifier::addedComponentIsIdentified()
     QVERIFY(with.fit.interferometerRms_um < 0.5);
     QVERIFY(with.fit.interferometerRms_um < 0.7 * without.fit.interferometerRms_um);
     QVERIFY(relErr(with.parameters.k4, truth.k4) < 0.1);
+}
+
+void TestScrewModelIdentifier::reportsProgressAndCancels()
+{
+    IdentificationOptions options = startOptions();
+    std::vector<int> seen;
+    std::vector<double> costs;
+    options.progress = [&](int iteration, double cost) {
+        seen.push_back(iteration);
+        costs.push_back(cost);
+        return true;
+    };
+    ScrewModelIdentifier id(ScrewGeometry{}, options);
+    const IdentificationResult r = id.fit(m_train);
+    QVERIFY(seen.size() >= 2);
+    for (size_t i = 1; i < seen.size(); ++i)
+        QCOMPARE(seen[i], seen[i - 1] + 1);
+    QVERIFY(costs.back() < costs.front()); // the fit improved while reporting
+    QVERIFY(r.converged);
+
+    IdentificationOptions cancelling = startOptions();
+    int calls = 0;
+    cancelling.progress = [&](int, double) { return ++calls < 2; };
+    ScrewModelIdentifier stopped(ScrewGeometry{}, cancelling);
+    QVERIFY_EXCEPTION_THROWN(stopped.fit(m_train), IdentificationCancelled);
+    QCOMPARE(calls, 2);
 }
 
 void TestScrewModelIdentifier::rejectsEmptyInput()
