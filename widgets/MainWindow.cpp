@@ -2,6 +2,7 @@
 
 #include "AcquisitionPanel.h"
 #include "BundleTransfer.h"
+#include "ModelsPanel.h"
 #include "PlotExporter.h"
 #include "ReviewWorkspace.h"
 #include "SessionBrowser.h"
@@ -41,7 +42,8 @@ MainWindow::MainWindow(QWidget *parent)
       m_split(new QSplitter(this)),
       m_workspace(new ReviewWorkspace(this)),
       m_comparison(new ReviewWorkspace(this)),
-      m_acquisition(new AcquisitionPanel(this))
+      m_acquisition(new AcquisitionPanel(this)),
+      m_models(new ModelsPanel(this))
 {
     setObjectName(QStringLiteral("DriftLabMainWindow"));
     setWindowTitle(tr("DriftLab"));
@@ -60,10 +62,16 @@ MainWindow::MainWindow(QWidget *parent)
     acquisition->setWidget(m_acquisition);
     addDockWidget(Qt::RightDockWidgetArea, acquisition);
     acquisition->hide();
+    auto *models = new QDockWidget(tr("Models"), this);
+    models->setObjectName(QStringLiteral("ModelsDock"));
+    models->setWidget(m_models);
+    addDockWidget(Qt::BottomDockWidgetArea, models);
+    models->hide();
     buildMenus();
     QMenu *viewMenu = menuBar()->findChild<QMenu *>(QStringLiteral("ViewMenu"));
     viewMenu->addAction(dock->toggleViewAction());
     viewMenu->addAction(acquisition->toggleViewAction());
+    viewMenu->addAction(models->toggleViewAction());
     // A finished recording appears in the session list (opening its database if needed).
     connect(m_acquisition, &AcquisitionPanel::recordingStopped, this, [this](qint64 id) {
         const QString db = m_acquisition->databasePath();
@@ -160,6 +168,11 @@ bool MainWindow::openDatabase(const QString &path)
 {
     try {
         auto store = std::make_unique<SessionStore>(path);
+        if (m_models->running()) {
+            reportError(tr("A model fit is running on the open database; cancel it first"));
+            return false;
+        }
+        m_models->setStore(nullptr);
         m_workspace->clear();
         m_comparison->clear();
         m_comparison->hide();
@@ -178,6 +191,8 @@ bool MainWindow::openDatabase(const QString &path)
 void MainWindow::refreshSessions(qint64 select)
 {
     const QVector<SessionInfo> sessions = m_store->sessions();
+    if (!m_models->running())
+        m_models->setStore(m_store.get());
     m_browser->setSessions(sessions);
     if (sessions.isEmpty())
         return;

@@ -15,6 +15,7 @@ class QSplitter;
 namespace driftlab {
 
 class AcquisitionPanel;
+class ModelsPanel;
 class ReviewWorkspace;
 class SessionBrowser;
 class SessionStore;
@@ -39,6 +40,7 @@ public:
     ReviewWorkspace *workspace() const { return m_workspace; }
     ReviewWorkspace *comparison() const { return m_comparison; }
     AcquisitionPanel *acquisition() const { return m_acquisition; }
+    ModelsPanel *models() const { return m_models; }
     SessionBrowser *browser() const { return m_browser; }
     qint64 currentSession() const { return m_sessionId; }
     QString lastError() const { return m_lastError; }
@@ -67,6 +69,7 @@ private:
     ReviewWorkspace *m_workspace;
     ReviewWorkspace *m_comparison;
     AcquisitionPanel *m_acquisition;
+    ModelsPanel *m_models;
     QMenu *m_recentMenu = nullptr;
     qint64 m_sessionId = 0;
     QString m_lastError;

@@ -71,64 +71,7 @@ QString FitCommand::summary() const
 
 ScrewRecording FitCommand::loadRecording(const SessionStore &store, qint64 sessionId, QString *note)
 {
-    SessionAnalysis analysis(store, sessionId);
-    ScrewRecording rec;
-    const SessionInfo info = store.session(sessionId);
-    rec.name = QStringLiteral("session %1 (%2)").arg(sessionId).arg(info.name).toStdString();
-    rec.drive = analysis.drive();
-    QStringList used;
-    try {
-        rec.elongation_um = analysis.channelByRole(QStringLiteral("screw_elongation"));
-        // The probe reads relative to its own zero: model elongation is relative to the start.
-        if (!rec.elongation_um.empty()) {
-            const double zero = rec.elongation_um.v.front();
-            for (double &v : rec.elongation_um.v)
-                v -= zero;
-        }
-        used << QStringLiteral("%1 screw_elongation samples").arg(rec.elongation_um.size());
-    } catch (const std::runtime_error &) {
-        // no probe channel: interferometer only
-    }
-    const QVector<InterferometerPoint> raw = store.interferometerPoints(sessionId);
-    if (!raw.isEmpty()) {
-        std::vector<InterferometerReading> readings;
-        for (const InterferometerPoint &p : raw)
-            readings.push_back({p.t, p.run, p.position_mm, p.error_um,
-                                p.direction == QLatin1String("+") ? 1 : (p.direction == QLatin1String("-") ? -1 : 0)});
-        int referenceRun = readings.front().run;
-        double earliest = readings.front().time_s;
-        for (const InterferometerReading &r : readings)
-            if (r.time_s < earliest) {
-                earliest = r.time_s;
-                referenceRun = r.run;
-            }
-        const QJsonValue ref = info.manifest.value(QStringLiteral("interferometer")).toObject().value(QStringLiteral("reference_run"));
-        if (ref.isDouble())
-            referenceRun = ref.toInt();
-        const ThermalErrorTable table = ThermalErrorTable::build(readings, referenceRun);
-        for (const ThermalErrorTable::Cell &c : table.measurements()) {
-            if (!c.valid)
-                continue;
-            PositioningErrorPoint p;
-            p.t_s = c.time_s;
-            p.position_mm = c.position_mm;
-            p.error_um = c.thermal_um;
-            // When the reference run measured this target (nearest reference reading).
-            double best = std::numeric_limits<double>::infinity();
-            for (const InterferometerReading &r : readings)
-                if (r.run == referenceRun && std::fabs(r.position_mm - c.position_mm) < best) {
-                    best = std::fabs(r.position_mm - c.position_mm);
-                    p.referenceTime_s = r.time_s;
-                }
-            rec.interferometer.push_back(p);
-        }
-        used << QStringLiteral("%1 interferometer points (reference run %2)").arg(rec.interferometer.size()).arg(referenceRun);
-    } else {
-        used << QStringLiteral("no interferometer runs");
-    }
-    if (note)
-        *note = used.join(QStringLiteral(", "));
-    return rec;
+    return SessionAnalysis(store, sessionId).recording(note);
 }
 
 QJsonObject FitCommand::modelJson(const IdentificationResult &r, const ScrewGeometry &g, const IdentificationOptions &o)

@@ -4,6 +4,7 @@
 // description from the session's machine block, and runs the model against them.
 
 #include "FdmSimulation.h"
+#include "IdentificationTypes.h"
 #include "StorageTypes.h"
 
 #include <QJsonObject>
@@ -30,6 +31,11 @@ public:
     FdmParameters defaultParameters() const;
     // Throws std::runtime_error naming the missing role if a needed channel is absent.
     ScrewDrive drive() const;
+    // The session as an identification recording: drive channels by role, thermal errors
+    // from the interferometer runs (deviation minus the reference run's at the same target
+    // and direction), the screw_elongation channel if present (relative to its first
+    // sample). `note` receives what was used. Throws std::runtime_error for a missing drive channel.
+    ScrewRecording recording(QString *note = nullptr) const;
     TimeSeries channelByRole(const QString &role) const;
 
     // Runs the model with `parameters` over the session and compares with the probe.

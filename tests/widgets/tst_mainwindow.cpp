@@ -4,7 +4,7 @@
 #include "MainWindow.h"
 #include "ReviewWorkspace.h"
 #include "SessionBrowser.h"
-#include "SessionRecorder.h"
+#include "RigRecorder.h"
 #include "SessionStore.h"
 #include "SimulatedRig.h"
 #include "TimeSeriesPlot.h"
@@ -46,7 +46,7 @@ void TestMainWindow::initTestCase()
     RigConfig config;
     config.program = FeedProgram::seed000Table2(6000.0);
     SimulatedRig rig(config);
-    SessionRecorder recorder(store, rig);
+    RigRecorder recorder(store, rig);
     m_session = recorder.record(QStringLiteral("gui test"), 600.0);
     QVERIFY(m_session > 0);
 }
