@@ -21,10 +21,10 @@ id=$("$cli" record --sim --duration 2:48:00 --out "$db" | sed -n 's/^session \([
 echo "session $id recorded and fitted in $db"
 
 if [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
-  exec "$gui" --db "$db" --session "$id"
+  exec "$gui" --db "$db" --show-session "$id"
 else
   png="$data/driftlab-main-window.png"
   export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"
-  QT_QPA_PLATFORM=offscreen "$gui" --db "$db" --session "$id" --screenshot "$png"
+  QT_QPA_PLATFORM=offscreen "$gui" --db "$db" --show-session "$id" --screenshot "$png"
   echo "no display: main window rendered to $png"
 fi

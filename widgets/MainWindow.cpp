@@ -208,6 +208,7 @@ void MainWindow::showSession(qint64 sessionId)
     try {
         m_workspace->setSession(m_store.get(), sessionId);
         m_sessionId = sessionId;
+        m_browser->selectSession(sessionId);
         m_browser->setChannels(m_store->channels(sessionId), m_workspace->defaultChannels());
     } catch (const std::exception &e) {
         reportError(QString::fromStdString(e.what()));

@@ -134,6 +134,11 @@ bool ModelsPanel::startFit(const QVector<qint64> &training, qint64 heldOut)
         return false;
     }
     joinWorker();
+    // Show the choice in the widgets too (when called programmatically).
+    for (int i = 0; i < m_sessions->count(); ++i)
+        m_sessions->item(i)->setCheckState(training.contains(m_sessions->item(i)->data(kIdRole).toLongLong()) ? Qt::Checked
+                                                                                                             : Qt::Unchecked);
+    m_heldOut->setCurrentIndex(std::max(0, m_heldOut->findData(heldOut)));
     // Read the sessions here: a SessionStore belongs to the thread that opened it.
     std::vector<ScrewRecording> recordings;
     std::vector<ScrewRecording> validation;
@@ -243,6 +248,7 @@ void ModelsPanel::finish(bool ok, const QString &error)
         m_parameters->setItem(r, 2, new QTableWidgetItem(p.fitted ? QString::number(p.standardError, 'g', 3) : tr("fixed")));
         m_parameters->setItem(r, 3, new QTableWidgetItem(QString::fromStdString(p.unit)));
     }
+    m_parameters->resizeColumnsToContents();
     m_show->blockSignals(true);
     m_show->clear();
     m_show->addItems(m_recordingNames);

@@ -1,6 +1,9 @@
 // driftlab: the DriftLab desktop application.
 
 #include "MainWindow.h"
+#include "ModelsPanel.h"
+
+#include <QDockWidget>
 #include "ReviewWorkspace.h"
 
 #include <QApplication>
@@ -27,7 +30,9 @@ int main(int argc, char **argv)
     const QCommandLineOption db(QStringLiteral("db"),
                                 QStringLiteral("Session database to open (default: driftlab.sqlite in the user's data directory)."),
                                 QStringLiteral("file"));
-    const QCommandLineOption session(QStringLiteral("session"), QStringLiteral("Session id to show."), QStringLiteral("id"));
+    const QCommandLineOption session(QStringLiteral("show-session"),
+                                   QStringLiteral("Session id to show (QApplication reserves --session for X11 session management)."),
+                                   QStringLiteral("id"));
     const QCommandLineOption screenshot(QStringLiteral("screenshot"),
                                         QStringLiteral("Render the main window to a PNG and exit (works headless with "
                                                        "QT_QPA_PLATFORM=offscreen)."),
@@ -37,7 +42,11 @@ int main(int argc, char **argv)
                                   QStringLiteral("name"));
     const QCommandLineOption compare(QStringLiteral("compare"), QStringLiteral("Show this session id beside the first."),
                                      QStringLiteral("id"));
-    p.addOptions({db, session, screenshot, view, compare});
+    const QCommandLineOption fit(QStringLiteral("fit"),
+                                 QStringLiteral("Open the Models dock and fit the seed-000 model to these sessions: "
+                                                "IDS[:HELDOUT], e.g. 1,2,3:4."),
+                                 QStringLiteral("ids"));
+    p.addOptions({db, session, screenshot, view, compare, fit});
     p.process(app);
 
     QTextStream err(stderr);
@@ -60,7 +69,7 @@ int main(int argc, char **argv)
         bool ok = false;
         const qint64 id = p.value(session).toLongLong(&ok);
         if (!ok) {
-            err << "driftlab: --session must be a session id, got '" << p.value(session) << "'\n";
+            err << "driftlab: --show-session must be a session id, got '" << p.value(session) << "'\n";
             return 2;
         }
         window.showSession(id);
@@ -77,8 +86,31 @@ int main(int argc, char **argv)
             err << "driftlab: this session has no data for the view " << p.value(view) << '\n';
     }
     window.show();
+    bool fitting = false;
+    if (p.isSet(fit)) {
+        const QStringList parts = p.value(fit).split(QLatin1Char(':'));
+        QVector<qint64> training;
+        for (const QString &id : parts.first().split(QLatin1Char(','), Qt::SkipEmptyParts))
+            training.push_back(id.toLongLong());
+        const qint64 heldOut = parts.size() > 1 ? parts.at(1).toLongLong() : 0;
+        if (QDockWidget *dock = window.findChild<QDockWidget *>(QStringLiteral("ModelsDock")))
+            dock->show();
+        window.resize(1500, 1150);
+        fitting = window.models()->startFit(training, heldOut);
+        if (!fitting)
+            err << "driftlab: cannot fit: " << window.models()->lastError() << '\n';
+    }
 
-    if (p.isSet(screenshot)) {
+    if (p.isSet(screenshot) && fitting) {
+        // Wait for the fit, then take the picture.
+        QObject::connect(window.models(), &ModelsPanel::fitFinished, &window, [&window, &err, png = p.value(screenshot)] {
+            QTimer::singleShot(300, &window, [&window, &err, png] {
+                const bool ok = window.grab().save(png, "PNG");
+                err << "driftlab: screenshot " << (ok ? "written to " : "FAILED: ") << png << '\n';
+                QApplication::exit(ok ? 0 : 1);
+            });
+        });
+    } else if (p.isSet(screenshot)) {
         const QString png = p.value(screenshot);
         QTimer::singleShot(200, &window, [&window, png, &err] {
             const QPixmap pixmap = window.grab();
