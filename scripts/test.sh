@@ -9,7 +9,7 @@ jobs="$(nproc)"
 "$src/scripts/build.sh" "$src/build" -DDRIFTLAB_WERROR=ON
 ctest --test-dir "$src/build" --output-on-failure -j"$jobs"
 
-"$src/scripts/build.sh" "$src/build-asan" -DDRIFTLAB_SANITIZE=ON -DDRIFTLAB_WERROR=ON
+"$src/scripts/build.sh" "$src/build-asan" -DDRIFTLAB_SANITIZE=ON -DDRIFTLAB_WERROR=ON -DDRIFTLAB_BENCH=OFF
 ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" \
 LSAN_OPTIONS="suppressions=$src/scripts/lsan.supp:print_suppressions=0" \
 UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
