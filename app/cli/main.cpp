@@ -1,9 +1,17 @@
 // driftlab-cli: the headless face of DriftLab.
 
 #include "AnalyseCommand.h"
+#include "DiagnoseCommand.h"
+#include "ExportCommand.h"
+#include "FitCommand.h"
+#include "ImportCommand.h"
 #include "InfoCommand.h"
+#include "ListCommand.h"
+#include "PlotCommand.h"
 #include "RecordCommand.h"
+#include "SimulateCommand.h"
 
+#include <QApplication>
 #include <QCoreApplication>
 #include <QTextStream>
 
@@ -21,6 +29,13 @@ std::vector<std::unique_ptr<CliCommand>> commands()
     list.push_back(std::make_unique<RecordCommand>());
     list.push_back(std::make_unique<InfoCommand>());
     list.push_back(std::make_unique<AnalyseCommand>());
+    list.push_back(std::make_unique<ImportCommand>());
+    list.push_back(std::make_unique<ExportCommand>());
+    list.push_back(std::make_unique<ListCommand>());
+    list.push_back(std::make_unique<PlotCommand>());
+    list.push_back(std::make_unique<FitCommand>());
+    list.push_back(std::make_unique<SimulateCommand>());
+    list.push_back(std::make_unique<DiagnoseCommand>());
     return list;
 }
 
@@ -37,7 +52,12 @@ void usage(QTextStream &out, const std::vector<std::unique_ptr<CliCommand>> &lis
 
 int main(int argc, char **argv)
 {
-    QCoreApplication app(argc, argv);
+    // Rendering plots needs a QApplication; it never needs a display.
+    const bool gui = argc > 1 && qstrcmp(argv[1], "plot") == 0;
+    if (gui && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM"))
+        qputenv("QT_QPA_PLATFORM", "offscreen");
+    std::unique_ptr<QCoreApplication> application =
+        gui ? std::make_unique<QApplication>(argc, argv) : std::make_unique<QCoreApplication>(argc, argv);
     QCoreApplication::setApplicationName(QStringLiteral("DriftLab"));
     QCoreApplication::setApplicationVersion(QStringLiteral(DRIFTLAB_VERSION));
     QTextStream err(stderr);

@@ -1,0 +1,179 @@
+#include "CandidateEffect.h"
+
+#include "ChannelErrorTerm.h"
+#include "ChannelHeatSource.h"
+#include "EndHeatSource.h"
+#include "FeedLawHeatSource.h"
+
+#include <stdexcept>
+
+namespace driftlab {
+
+namespace {
+
+const TimeSeries *roleSeries(const DiagnosisRecording &r, const std::string &role)
+{
+    const auto it = r.channelsByRole.find(role);
+    if (it == r.channelsByRole.end() || it->second.empty())
+        throw std::invalid_argument("recording '" + r.screw.name + "': no temperature channel with role '" + role + "'");
+    return &it->second;
+}
+
+const TimeSeries *ambientOf(const DiagnosisRecording &r)
+{
+    if (!r.screw.drive.ambient_C.empty())
+        return &r.screw.drive.ambient_C;
+    const auto it = r.channelsByRole.find("ambient");
+    return it == r.channelsByRole.end() ? nullptr : &it->second;
+}
+
+double startOf(const DiagnosisRecording &r)
+{
+    return r.screw.drive.position_mm.empty() ? 0.0 : r.screw.drive.position_mm.t.front();
+}
+
+CandidateModel channelHeat(const std::string &role, ParameterSpec spec, ChannelHeatSource::Location where,
+                           bool relative)
+{
+    auto src = std::make_shared<ChannelHeatSource>(std::move(spec), where, relative);
+    CandidateModel m;
+    m.sources.push_back(src);
+    m.bind = [src, role](const DiagnosisRecording &r) { src->bind(roleSeries(r, role), ambientOf(r), startOf(r)); };
+    return m;
+}
+
+CandidateModel structureTerms(bool linear)
+{
+    CandidateModel m;
+    std::vector<std::shared_ptr<ChannelErrorTerm>> terms;
+    terms.push_back(std::make_shared<ChannelErrorTerm>(linear ? ChannelErrorTerm::Mode::Linear
+                                                              : ChannelErrorTerm::Mode::Offset));
+    if (linear) // a structure expanding from an unknown reference point: slope + offset
+        terms.push_back(std::make_shared<ChannelErrorTerm>(ChannelErrorTerm::Mode::Offset));
+    for (const auto &t : terms)
+        m.terms.push_back(t);
+    m.bind = [terms](const DiagnosisRecording &r) {
+        for (const auto &t : terms)
+            t->bind(roleSeries(r, "structure"), r.screw);
+    };
+    return m;
+}
+
+} // namespace
+
+std::string CandidateEffect::notApplicable(const DiagnosisRecording &train, const DiagnosisRecording &validate) const
+{
+    for (const std::string &role : requiredRoles) {
+        if (!train.hasRole(role))
+            return "training recording has no temperature channel with role '" + role + "'";
+        if (!validate.hasRole(role))
+            return "validation recording has no temperature channel with role '" + role + "'";
+    }
+    return {};
+}
+
+std::vector<CandidateEffect> CandidateEffectLibrary::standard()
+{
+    std::vector<CandidateEffect> lib;
+    lib.push_back({"motor_heat_fixed_end",
+                   "Heat from the drive motor flows through the coupling into the fixed end of the screw "
+                   "(seed 000 assumes an adiabatic fixed end). Modelled as G (T_motor - T_ambient) into the "
+                   "fixed-end cell, G the coupling conductance in W/K; without a motor channel, as feed-driven "
+                   "heat k v reaching the fixed end through a first-order lag.",
+                   "role:motor (fallback: feed)",
+                   {},
+                   [](const DiagnosisRecording &train) {
+                       if (train.hasRole("motor"))
+                           return channelHeat("motor", {"G_motor_coupling", "W/K", 0.5, 0.0, 50.0, 0.1},
+                                              ChannelHeatSource::Location::FixedEnd, true);
+                       CandidateModel m;
+                       m.sources.push_back(std::make_shared<EndHeatSource>(EndHeatSource::End::Fixed, 1.0, false, 1800.0));
+                       return m;
+                   }});
+    lib.push_back({"free_end_bearing_heat",
+                   "The floating bearing at the free end also generates friction heat (seed 000 assumes none). "
+                   "Modelled as Q_E = k v into the free-end cell, k in W/(mm/min).",
+                   "feed",
+                   {},
+                   [](const DiagnosisRecording &) {
+                       CandidateModel m;
+                       m.sources.push_back(std::make_shared<EndHeatSource>(EndHeatSource::End::Free));
+                       return m;
+                   }});
+    lib.push_back({"nonlinear_feed_heat",
+                   "Nut and bearing friction heat grows faster than linearly with feed (seed 000 assumes Q = k v). "
+                   "Modelled as extra heat a (v / 1 m/min)^2 at the nut and at the fixed bearing on top of the "
+                   "refitted linear laws.",
+                   "feed",
+                   {},
+                   [](const DiagnosisRecording &) {
+                       CandidateModel m;
+                       m.sources.push_back(std::make_shared<FeedLawHeatSource>(FeedLawHeatSource::Law::Quadratic,
+                                                                               FeedLawHeatSource::Location::Nut));
+                       m.sources.push_back(std::make_shared<FeedLawHeatSource>(FeedLawHeatSource::Law::Quadratic,
+                                                                               FeedLawHeatSource::Location::Bearing));
+                       return m;
+                   }});
+    lib.push_back({"heat_path_lag",
+                   "Friction heat does not enter the screw directly but through the thermal mass of the nut and "
+                   "bearing housings and their contact resistance, so the screw responds late (seed 000 assumes "
+                   "heat enters the screw directly). Modelled as heat k v through a first-order lag tau at the "
+                   "bearing and at the nut.",
+                   "feed",
+                   {},
+                   [](const DiagnosisRecording &) {
+                       CandidateModel m;
+                       m.sources.push_back(std::make_shared<FeedLawHeatSource>(FeedLawHeatSource::Law::Lagged,
+                                                                               FeedLawHeatSource::Location::Bearing));
+                       m.sources.push_back(std::make_shared<FeedLawHeatSource>(FeedLawHeatSource::Law::Lagged,
+                                                                               FeedLawHeatSource::Location::Nut));
+                       return m;
+                   }});
+    lib.push_back({"holding_heat",
+                   "Heat is produced while the axis stands still (e.g. the motor holding position, a brake), so "
+                   "the screw does not cool as the model expects. Modelled as constant power P_hold into the "
+                   "fixed end whenever the feed is zero.",
+                   "time (standstill)",
+                   {},
+                   [](const DiagnosisRecording &) {
+                       CandidateModel m;
+                       m.sources.push_back(std::make_shared<FeedLawHeatSource>(FeedLawHeatSource::Law::Standstill,
+                                                                               FeedLawHeatSource::Location::Bearing));
+                       return m;
+                   }});
+    lib.push_back({"structure_offset",
+                   "The machine structure (bed, column, encoder mounting) expands with its own temperature and "
+                   "shifts every target by the same amount (seed 000 attributes all error to the screw). "
+                   "Modelled as c (T_structure(t) - T_structure(t_ref)), c in um/K.",
+                   "role:structure",
+                   {"structure"},
+                   [](const DiagnosisRecording &) { return structureTerms(false); }});
+    lib.push_back({"structure_linear",
+                   "The structure or the scale expands with its own temperature in proportion to the axis "
+                   "position (a slope across the travel). Modelled as (c1 P_x + c0) (T_structure(t) - "
+                   "T_structure(t_ref)), c1 in um/(m K), c0 in um/K.",
+                   "role:structure",
+                   {"structure"},
+                   [](const DiagnosisRecording &) { return structureTerms(true); }});
+    lib.push_back({"screw_coolant",
+                   "The screw is cooled internally by a coolant whose temperature differs from ambient, so it "
+                   "runs cooler and follows the coolant (seed 000 has convection to ambient only). Modelled as "
+                   "g (T_coolant - T_ambient) per metre of screw, g in W/(m K).",
+                   "role:coolant",
+                   {"coolant"},
+                   [](const DiagnosisRecording &) {
+                       return channelHeat("coolant", {"g_coolant", "W/(m K)", 5.0, 0.0, 500.0, 1.0},
+                                          ChannelHeatSource::Location::Distributed, false);
+                   }});
+    return lib;
+}
+
+std::vector<std::string> CandidateEffectLibrary::codes()
+{
+    std::vector<std::string> c;
+    for (const CandidateEffect &e : standard())
+        c.push_back(e.code);
+    return c;
+}
+
+} // namespace driftlab

@@ -1,0 +1,57 @@
+#include "ChannelHeatSource.h"
+
+#include <stdexcept>
+
+namespace driftlab {
+
+ChannelHeatSource::ChannelHeatSource(ParameterSpec amplitude, Location location, bool relativeToStart)
+    : m_amplitude(std::move(amplitude)), m_location(location), m_relative(relativeToStart)
+{
+}
+
+void ChannelHeatSource::bind(const TimeSeries *channel, const TimeSeries *ambient, double t0_s)
+{
+    if (!channel || channel->empty())
+        throw std::invalid_argument("ChannelHeatSource '" + m_amplitude.name + "': empty driver channel");
+    m_channel = channel;
+    m_ambient = (ambient && !ambient->empty()) ? ambient : nullptr;
+    m_t0 = t0_s;
+    m_offset = 0.0;
+    if (m_relative || !m_ambient) {
+        const double a = m_ambient ? m_ambient->at(t0_s) : 0.0;
+        m_offset = m_channel->at(t0_s) - a;
+    }
+    m_step = 0;
+}
+
+double ChannelHeatSource::driver(double t_s) const
+{
+    if (!m_channel)
+        throw std::logic_error("ChannelHeatSource '" + m_amplitude.name + "': no driver bound");
+    const double a = m_ambient ? m_ambient->at(t_s) : 0.0;
+    return m_channel->at(t_s) - a - m_offset;
+}
+
+void ChannelHeatSource::addUnitHeat(const HeatStepInput &step, double *watts)
+{
+    const double t = m_t0 + (static_cast<double>(m_step) + 0.5) * step.dt_s;
+    ++m_step;
+    const double d = driver(t);
+    const int n = step.layout->cellCount();
+    switch (m_location) {
+    case Location::FixedEnd:
+        watts[0] += d;
+        break;
+    case Location::FreeEnd:
+        watts[n - 1] += d;
+        break;
+    case Location::Distributed: {
+        const double perCell = d * step.layout->dx_m();
+        for (int i = 0; i < n; ++i)
+            watts[i] += perCell;
+        break;
+    }
+    }
+}
+
+} // namespace driftlab

@@ -1,0 +1,48 @@
+#pragma once
+// Candidate heat input driven by a measured temperature difference (not in seed 000):
+// Q = G (T_channel(t) - T_ambient(t)) into the fixed-end cell (motor heat through the
+// coupling), the free-end cell, or spread along the whole screw per metre (internal coolant:
+// the screw exchanges heat with a coolant at T_channel; q' = g (T_c - T_a) per metre, the
+// screw's own departure from ambient is left to the refitted convection). The driver is a
+// channel found by its role and bound per recording with bind() before fit()/predict().
+// `relativeToStart` subtracts the difference at the start of the recording (the model's
+// screw starts at ambient; a sensor offset must not become a constant heat).
+
+#include "HeatSourceComponent.h"
+
+#include <memory>
+#include "TimeSeries.h"
+
+#include <string>
+
+namespace driftlab {
+
+class ChannelHeatSource : public HeatSourceComponent {
+public:
+    enum class Location { FixedEnd, FreeEnd, Distributed };
+    ChannelHeatSource(ParameterSpec amplitude, Location location, bool relativeToStart);
+
+    // channel: driver temperature; ambient: may be null or empty (then the channel's own start
+    // value is the reference); t0_s: start of the recording's drive. Pointers must outlive use.
+    void bind(const TimeSeries *channel, const TimeSeries *ambient, double t0_s);
+
+    std::shared_ptr<HeatSourceComponent> clone() const override { return std::make_shared<ChannelHeatSource>(*this); }
+    ParameterSpec amplitude() const override { return m_amplitude; }
+    void beginRecording() override { m_step = 0; }
+    void addUnitHeat(const HeatStepInput &step, double *watts) override;
+
+    // Driver value (K) at time t.
+    double driver(double t_s) const;
+
+private:
+    ParameterSpec m_amplitude;
+    Location m_location;
+    bool m_relative;
+    const TimeSeries *m_channel = nullptr;
+    const TimeSeries *m_ambient = nullptr;
+    double m_t0 = 0.0;
+    double m_offset = 0.0;
+    long m_step = 0;
+};
+
+} // namespace driftlab

@@ -1,0 +1,85 @@
+#pragma once
+// Mismatch diagnosis (issue 7): given a training and a validation recording of one machine,
+//  1. identifies the seed-000 baseline on the training recording and locates where it
+//     disagrees (ResidualLocator);
+//  2. refits baseline + each applicable candidate effect (CandidateEffectLibrary) with every
+//     parameter free;
+//  3. selects with a protocol that resists overfitting: held-out RMS on the validation
+//     recording, time-blocked cross-validation on the training recording (gaps of a few
+//     thermal time constants around each held-out block), AICc with the effective sample
+//     size of autocorrelated residuals, candidate amplitudes inside their bounds with
+//     confidence intervals excluding zero. "none" wins unless a candidate passes all tests.
+// Refits reuse the identifier's unit-response structure (variable projection) and start
+// from the baseline's optimum.
+
+#include "CandidateEffect.h"
+#include "DiagnosisTypes.h"
+#include "ScrewModelIdentifier.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace driftlab {
+
+struct DiagnosisOptions {
+    IdentificationOptions identification; // start values, bounds, grid (dt 30 s is plenty)
+    int cvFolds = 3;
+    double cvGap_s = -1.0;                // < 0: three thermal time constants of the screw
+    int cvMaxIterations = 10;
+    // Acceptance thresholds of a candidate.
+    double minHeldoutImprovement = 0.25;  // relative reduction of the validation RMS
+    double minCvImprovement = 0.10;       // relative reduction of the cross-validation RMS
+    double maxDeltaIc = -10.0;            // AICc(candidate) - AICc(baseline)
+    double minAmplitudeZ = 3.0;           // |value| / standard error of its main amplitude
+    // Physical plausibility of the refit's seed-000 parameters (see plausibilityDistance): a
+    // candidate further from physics than the baseline by more than this is reported so.
+    double maxPlausibilityLoss = 1.0;
+    double steelConductivity_W_mK = 45.0;
+    int threads = 0;                      // candidates refitted in parallel (0 = hardware)
+    // Physical bounds of the refits (issue 7: "parameters inside physical bounds"): lambda of
+    // a steel screw (the 1-D model's simplifications allowed for), P_f within this distance
+    // of the drawing (the recording's drawingFixedEnd_mm; ignored when unknown). With free
+    // lambda in [5, 5000] a far-too-conductive screw makes every heat location alike and
+    // hides where the heat enters.
+    bool physicalBounds = true;
+    double lambdaLower_W_mK = 20.0, lambdaUpper_W_mK = 120.0;
+    double fixedEndTolerance_mm = 40.0;
+    std::vector<std::string> effects;     // restrict the library (empty: all)
+};
+
+class DiagnosisEngine {
+public:
+    // fraction in [0, 1]; return false to cancel (the report is then marked cancelled).
+    using Progress = std::function<bool(double fraction, const std::string &stage)>;
+
+    DiagnosisEngine(const ScrewGeometry &geometry, const DiagnosisOptions &options = {});
+
+    // Throws std::invalid_argument for unusable recordings.
+    DiagnosisReport run(const DiagnosisRecording &train, const DiagnosisRecording &validate,
+                        const Progress &progress = {});
+
+    // 0 when lambda is within a factor 1.41 of steel's and P_f within 10 mm of the drawing;
+    // grows by 1 per further factor 2 in lambda and per further 20 mm in P_f.
+    double plausibilityDistance(const FdmParameters &p, double drawingFixedEnd_mm) const;
+
+    // Thermal time constant of the bare screw in still air, rho c D / (4 h), s.
+    double screwTimeConstant_s(double h_W_m2K) const;
+
+private:
+    struct Evaluated {
+        ModelEvaluation eval;
+        IdentificationResult fit;
+        FitStatistics heldout;
+    };
+    Evaluated evaluate(const CandidateEffect *effect, const DiagnosisRecording &train,
+                       const DiagnosisRecording &validate, const IdentificationOptions &options, double effectiveN,
+                       std::vector<std::string> *amplitudeNames);
+    double crossValidate(const CandidateModel *model, const DiagnosisRecording &train,
+                         const IdentificationOptions &options);
+
+    ScrewGeometry m_geometry;
+    DiagnosisOptions m_options;
+};
+
+} // namespace driftlab

@@ -1,0 +1,129 @@
+#pragma once
+// Inputs and outputs of the mismatch diagnosis (DiagnosisEngine). No Qt.
+//
+// A DiagnosisRecording is an identification recording (drive + interferometer thermal
+// errors + optional screw-end probe) plus every auxiliary temperature channel of the
+// session keyed by its ROLE ("motor", "structure", "coolant", "free_bearing", ...): the
+// candidate effects find their drivers there, never by channel name.
+
+#include "IdentificationTypes.h"
+#include "TimeSeries.h"
+
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace driftlab {
+
+struct DiagnosisRecording {
+    ScrewRecording screw;
+    std::map<std::string, TimeSeries> channelsByRole; // auxiliary temperatures, degC
+    // Drawing value of P_f (machine block); NaN = unknown (no plausibility check).
+    double drawingFixedEnd_mm = std::numeric_limits<double>::quiet_NaN();
+
+    bool hasRole(const std::string &role) const
+    {
+        const auto it = channelsByRole.find(role);
+        return it != channelsByRole.end() && it->second.size() >= 2;
+    }
+};
+
+// A residual statistic of one group (phase, target, hour, sensor).
+struct ResidualGroup {
+    std::string label;
+    int count = 0;
+    double mean_um = 0.0;
+    double rms_um = 0.0;
+};
+
+struct ChannelCorrelation {
+    std::string channel;   // "feed", "<role>", "<role> x position"
+    double correlation = 0.0;
+};
+
+struct PlausibilityFlag {
+    std::string parameter;
+    double value = 0.0;
+    double expected = 0.0;
+    std::string message;
+};
+
+// Where the baseline disagrees with the recording, in numbers and in words.
+struct ResidualLocation {
+    std::vector<ResidualGroup> byPhase;
+    std::vector<ResidualGroup> byPosition;   // one per interferometer target
+    std::vector<ResidualGroup> byScrewPart;  // near fixed end / middle / near free end
+    std::vector<ResidualGroup> byHour;
+    std::vector<ResidualGroup> bySensor;     // interferometer, screw_elongation
+    double lag1Autocorrelation = 0.0;        // of the time-ordered residuals per target
+    double ljungBoxQ = 0.0;                  // on the run-mean residual series
+    int ljungBoxLags = 0;
+    double ljungBoxP = 1.0;
+    bool white = true;
+    std::vector<ChannelCorrelation> correlations; // sorted by |r|, largest first
+    std::vector<PlausibilityFlag> implausible;
+    int implausibleRefits = 0; // candidate refits that bend lambda / P_f away from physics
+    std::string summary;                      // the location in words
+};
+
+struct ParameterValue {
+    std::string name;
+    std::string unit;
+    double value = 0.0;
+    double standardError = 0.0;
+    bool fitted = true;
+};
+
+struct ModelEvaluation {
+    std::vector<ParameterValue> parameters;
+    double trainRms_um = 0.0;      // interferometer RMS on the training recording
+    double heldoutRms_um = 0.0;    // interferometer RMS on the validation recording
+    double cvRms_um = 0.0;         // time-blocked cross-validation RMS on the training recording
+    double informationCriterion = 0.0; // AICc with the effective sample size
+    double effectiveSamples = 0.0;
+    int parameterCount = 0;
+    bool converged = false;
+};
+
+struct CandidateOutcome {
+    std::string effect;
+    std::string explanation;
+    bool applicable = true;
+    std::string notApplicableReason;
+    ModelEvaluation evaluation;
+    double score = 0.0;               // higher is better; <= 0 = does not earn its keep
+    double heldoutImprovement = 0.0;  // 1 - heldout / baseline heldout
+    double cvImprovement = 0.0;
+    double deltaIc = 0.0;             // IC(candidate) - IC(baseline)
+    double minAmplitudeZ = 0.0;       // largest |value / standard error| of its amplitudes
+    bool insideBounds = true;
+    double plausibilityDistance = 0.0; // of the refit's lambda and P_f (DiagnosisEngine)
+    bool accepted = false;
+    std::vector<std::string> reasons; // why accepted / rejected
+};
+
+// One validation interferometer point predicted by the baseline and the corrected model.
+struct DiagnosisPrediction {
+    double t_s = 0.0;
+    double position_mm = 0.0;
+    double measured_um = 0.0;
+    double baseline_um = 0.0;
+    double corrected_um = 0.0;
+    bool reference = false; // measured in the reference run (thermal error 0 by definition)
+};
+
+struct DiagnosisReport {
+    std::string effect = "none";
+    std::string explanation;
+    ResidualLocation location;          // of the baseline on the training recording
+    ResidualLocation correctedLocation; // of the corrected model on the training recording
+    ModelEvaluation baseline;
+    ModelEvaluation corrected;          // == baseline when the answer is "none"
+    std::vector<CandidateOutcome> candidates; // sorted by score, best first
+    std::vector<DiagnosisPrediction> predictions;
+    double wallTime_s = 0.0;
+    bool cancelled = false;
+};
+
+} // namespace driftlab

@@ -1,0 +1,297 @@
+#include "DiagnoseCommand.h"
+
+#include "BundleTransfer.h"
+#include "CliSupport.h"
+#include "DiagnosisEngine.h"
+#include "FitCommand.h"
+#include "SessionAnalysis.h"
+#include "SessionStore.h"
+
+#include <QCommandLineParser>
+#include <QDir>
+#include <QFile>
+#include <QFileInfo>
+#include <QJsonArray>
+#include <QTemporaryDir>
+#include <QTextStream>
+
+#include <cmath>
+#include <memory>
+
+namespace driftlab {
+
+namespace {
+
+QJsonArray groupsJson(const std::vector<ResidualGroup> &groups)
+{
+    QJsonArray a;
+    for (const ResidualGroup &g : groups)
+        a.append(QJsonObject{{QStringLiteral("label"), QString::fromStdString(g.label)},
+                             {QStringLiteral("count"), g.count},
+                             {QStringLiteral("mean_um"), g.mean_um},
+                             {QStringLiteral("rms_um"), g.rms_um}});
+    return a;
+}
+
+QJsonObject locationJson(const ResidualLocation &l)
+{
+    QJsonArray corr, flags;
+    for (const ChannelCorrelation &c : l.correlations)
+        corr.append(QJsonObject{{QStringLiteral("channel"), QString::fromStdString(c.channel)},
+                                {QStringLiteral("r"), c.correlation}});
+    for (const PlausibilityFlag &f : l.implausible)
+        flags.append(QJsonObject{{QStringLiteral("parameter"), QString::fromStdString(f.parameter)},
+                                 {QStringLiteral("value"), f.value},
+                                 {QStringLiteral("expected"), f.expected},
+                                 {QStringLiteral("message"), QString::fromStdString(f.message)}});
+    return QJsonObject{{QStringLiteral("summary"), QString::fromStdString(l.summary)},
+                       {QStringLiteral("by_phase"), groupsJson(l.byPhase)},
+                       {QStringLiteral("by_position"), groupsJson(l.byPosition)},
+                       {QStringLiteral("by_screw_part"), groupsJson(l.byScrewPart)},
+                       {QStringLiteral("by_hour"), groupsJson(l.byHour)},
+                       {QStringLiteral("by_sensor"), groupsJson(l.bySensor)},
+                       {QStringLiteral("whiteness"),
+                        QJsonObject{{QStringLiteral("lag1_autocorrelation"), l.lag1Autocorrelation},
+                                    {QStringLiteral("ljung_box_q"), l.ljungBoxQ},
+                                    {QStringLiteral("ljung_box_lags"), l.ljungBoxLags},
+                                    {QStringLiteral("ljung_box_p"), l.ljungBoxP},
+                                    {QStringLiteral("white"), l.white}}},
+                       {QStringLiteral("correlations"), corr},
+                       {QStringLiteral("implausible_parameters"), flags}};
+}
+
+QJsonObject parametersJson(const std::vector<ParameterValue> &ps)
+{
+    QJsonObject o;
+    for (const ParameterValue &p : ps)
+        o.insert(QString::fromStdString(p.name), p.value);
+    return o;
+}
+
+QJsonObject errorsJson(const std::vector<ParameterValue> &ps)
+{
+    QJsonObject o;
+    for (const ParameterValue &p : ps)
+        o.insert(QString::fromStdString(p.name), p.fitted ? QJsonValue(p.standardError) : QJsonValue());
+    return o;
+}
+
+QJsonValue number(double v) { return std::isfinite(v) ? QJsonValue(v) : QJsonValue(); }
+
+QJsonObject modelJson(const ModelEvaluation &e)
+{
+    return QJsonObject{{QStringLiteral("parameters"), parametersJson(e.parameters)},
+                       {QStringLiteral("standard_errors"), errorsJson(e.parameters)},
+                       {QStringLiteral("train_rms_um"), e.trainRms_um},
+                       {QStringLiteral("heldout_rms_um"), e.heldoutRms_um},
+                       {QStringLiteral("cv_rms_um"), number(e.cvRms_um)},
+                       {QStringLiteral("aicc"), e.informationCriterion},
+                       {QStringLiteral("effective_samples"), e.effectiveSamples},
+                       {QStringLiteral("parameter_count"), e.parameterCount},
+                       {QStringLiteral("converged"), e.converged}};
+}
+
+} // namespace
+
+QString DiagnoseCommand::summary() const
+{
+    return QStringLiteral(
+        "Mismatch diagnosis: identifies the seed-000 screw model on the training recording, locates where\n"
+        "it disagrees (phase, axial position, time, sensor, residual whiteness, correlation with every\n"
+        "channel, implausible parameters), refits it with each candidate effect (motor heat, free-end\n"
+        "bearing, nonlinear feed heat, heat-path lag, holding heat, structure offset/linear, coolant) and\n"
+        "names the effect that improves held-out, cross-validated and information-criterion fit with a\n"
+        "significant amplitude, or 'none'. A and B: bundle directories, .zip bundles or session ids in --db.");
+}
+
+DiagnosisRecording DiagnoseCommand::loadRecording(const SessionStore &store, qint64 sessionId, QString *note)
+{
+    DiagnosisRecording rec;
+    rec.screw = FitCommand::loadRecording(store, sessionId, note);
+    SessionAnalysis analysis(store, sessionId);
+    static const QStringList driveRoles{QStringLiteral("axis_position"), QStringLiteral("feed_rate"),
+                                        QStringLiteral("screw_elongation")};
+    for (const ChannelInfo &c : store.channels(sessionId)) {
+        if (c.role.isEmpty() || driveRoles.contains(c.role) || c.kind != QLatin1String("temperature"))
+            continue;
+        const std::string role = c.role.toStdString();
+        if (rec.channelsByRole.count(role))
+            continue;
+        try {
+            rec.channelsByRole[role] = analysis.channelByRole(c.role);
+        } catch (const std::runtime_error &) {
+        }
+    }
+    const QJsonValue pf = store.session(sessionId).machine.value(QStringLiteral("fixed_end_position_mm"));
+    if (pf.isDouble())
+        rec.drawingFixedEnd_mm = pf.toDouble();
+    return rec;
+}
+
+QJsonObject DiagnoseCommand::reportJson(const DiagnosisReport &r)
+{
+    QJsonArray cands;
+    for (const CandidateOutcome &c : r.candidates) {
+        QJsonArray reasons;
+        for (const std::string &s : c.reasons)
+            reasons.append(QString::fromStdString(s));
+        QJsonObject o{{QStringLiteral("effect"), QString::fromStdString(c.effect)},
+                      {QStringLiteral("applicable"), c.applicable},
+                      {QStringLiteral("accepted"), c.accepted},
+                      {QStringLiteral("score"), c.applicable ? QJsonValue(c.score) : QJsonValue()},
+                      {QStringLiteral("parameters"), parametersJson(c.evaluation.parameters)},
+                      {QStringLiteral("standard_errors"), errorsJson(c.evaluation.parameters)},
+                      {QStringLiteral("heldout_rms_um"), c.applicable ? number(c.evaluation.heldoutRms_um) : QJsonValue()},
+                      {QStringLiteral("train_rms_um"), c.applicable ? number(c.evaluation.trainRms_um) : QJsonValue()},
+                      {QStringLiteral("cv_rms_um"), c.applicable ? number(c.evaluation.cvRms_um) : QJsonValue()},
+                      {QStringLiteral("heldout_improvement"), c.heldoutImprovement},
+                      {QStringLiteral("cv_improvement"), c.cvImprovement},
+                      {QStringLiteral("delta_aicc"), c.deltaIc},
+                      {QStringLiteral("amplitude_z"), c.minAmplitudeZ},
+                      {QStringLiteral("inside_bounds"), c.insideBounds},
+                      {QStringLiteral("plausibility_distance"), c.plausibilityDistance},
+                      {QStringLiteral("evidence"), reasons},
+                      {QStringLiteral("explanation"), QString::fromStdString(c.explanation)}};
+        cands.append(o);
+    }
+    QJsonObject loc = locationJson(r.location);
+    loc.insert(QStringLiteral("corrected"), locationJson(r.correctedLocation));
+    return QJsonObject{{QStringLiteral("effect"), QString::fromStdString(r.effect)},
+                       {QStringLiteral("explanation"), QString::fromStdString(r.explanation)},
+                       {QStringLiteral("location"), loc},
+                       {QStringLiteral("candidates"), cands},
+                       {QStringLiteral("baseline"), modelJson(r.baseline)},
+                       {QStringLiteral("corrected"), modelJson(r.corrected)},
+                       {QStringLiteral("wall_time_s"), r.wallTime_s}};
+}
+
+int DiagnoseCommand::run(const QStringList &args)
+{
+    QCommandLineParser p;
+    const QCommandLineOption train(QStringLiteral("train"), QStringLiteral("Training recording: bundle dir, .zip or session id."),
+                                   QStringLiteral("A"));
+    const QCommandLineOption validate(QStringLiteral("validate"),
+                                      QStringLiteral("Validation recording of the same machine: bundle dir, .zip or session id."),
+                                      QStringLiteral("B"));
+    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the diagnosis JSON to FILE ('-' = stdout)."),
+                                  QStringLiteral("file"));
+    const QCommandLineOption predictions(QStringLiteral("predictions"),
+                                         QStringLiteral("Write B's interferometer predictions (baseline, corrected) as CSV."),
+                                         QStringLiteral("csv"));
+    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database for session ids."), QStringLiteral("file"));
+    const QCommandLineOption effects(QStringLiteral("effects"),
+                                     QStringLiteral("Comma-separated candidate codes to try (default: all)."),
+                                     QStringLiteral("list"));
+    const QCommandLineOption dt(QStringLiteral("dt"), QStringLiteral("Implicit time step of the fits, s (default 20)."),
+                                QStringLiteral("seconds"), QStringLiteral("20"));
+    p.addOptions({train, validate, json, predictions, db, effects, dt});
+    if (!parse(p, args))
+        return 0;
+    if (!p.isSet(train) || !p.isSet(validate))
+        throw UsageError(QStringLiteral("diagnose: --train A and --validate B are required (see 'driftlab-cli diagnose --help')"));
+    if (!p.isSet(json))
+        throw UsageError(QStringLiteral("diagnose: --json OUT is required"));
+    bool ok = false;
+    const double step = p.value(dt).toDouble(&ok);
+    if (!ok || !(step > 0) || step > 600)
+        throw UsageError(QStringLiteral("diagnose: --dt must be a time step in (0, 600] s, got '%1'").arg(p.value(dt)));
+    DiagnosisOptions options;
+    if (p.isSet(effects)) {
+        const std::vector<std::string> known = CandidateEffectLibrary::codes();
+        for (const QString &e : p.value(effects).split(QLatin1Char(','), Qt::SkipEmptyParts)) {
+            if (std::find(known.begin(), known.end(), e.trimmed().toStdString()) == known.end())
+                throw UsageError(QStringLiteral("diagnose: --effects: unknown effect '%1'").arg(e));
+            options.effects.push_back(e.trimmed().toStdString());
+        }
+    }
+
+    // Resolve A and B: bundles go into a temporary database, ids into --db.
+    QTemporaryDir tmp;
+    std::unique_ptr<SessionStore> tmpStore, userStore;
+    auto resolve = [&](const QString &arg, const char *what) -> std::pair<SessionStore *, qint64> {
+        const QFileInfo fi(arg);
+        if (fi.exists()) {
+            if (!tmpStore) {
+                if (!tmp.isValid())
+                    throw std::runtime_error("diagnose: cannot create a temporary directory");
+                tmpStore = std::make_unique<SessionStore>(tmp.filePath(QStringLiteral("diagnose.sqlite")));
+            }
+            qint64 id = -1;
+            try {
+                id = BundleTransfer::importBundle(*tmpStore, arg);
+            } catch (const std::exception &e) {
+                throw UsageError(QStringLiteral("diagnose: %1 '%2' is not a readable recording bundle: %3")
+                                     .arg(QLatin1String(what), arg, QString::fromUtf8(e.what())));
+            }
+            return {tmpStore.get(), id};
+        }
+        const qint64 id = arg.toLongLong(&ok);
+        if (!ok)
+            throw UsageError(QStringLiteral("diagnose: %1 '%2' is neither an existing bundle (directory or .zip) nor a session id")
+                                 .arg(QLatin1String(what), arg));
+        if (!userStore)
+            userStore = std::make_unique<SessionStore>(CliSupport::databasePath(p.value(db), QString(), true));
+        for (const SessionInfo &s : userStore->sessions())
+            if (s.id == id)
+                return {userStore.get(), id};
+        throw UsageError(QStringLiteral("diagnose: %1: %2 has no session %3").arg(QLatin1String(what), userStore->path()).arg(id));
+    };
+    const auto a = resolve(p.value(train), "--train");
+    const auto b = resolve(p.value(validate), "--validate");
+
+    DiagnosisRecording recA, recB;
+    auto load = [&](const std::pair<SessionStore *, qint64> &s, const char *what, DiagnosisRecording &out) {
+        QString note;
+        try {
+            out = loadRecording(*s.first, s.second, &note);
+        } catch (const std::runtime_error &e) {
+            throw UsageError(QStringLiteral("diagnose: %1 '%2': %3").arg(QLatin1String(what), p.value(what == std::string("--train") ? train : validate), QString::fromUtf8(e.what())));
+        }
+        if (out.screw.interferometer.empty())
+            throw UsageError(QStringLiteral("diagnose: %1 '%2': no interferometer runs besides the reference run (the diagnosis needs thermal errors)")
+                                 .arg(QLatin1String(what), p.value(what == std::string("--train") ? train : validate)));
+        QStringList roles;
+        for (const auto &c : out.channelsByRole)
+            roles << QString::fromStdString(c.first);
+        CliSupport::progress(QStringLiteral("%1: %2; auxiliary roles: %3").arg(QLatin1String(what), note, roles.join(QStringLiteral(", "))));
+    };
+    load(a, "--train", recA);
+    load(b, "--validate", recB);
+
+    SessionAnalysis first(*a.first, a.second);
+    options.identification.simulator.grid.dt_s = step;
+    options.identification.simulator.driveSample_s = 1.0;
+    options.identification.maxIterations = 60;
+    options.identification.initial = first.defaultParameters();
+    DiagnosisEngine engine(first.geometry(), options);
+    std::string lastStage;
+    const DiagnosisReport report = engine.run(recA, recB, [&lastStage](double f, const std::string &stage) {
+        if (stage != lastStage)
+            CliSupport::progress(QStringLiteral("[%1 %] %2").arg(static_cast<int>(100 * f), 3).arg(QString::fromStdString(stage)));
+        lastStage = stage;
+        return true;
+    });
+    CliSupport::writeJson(QJsonDocument(reportJson(report)), p.value(json));
+    if (p.isSet(predictions)) {
+        QFile f(p.value(predictions));
+        if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate | QIODevice::Text))
+            throw std::runtime_error("diagnose: cannot write --predictions '" + p.value(predictions).toStdString() +
+                                     "': " + f.errorString().toStdString());
+        QTextStream o(&f);
+        o << "time_s,position_mm,baseline_um,corrected_um\n";
+        for (const DiagnosisPrediction &q : report.predictions) {
+            if (q.reference)
+                continue;
+            o << QString::number(q.t_s, 'f', 3) << ',' << QString::number(q.position_mm, 'f', 3) << ','
+              << QString::number(q.baseline_um, 'g', 9) << ',' << QString::number(q.corrected_um, 'g', 9) << '\n';
+        }
+    }
+    CliSupport::progress(QStringLiteral("diagnosis: %1 (baseline held-out RMS %2 um, corrected %3 um) in %4 s")
+                             .arg(QString::fromStdString(report.effect))
+                             .arg(report.baseline.heldoutRms_um, 0, 'f', 3)
+                             .arg(report.corrected.heldoutRms_um, 0, 'f', 3)
+                             .arg(report.wallTime_s, 0, 'f', 1));
+    return 0;
+}
+
+} // namespace driftlab

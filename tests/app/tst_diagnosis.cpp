@@ -1,0 +1,298 @@
+// Mismatch diagnosis on concealed data (issue 7, item 6): for "none" and for every effect the
+// simulated rig (acquisition/'s ScrewTruthModel, independent of the identifier's code path)
+// records a training and a validation session of one randomised machine with random duty
+// cycles and effect magnitudes; `driftlab-cli diagnose` runs blind and only afterwards is its
+// answer compared with the effect the seed picked. Checks: the right effect is named and,
+// for a real effect, the held-out RMS improves; for "none", nothing is named.
+//
+// DRIFTLAB_DIAG_SEEDS=N runs N seeds per effect (scripts/diagnosis-sweep.sh) and writes the
+// confusion matrix to DRIFTLAB_DIAG_OUT (default: none written); CI runs one seed per effect.
+
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QProcess>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include <map>
+#include <random>
+
+namespace {
+
+const char *const kEffects[] = {"none",          "motor_heat_fixed_end", "free_end_bearing_heat",
+                                "nonlinear_feed_heat", "heat_path_lag", "holding_heat",
+                                "structure_offset", "structure_linear", "screw_coolant"};
+
+struct Outcome {
+    QString truth, answer;
+    double baselineHeldout = 0.0, correctedHeldout = 0.0, seconds = 0.0;
+};
+
+} // namespace
+
+class TestDiagnosis : public QObject {
+    Q_OBJECT
+private slots:
+    void initTestCase();
+    void badInput();
+    void concealedEffects_data();
+    void concealedEffects();
+    void ciAccuracy();
+    void cleanupTestCase();
+
+private:
+    struct Result {
+        int code = -1;
+        QByteArray out, err;
+    };
+    Result run(const QStringList &args, int timeout_ms = 300000);
+    QJsonObject rig(const QString &effect, unsigned seed, bool validation, std::mt19937 &rng) const;
+    QTemporaryDir m_dir;
+    std::vector<Outcome> m_outcomes;
+};
+
+TestDiagnosis::Result TestDiagnosis::run(const QStringList &args, int timeout_ms)
+{
+    QProcess p;
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    env.insert(QStringLiteral("XDG_DATA_HOME"), m_dir.filePath(QStringLiteral("data")));
+    p.setProcessEnvironment(env);
+    p.start(QStringLiteral(DRIFTLAB_CLI), args);
+    if (!p.waitForFinished(timeout_ms))
+        return {};
+    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(), p.readAllStandardError()};
+}
+
+void TestDiagnosis::initTestCase()
+{
+    QVERIFY(m_dir.isValid());
+    QVERIFY(QFileInfo::exists(QStringLiteral(DRIFTLAB_CLI)));
+    if (qEnvironmentVariableIsSet("DRIFTLAB_DIAG_KEEP")) {
+        m_dir.setAutoRemove(false);
+        qInfo("keeping the recordings in %s", qPrintable(m_dir.path()));
+    }
+}
+
+// A rig file: randomised machine (log-normal spread of heat, convection, contacts,
+// conductivity; P_f jitter), the effect at a random magnitude, a random duty cycle (two to
+// four feed levels, standstills), interferometer every 20-30 min at 7-12 targets.
+QJsonObject TestDiagnosis::rig(const QString &effect, unsigned seed, bool validation, std::mt19937 &rng) const
+{
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    auto uni = [&](double a, double b) { return a + (b - a) * u(rng); };
+    QJsonObject effects;
+    auto on = [&](const char *name, QJsonObject o) {
+        o.insert(QStringLiteral("enabled"), true);
+        effects.insert(QLatin1String(name), o);
+    };
+    // Magnitudes are drawn for the machine (same in training and validation: rng is re-seeded).
+    if (effect == QLatin1String("motor_heat_fixed_end"))
+        on("motor_coupling", {{QStringLiteral("conductance_W_K"), uni(0.8, 2.0)}});
+    else if (effect == QLatin1String("free_end_bearing_heat"))
+        on("free_bearing_heat", {{QStringLiteral("coefficient_W_per_mm_min"), uni(0.0005, 0.001)}});
+    else if (effect == QLatin1String("nonlinear_feed_heat")) {
+        const double n = uni(1.6, 2.0);
+        on("superlinear_heat", {{QStringLiteral("bearing_exponent"), n}, {QStringLiteral("nut_exponent"), n},
+                                {QStringLiteral("reference_feed_mm_min"), 6000}});
+    } else if (effect == QLatin1String("heat_path_lag"))
+        on("heat_path_lag", {{QStringLiteral("fraction"), uni(0.8, 1.0)},
+                             {QStringLiteral("bearing_housing_capacity_J_K"), uni(6000, 12000)},
+                             {QStringLiteral("nut_housing_capacity_J_K"), uni(6000, 12000)}});
+    else if (effect == QLatin1String("holding_heat"))
+        on("holding_heat", {{QStringLiteral("power_W"), uni(3.0, 6.0)}});
+    else if (effect == QLatin1String("structure_offset"))
+        on("structure_offset", {{QStringLiteral("coefficient_um_K"), (u(rng) < 0.5 ? -1 : 1) * uni(5, 15)}});
+    else if (effect == QLatin1String("structure_linear"))
+        on("structure_linear", {{QStringLiteral("coefficient_um_m_K"), (u(rng) < 0.5 ? -1 : 1) * uni(10, 30)},
+                                {QStringLiteral("reference_position_mm"), uni(20, 500)}});
+    else if (effect == QLatin1String("screw_coolant"))
+        on("coolant", {{QStringLiteral("conductance_W_mK"), uni(5, 15)}, {QStringLiteral("mean_C"), uni(18.5, 19.5)},
+                       {QStringLiteral("amplitude_K"), uni(0.3, 0.8)}, {QStringLiteral("period_s"), uni(1500, 3600)}});
+    // Bed heat so the structure temperature moves (a machine warming up nearby).
+    const double bedHeat = uni(2.0, 8.0);
+    const double interval = 60.0 * std::round(uni(20, 30));
+    const int targetCount = 7 + static_cast<int>(u(rng) * 6);
+    QJsonArray targets;
+    for (int k = 0; k < targetCount; ++k)
+        targets.append(std::round(30.0 + 460.0 * k / (targetCount - 1)));
+
+    // Duty cycle: the validation draws its own.
+    std::mt19937 prog(seed * 31u + (validation ? 7u : 3u));
+    std::uniform_real_distribution<double> up(0.0, 1.0);
+    const double total = validation ? 3 * 3600.0 : 4 * 3600.0;
+    QJsonArray phases;
+    double t = 0.0;
+    bool moving = true;
+    const double feeds[] = {3000, 4500, 6000, 7500, 9000};
+    while (t < total + 600) {
+        const double d = moving ? 60.0 * (35 + 45 * up(prog)) : 60.0 * (20 + 30 * up(prog));
+        const double f = moving ? feeds[static_cast<int>(up(prog) * 5) % 5] : 0.0;
+        phases.append(QJsonObject{{QStringLiteral("name"), moving ? QStringLiteral("warm-up") : QStringLiteral("cool-down")},
+                                  {QStringLiteral("duration_s"), d},
+                                  {QStringLiteral("feed_mm_min"), f},
+                                  {QStringLiteral("travel_mm"), QJsonArray{20, 500}}});
+        t += d;
+        moving = !moving;
+    }
+    auto pt = [](const char *id, const char *loc) {
+        return QJsonObject{{QStringLiteral("id"), QLatin1String(id)}, {QStringLiteral("location"), QLatin1String(loc)},
+                           {QStringLiteral("noise_K"), 0.02}, {QStringLiteral("rate_Hz"), 1}};
+    };
+    QJsonArray pt100{pt("T_amb", "ambient"), pt("T_fixed_bearing", "fixed_bearing"), pt("T_nut", "nut"),
+                     pt("T_free_bearing", "free_bearing"), pt("T_motor", "motor"), pt("T_bed", "bed"),
+                     pt("T_coolant", "coolant")};
+    return QJsonObject{
+        {QStringLiteral("format"), QStringLiteral("driftlab-rig")},
+        {QStringLiteral("version"), 1},
+        {QStringLiteral("name"), QStringLiteral("diagnosis %1 seed %2").arg(effect).arg(seed)},
+        {QStringLiteral("seed"), static_cast<double>(seed)},
+        {QStringLiteral("machine"), QJsonObject{{QStringLiteral("travel_mm"), QJsonArray{20, 500}}}},
+        {QStringLiteral("thermal"), QJsonObject{{QStringLiteral("bed_heat_W"), bedHeat}}},
+        {QStringLiteral("effects"), effects},
+        {QStringLiteral("sensors"),
+         QJsonObject{{QStringLiteral("pt100"), pt100},
+                     {QStringLiteral("infrared"), QJsonObject{{QStringLiteral("enabled"), false}}},
+                     {QStringLiteral("interferometer"),
+                      QJsonObject{{QStringLiteral("interval_s"), interval}, {QStringLiteral("targets_mm"), targets},
+                                  {QStringLiteral("noise_um"), 0.25}}}}},
+        {QStringLiteral("programme"), QJsonObject{{QStringLiteral("phases"), phases}}},
+        {QStringLiteral("randomise"), QJsonObject{{QStringLiteral("enabled"), true},
+                                                  {QStringLiteral("relative_spread"), 0.15},
+                                                  {QStringLiteral("fixed_end_jitter_mm"), 3}}}};
+}
+
+void TestDiagnosis::badInput()
+{
+    const QString json = m_dir.filePath(QStringLiteral("bad.json"));
+    Result r = run({QStringLiteral("diagnose"), QStringLiteral("--train"), m_dir.filePath(QStringLiteral("missing")),
+                    QStringLiteral("--validate"), QStringLiteral("x"), QStringLiteral("--json"), json});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("missing"), r.err.constData());
+    r = run({QStringLiteral("diagnose"), QStringLiteral("--help")});
+    QCOMPARE(r.code, 0);
+    QVERIFY(r.out.contains("--predictions"));
+}
+
+void TestDiagnosis::concealedEffects_data()
+{
+    QTest::addColumn<QString>("effect");
+    QTest::addColumn<int>("seed");
+    const int seeds = qEnvironmentVariableIsSet("DRIFTLAB_DIAG_SEEDS") ? qEnvironmentVariableIntValue("DRIFTLAB_DIAG_SEEDS") : 1;
+    const int first = qEnvironmentVariableIsSet("DRIFTLAB_DIAG_FIRST_SEED") ? qEnvironmentVariableIntValue("DRIFTLAB_DIAG_FIRST_SEED") : 1;
+    const QString only = qEnvironmentVariable("DRIFTLAB_DIAG_EFFECTS");
+    for (const char *e : kEffects) {
+        if (!only.isEmpty() && !only.split(QLatin1Char(',')).contains(QLatin1String(e)))
+            continue;
+        for (int s = first; s < first + seeds; ++s)
+            QTest::newRow(QStringLiteral("%1/%2").arg(QLatin1String(e)).arg(s).toLatin1().constData()) << QString::fromLatin1(e) << s;
+    }
+}
+
+void TestDiagnosis::concealedEffects()
+{
+    QFETCH(QString, effect);
+    QFETCH(int, seed);
+    const unsigned machine = 1000u + static_cast<unsigned>(seed) * 17u + static_cast<unsigned>(qHash(effect) % 1000u);
+    const QString base = m_dir.filePath(QStringLiteral("%1-%2").arg(effect).arg(seed));
+    const QString db = base + QStringLiteral(".sqlite");
+    qint64 ids[2] = {-1, -1};
+    for (int v = 0; v < 2; ++v) {
+        std::mt19937 rng(machine);
+        const QJsonObject config = rig(effect, machine, v == 1, rng);
+        const QString path = base + (v ? QStringLiteral("-validate.json") : QStringLiteral("-train.json"));
+        QFile f(path);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write(QJsonDocument(config).toJson());
+        f.close();
+        const QString out = base + QStringLiteral("-rec%1.json").arg(v);
+        const Result r = run({QStringLiteral("record"), QStringLiteral("--rig"), path, QStringLiteral("--duration"),
+                              v ? QStringLiteral("3:00:00") : QStringLiteral("4:00:00"), QStringLiteral("--out"), db,
+                              QStringLiteral("--json"), out});
+        QVERIFY2(r.code == 0, r.err.constData());
+        QFile j(out);
+        QVERIFY(j.open(QIODevice::ReadOnly));
+        const QJsonObject rec = QJsonDocument::fromJson(j.readAll()).object();
+        ids[v] = static_cast<qint64>(rec.value(QStringLiteral("session")).toDouble(-1));
+        QVERIFY2(ids[v] > 0, QJsonDocument(rec).toJson().constData());
+    }
+    // Blind: the diagnosis sees only the two sessions.
+    const QString json = base + QStringLiteral("-diagnosis.json");
+    const QString csv = base + QStringLiteral("-predictions.csv");
+    QElapsedTimer timer;
+    timer.start();
+    const Result r = run({QStringLiteral("diagnose"), QStringLiteral("--train"), QString::number(ids[0]),
+                          QStringLiteral("--validate"), QString::number(ids[1]), QStringLiteral("--db"), db,
+                          QStringLiteral("--json"), json, QStringLiteral("--predictions"), csv});
+    QVERIFY2(r.code == 0, r.err.constData());
+    QFile j(json);
+    QVERIFY(j.open(QIODevice::ReadOnly));
+    const QJsonObject d = QJsonDocument::fromJson(j.readAll()).object();
+    Outcome o;
+    o.truth = effect;
+    o.answer = d.value(QStringLiteral("effect")).toString();
+    o.baselineHeldout = d.value(QStringLiteral("baseline")).toObject().value(QStringLiteral("heldout_rms_um")).toDouble();
+    o.correctedHeldout = d.value(QStringLiteral("corrected")).toObject().value(QStringLiteral("heldout_rms_um")).toDouble();
+    o.seconds = timer.elapsed() / 1000.0;
+    m_outcomes.push_back(o);
+    qInfo("%s seed %d: answer %s, held-out RMS %.3f -> %.3f um, %.1f s", qPrintable(effect), seed, qPrintable(o.answer),
+          o.baselineHeldout, o.correctedHeldout, o.seconds);
+
+    // Contract: every candidate reported, CSV rows for B's interferometer targets.
+    QVERIFY(d.value(QStringLiteral("candidates")).toArray().size() >= 8);
+    QVERIFY(d.value(QStringLiteral("location")).toObject().contains(QStringLiteral("summary")));
+    QFile c(csv);
+    QVERIFY(c.open(QIODevice::ReadOnly | QIODevice::Text));
+    QCOMPARE(c.readLine().trimmed(), QByteArray("time_s,position_mm,baseline_um,corrected_um"));
+    int rows = 0;
+    while (!c.atEnd())
+        rows += c.readLine().trimmed().split(',').size() == 4 ? 1 : 0;
+    QVERIFY(rows > 10);
+
+    if (qEnvironmentVariableIsSet("DRIFTLAB_DIAG_NO_ASSERT"))
+        return; // sweep mode: record, do not stop
+    // A false discovery is as bad as a miss: "none" must be answered exactly.
+    if (effect == QLatin1String("none")) {
+        QCOMPARE(o.answer, effect);
+        return;
+    }
+    if (o.answer == effect)
+        QVERIFY2(o.correctedHeldout < 0.9 * o.baselineHeldout, "held-out RMS did not improve by 10 %");
+    else
+        qWarning("%s seed %d named %s (counted in ciAccuracy)", qPrintable(effect), seed, qPrintable(o.answer));
+}
+
+// Concealed effects are, by construction, near the detection limit; the documented sweep
+// (docs/diagnosis.md) misses some motor-coupling / heat-path-lag seeds. Over the CI subset
+// at most two effects may be missed (and "none" was checked exactly above).
+void TestDiagnosis::ciAccuracy()
+{
+    if (qEnvironmentVariableIsSet("DRIFTLAB_DIAG_NO_ASSERT") || qEnvironmentVariableIsSet("DRIFTLAB_DIAG_EFFECTS"))
+        QSKIP("sweep or partial run");
+    int effects = 0, right = 0;
+    for (const Outcome &o : m_outcomes) {
+        if (o.truth == QLatin1String("none"))
+            continue;
+        ++effects;
+        right += o.answer == o.truth ? 1 : 0;
+    }
+    QVERIFY(effects >= 8);
+    QVERIFY2(right >= effects - 2, qPrintable(QStringLiteral("%1 of %2 effects named").arg(right).arg(effects)));
+}
+
+void TestDiagnosis::cleanupTestCase()
+{
+    const QString out = qEnvironmentVariable("DRIFTLAB_DIAG_OUT");
+    if (out.isEmpty())
+        return;
+    QFile f(out);
+    if (!f.open(QIODevice::WriteOnly | QIODevice::Text))
+        return;
+    QTextStream s(&f);
+    s << "truth,answer,baseline_heldout_um,corrected_heldout_um,seconds\n";
+    for (const Outcome &o : m_outcomes)
+        s << o.truth << ',' << o.answer << ',' << o.baselineHeldout << ',' << o.correctedHeldout << ',' << o.seconds << '\n';
+}
+
+QTEST_GUILESS_MAIN(TestDiagnosis)
+#include "tst_diagnosis.moc"
