@@ -2,6 +2,7 @@
 
 #include "AcquisitionPanel.h"
 #include "BundleTransfer.h"
+#include "DiagnosisPanel.h"
 #include "ModelsPanel.h"
 #include "PlotExporter.h"
 #include "ReviewWorkspace.h"
@@ -43,7 +44,8 @@ MainWindow::MainWindow(QWidget *parent)
       m_workspace(new ReviewWorkspace(this)),
       m_comparison(new ReviewWorkspace(this)),
       m_acquisition(new AcquisitionPanel(this)),
-      m_models(new ModelsPanel(this))
+      m_models(new ModelsPanel(this)),
+      m_diagnosis(new DiagnosisPanel(this))
 {
     setObjectName(QStringLiteral("DriftLabMainWindow"));
     setWindowTitle(tr("DriftLab"));
@@ -67,11 +69,18 @@ MainWindow::MainWindow(QWidget *parent)
     models->setWidget(m_models);
     addDockWidget(Qt::BottomDockWidgetArea, models);
     models->hide();
+    auto *diagnosis = new QDockWidget(tr("Diagnosis"), this);
+    diagnosis->setObjectName(QStringLiteral("DiagnosisDock"));
+    diagnosis->setWidget(m_diagnosis);
+    addDockWidget(Qt::BottomDockWidgetArea, diagnosis);
+    tabifyDockWidget(models, diagnosis);
+    diagnosis->hide();
     buildMenus();
     QMenu *viewMenu = menuBar()->findChild<QMenu *>(QStringLiteral("ViewMenu"));
     viewMenu->addAction(dock->toggleViewAction());
     viewMenu->addAction(acquisition->toggleViewAction());
     viewMenu->addAction(models->toggleViewAction());
+    viewMenu->addAction(diagnosis->toggleViewAction());
     // A finished recording appears in the session list (opening its database if needed).
     connect(m_acquisition, &AcquisitionPanel::recordingStopped, this, [this](qint64 id) {
         const QString db = m_acquisition->databasePath();
@@ -168,11 +177,12 @@ bool MainWindow::openDatabase(const QString &path)
 {
     try {
         auto store = std::make_unique<SessionStore>(path);
-        if (m_models->running()) {
-            reportError(tr("A model fit is running on the open database; cancel it first"));
+        if (m_models->running() || m_diagnosis->running()) {
+            reportError(tr("A model fit or diagnosis is running on the open database; cancel it first"));
             return false;
         }
         m_models->setStore(nullptr);
+        m_diagnosis->setStore(nullptr);
         m_workspace->clear();
         m_comparison->clear();
         m_comparison->hide();
@@ -193,6 +203,8 @@ void MainWindow::refreshSessions(qint64 select)
     const QVector<SessionInfo> sessions = m_store->sessions();
     if (!m_models->running())
         m_models->setStore(m_store.get());
+    if (!m_diagnosis->running())
+        m_diagnosis->setStore(m_store.get());
     m_browser->setSessions(sessions);
     if (sessions.isEmpty())
         return;

@@ -15,6 +15,7 @@ class QSplitter;
 namespace driftlab {
 
 class AcquisitionPanel;
+class DiagnosisPanel;
 class ModelsPanel;
 class ReviewWorkspace;
 class SessionBrowser;
@@ -41,6 +42,7 @@ public:
     ReviewWorkspace *comparison() const { return m_comparison; }
     AcquisitionPanel *acquisition() const { return m_acquisition; }
     ModelsPanel *models() const { return m_models; }
+    DiagnosisPanel *diagnosis() const { return m_diagnosis; }
     SessionBrowser *browser() const { return m_browser; }
     qint64 currentSession() const { return m_sessionId; }
     QString lastError() const { return m_lastError; }
@@ -70,6 +72,7 @@ private:
     ReviewWorkspace *m_comparison;
     AcquisitionPanel *m_acquisition;
     ModelsPanel *m_models;
+    DiagnosisPanel *m_diagnosis;
     QMenu *m_recentMenu = nullptr;
     qint64 m_sessionId = 0;
     QString m_lastError;

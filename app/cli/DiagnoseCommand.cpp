@@ -106,26 +106,7 @@ QString DiagnoseCommand::summary() const
 
 DiagnosisRecording DiagnoseCommand::loadRecording(const SessionStore &store, qint64 sessionId, QString *note)
 {
-    DiagnosisRecording rec;
-    rec.screw = FitCommand::loadRecording(store, sessionId, note);
-    SessionAnalysis analysis(store, sessionId);
-    static const QStringList driveRoles{QStringLiteral("axis_position"), QStringLiteral("feed_rate"),
-                                        QStringLiteral("screw_elongation")};
-    for (const ChannelInfo &c : store.channels(sessionId)) {
-        if (c.role.isEmpty() || driveRoles.contains(c.role) || c.kind != QLatin1String("temperature"))
-            continue;
-        const std::string role = c.role.toStdString();
-        if (rec.channelsByRole.count(role))
-            continue;
-        try {
-            rec.channelsByRole[role] = analysis.channelByRole(c.role);
-        } catch (const std::runtime_error &) {
-        }
-    }
-    const QJsonValue pf = store.session(sessionId).machine.value(QStringLiteral("fixed_end_position_mm"));
-    if (pf.isDouble())
-        rec.drawingFixedEnd_mm = pf.toDouble();
-    return rec;
+    return SessionAnalysis(store, sessionId).diagnosisRecording(note);
 }
 
 QJsonObject DiagnoseCommand::reportJson(const DiagnosisReport &r)

@@ -172,4 +172,27 @@ ScrewRecording SessionAnalysis::recording(QString *note) const
     return rec;
 }
 
+DiagnosisRecording SessionAnalysis::diagnosisRecording(QString *note) const
+{
+    DiagnosisRecording rec;
+    rec.screw = recording(note);
+    static const QStringList driveRoles{QStringLiteral("axis_position"), QStringLiteral("feed_rate"),
+                                        QStringLiteral("screw_elongation")};
+    for (const ChannelInfo &c : m_channels) {
+        if (c.role.isEmpty() || driveRoles.contains(c.role) || c.kind != QLatin1String("temperature"))
+            continue;
+        const std::string role = c.role.toStdString();
+        if (rec.channelsByRole.count(role))
+            continue;
+        try {
+            rec.channelsByRole[role] = channelByRole(c.role);
+        } catch (const std::runtime_error &) {
+        }
+    }
+    const QJsonValue pf = m_info.machine.value(QStringLiteral("fixed_end_position_mm"));
+    if (pf.isDouble())
+        rec.drawingFixedEnd_mm = pf.toDouble();
+    return rec;
+}
+
 } // namespace driftlab

@@ -4,6 +4,7 @@
 // description from the session's machine block, and runs the model against them.
 
 #include "FdmSimulation.h"
+#include "DiagnosisTypes.h"
 #include "IdentificationTypes.h"
 #include "StorageTypes.h"
 
@@ -36,6 +37,9 @@ public:
     // and direction), the screw_elongation channel if present (relative to its first
     // sample). `note` receives what was used. Throws std::runtime_error for a missing drive channel.
     ScrewRecording recording(QString *note = nullptr) const;
+    // recording() plus every temperature channel by role (the candidates' drivers) and the
+    // drawing's P_f from the machine block: the input of the mismatch diagnosis.
+    DiagnosisRecording diagnosisRecording(QString *note = nullptr) const;
     TimeSeries channelByRole(const QString &role) const;
 
     // Runs the model with `parameters` over the session and compares with the probe.

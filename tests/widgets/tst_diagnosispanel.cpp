@@ -1,0 +1,111 @@
+// The Diagnosis workspace runs the diagnosis in the background on two stored rig sessions
+// with a concealed structure drift, names it, shows the validation residual shrink, and can
+// be cancelled.
+
+#include "DiagnosisPanel.h"
+#include "ErrorSurfacePlot.h"
+#include "RigConfigLoader.h"
+#include "RigRecorder.h"
+#include "SessionStore.h"
+#include "SimulatedRig.h"
+
+#include <QSignalSpy>
+#include <QTableWidget>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include <cmath>
+
+using namespace driftlab;
+
+class TestDiagnosisPanel : public QObject {
+    Q_OBJECT
+private slots:
+    void initTestCase();
+    void namesTheConcealedEffect();
+    void cancelStops();
+    void refusesSameSession();
+
+private:
+    QTemporaryDir m_dir;
+    std::unique_ptr<SessionStore> m_store;
+    qint64 m_train = 0, m_validate = 0;
+};
+
+void TestDiagnosisPanel::initTestCase()
+{
+    m_store = std::make_unique<SessionStore>(m_dir.filePath(QStringLiteral("diag.sqlite")));
+    RigConfig config = RigConfigLoader::preset(QStringLiteral("structure-offset"));
+    config.program = FeedProgram::seed000Table2(6000.0, config.travelLow_mm, config.travelHigh_mm);
+    {
+        SimulatedRig rig(config);
+        m_train = RigRecorder(*m_store, rig).record(QStringLiteral("train"), 4 * 3600.0);
+    }
+    config.program = FeedProgram::seed000Table2(8000.0, config.travelLow_mm, config.travelHigh_mm);
+    config.seed += 1;
+    {
+        SimulatedRig rig(config);
+        m_validate = RigRecorder(*m_store, rig).record(QStringLiteral("validate"), 3 * 3600.0);
+    }
+}
+
+namespace {
+double rms(const std::vector<double> &z)
+{
+    double s = 0.0;
+    int n = 0;
+    for (double v : z) {
+        if (!std::isnan(v)) {
+            s += v * v;
+            ++n;
+        }
+    }
+    return n ? std::sqrt(s / n) : 0.0;
+}
+} // namespace
+
+void TestDiagnosisPanel::namesTheConcealedEffect()
+{
+    DiagnosisPanel panel;
+    panel.setStore(m_store.get());
+    QSignalSpy done(&panel, &DiagnosisPanel::finished);
+    QVERIFY2(panel.start(m_train, m_validate), qPrintable(panel.lastError()));
+    QVERIFY(panel.running());
+    QVERIFY(done.wait(300000));
+    QVERIFY2(done.last().at(0).toBool(), qPrintable(panel.lastError()));
+    const DiagnosisReport &r = panel.report();
+    qInfo("answer %s, held-out %.2f -> %.2f um", r.effect.c_str(), r.baseline.heldoutRms_um, r.corrected.heldoutRms_um);
+    QCOMPARE(QString::fromStdString(r.effect), QStringLiteral("structure_offset"));
+    QVERIFY(r.corrected.heldoutRms_um < 0.75 * r.baseline.heldoutRms_um);
+    QCOMPARE(panel.candidateTable()->rowCount(), int(r.candidates.size()));
+    // The maps, recomputed from the predictions, show the same improvement.
+    std::vector<double> x, y, before, after;
+    DiagnosisPanel::residualGrid(r.predictions, false, x, y, before);
+    DiagnosisPanel::residualGrid(r.predictions, true, x, y, after);
+    QVERIFY(x.size() >= 5 && y.size() >= 3);
+    QVERIFY(rms(after) < 0.75 * rms(before));
+    QVERIFY(std::fabs(panel.correctedResiduals()->valueAt(x[2], y[1]) - after[1 * x.size() + 2]) < 1e-9);
+}
+
+void TestDiagnosisPanel::cancelStops()
+{
+    DiagnosisPanel panel;
+    panel.setStore(m_store.get());
+    QSignalSpy done(&panel, &DiagnosisPanel::finished);
+    QVERIFY(panel.start(m_train, m_validate));
+    panel.cancel();
+    QVERIFY(done.wait(300000));
+    QCOMPARE(done.last().at(0).toBool(), false);
+    QVERIFY(panel.lastError().contains(QStringLiteral("Cancelled")));
+}
+
+void TestDiagnosisPanel::refusesSameSession()
+{
+    DiagnosisPanel panel;
+    panel.setStore(m_store.get());
+    QVERIFY(!panel.start(m_train, m_train));
+    QVERIFY(panel.lastError().contains(QStringLiteral("different")));
+}
+
+QTEST_MAIN(TestDiagnosisPanel)
+#include "tst_diagnosispanel.moc"

@@ -1,0 +1,246 @@
+#include "DiagnosisPanel.h"
+
+#include "DiagnosisEngine.h"
+#include "ErrorSurfacePlot.h"
+#include "ModelsPanel.h"
+#include "SessionAnalysis.h"
+#include "SessionStore.h"
+
+#include <QComboBox>
+#include <QGridLayout>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QTableWidget>
+#include <QVBoxLayout>
+
+namespace driftlab {
+
+DiagnosisPanel::DiagnosisPanel(QWidget *parent)
+    : QWidget(parent),
+      m_train(new QComboBox(this)),
+      m_validate(new QComboBox(this)),
+      m_run(new QPushButton(tr("Diagnose"), this)),
+      m_cancel(new QPushButton(tr("Cancel"), this)),
+      m_progress(new QProgressBar(this)),
+      m_stage(new QLabel(this)),
+      m_answer(new QLabel(this)),
+      m_candidates(new QTableWidget(0, 6, this)),
+      m_before(new ErrorSurfacePlot(this)),
+      m_after(new ErrorSurfacePlot(this))
+{
+    auto *left = new QVBoxLayout();
+    left->addWidget(new QLabel(tr("Training session"), this));
+    left->addWidget(m_train);
+    left->addWidget(new QLabel(tr("Validation session"), this));
+    left->addWidget(m_validate);
+    auto *buttons = new QHBoxLayout();
+    buttons->addWidget(m_run);
+    buttons->addWidget(m_cancel);
+    left->addLayout(buttons);
+    left->addWidget(m_progress);
+    left->addWidget(m_stage);
+    m_answer->setWordWrap(true);
+    m_answer->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    left->addWidget(m_answer);
+    m_candidates->setHorizontalHeaderLabels(
+        {tr("effect"), tr("accepted"), tr("score"), tr("held-out RMS (µm)"), tr("ΔAICc"), tr("evidence")});
+    m_candidates->horizontalHeader()->setStretchLastSection(true);
+    m_candidates->verticalHeader()->hide();
+    left->addWidget(m_candidates, 1);
+    m_stage->setWordWrap(true);
+
+    m_before->setTitle(tr("Validation residual, baseline"));
+    m_after->setTitle(tr("Validation residual, corrected model"));
+    auto *plots = new QVBoxLayout();
+    plots->addWidget(m_before);
+    plots->addWidget(m_after);
+    auto *layout = new QHBoxLayout(this);
+    layout->addLayout(left, 1);
+    layout->addLayout(plots, 1);
+
+    m_progress->setRange(0, 100);
+    m_progress->setValue(0);
+    m_cancel->setEnabled(false);
+    connect(m_run, &QPushButton::clicked, this, [this] {
+        if (!start(m_train->currentData().toLongLong(), m_validate->currentData().toLongLong()))
+            m_stage->setText(m_lastError);
+    });
+    connect(m_cancel, &QPushButton::clicked, this, &DiagnosisPanel::cancel);
+}
+
+DiagnosisPanel::~DiagnosisPanel()
+{
+    m_cancelRequested = true;
+    joinWorker();
+}
+
+void DiagnosisPanel::joinWorker()
+{
+    if (m_thread.joinable())
+        m_thread.join();
+}
+
+void DiagnosisPanel::setStore(const SessionStore *store)
+{
+    m_store = store;
+    m_train->clear();
+    m_validate->clear();
+    if (!store)
+        return;
+    for (const SessionInfo &s : store->sessions()) {
+        const QString label = QStringLiteral("#%1  %2").arg(s.id).arg(s.name);
+        m_train->addItem(label, s.id);
+        m_validate->addItem(label, s.id);
+    }
+    m_validate->setCurrentIndex(m_validate->count() - 1);
+}
+
+bool DiagnosisPanel::start(qint64 trainSession, qint64 validationSession)
+{
+    if (running()) {
+        m_lastError = tr("A diagnosis is already running");
+        return false;
+    }
+    if (!m_store) {
+        m_lastError = tr("Open a database first");
+        return false;
+    }
+    if (trainSession == validationSession) {
+        m_lastError = tr("Training and validation must be different sessions");
+        return false;
+    }
+    joinWorker();
+    DiagnosisRecording train, validate;
+    ScrewGeometry geometry;
+    DiagnosisOptions options;
+    try {
+        SessionAnalysis a(*m_store, trainSession);
+        train = a.diagnosisRecording();
+        validate = SessionAnalysis(*m_store, validationSession).diagnosisRecording();
+        geometry = a.geometry();
+        options.identification.initial = a.defaultParameters();
+    } catch (const std::exception &e) {
+        m_lastError = QString::fromStdString(e.what());
+        return false;
+    }
+    if (train.screw.interferometer.empty() || validate.screw.interferometer.empty()) {
+        m_lastError = tr("Both sessions need interferometer runs besides the reference run");
+        return false;
+    }
+    // The settings of `driftlab-cli diagnose` (fit step 20 s, drive sampled every second).
+    options.identification.simulator.grid.dt_s = 20.0;
+    options.identification.simulator.driveSample_s = 1.0;
+    options.identification.maxIterations = 60;
+    m_cancelRequested = false;
+    m_finished = false;
+    m_run->setEnabled(false);
+    m_cancel->setEnabled(true);
+    m_progress->setValue(0);
+    m_answer->clear();
+    m_candidates->setRowCount(0);
+    m_thread = std::thread([this, geometry, options, train = std::move(train), validate = std::move(validate)] {
+        DiagnosisReport report;
+        QString error;
+        bool ok = true;
+        try {
+            DiagnosisEngine engine(geometry, options);
+            report = engine.run(train, validate, [this](double fraction, const std::string &stage) {
+                const QString text = QString::fromStdString(stage);
+                QMetaObject::invokeMethod(this, [this, fraction, text] {
+                    m_progress->setValue(static_cast<int>(100.0 * fraction));
+                    m_stage->setText(text);
+                }, Qt::QueuedConnection);
+                return !m_cancelRequested.load();
+            });
+            if (report.cancelled) {
+                ok = false;
+                error = tr("Cancelled: no diagnosis was made");
+            }
+        } catch (const std::exception &e) {
+            ok = false;
+            error = QString::fromStdString(e.what());
+        }
+        QMetaObject::invokeMethod(this, [this, ok, error, report] {
+            m_report = report;
+            finish(ok, error);
+        }, Qt::QueuedConnection);
+    });
+    return true;
+}
+
+void DiagnosisPanel::cancel()
+{
+    m_cancelRequested = true;
+    m_stage->setText(tr("Cancelling..."));
+}
+
+void DiagnosisPanel::residualGrid(const std::vector<DiagnosisPrediction> &predictions, bool corrected,
+                                  std::vector<double> &x, std::vector<double> &y, std::vector<double> &z)
+{
+    std::vector<ObservationFit> points;
+    for (const DiagnosisPrediction &p : predictions) {
+        if (p.reference)
+            continue;
+        ObservationFit o;
+        o.t_s = p.t_s;
+        o.position_mm = p.position_mm;
+        o.measured_um = p.measured_um;
+        o.predicted_um = corrected ? p.corrected_um : p.baseline_um;
+        points.push_back(o);
+    }
+    ModelsPanel::grid(points, 0, 2, x, y, z);
+}
+
+void DiagnosisPanel::finish(bool ok, const QString &error)
+{
+    joinWorker();
+    m_finished = true;
+    m_run->setEnabled(true);
+    m_cancel->setEnabled(false);
+    m_lastError = error;
+    if (!ok) {
+        m_stage->setText(error);
+        emit finished(false);
+        return;
+    }
+    m_progress->setValue(100);
+    const DiagnosisReport &r = m_report;
+    m_answer->setText(tr("<b>%1</b> — %2<br>Held-out RMS %3 µm → %4 µm (%5 s).<br>%6")
+                          .arg(QString::fromStdString(r.effect), QString::fromStdString(r.explanation).toHtmlEscaped())
+                          .arg(r.baseline.heldoutRms_um, 0, 'f', 2)
+                          .arg(r.corrected.heldoutRms_um, 0, 'f', 2)
+                          .arg(r.wallTime_s, 0, 'f', 1)
+                          .arg(QString::fromStdString(r.location.summary).toHtmlEscaped()));
+    m_candidates->setRowCount(static_cast<int>(r.candidates.size()));
+    for (int i = 0; i < static_cast<int>(r.candidates.size()); ++i) {
+        const CandidateOutcome &c = r.candidates[static_cast<size_t>(i)];
+        QStringList reasons;
+        for (const std::string &s : c.reasons)
+            reasons << QString::fromStdString(s);
+        m_candidates->setItem(i, 0, new QTableWidgetItem(QString::fromStdString(c.effect)));
+        m_candidates->setItem(i, 1, new QTableWidgetItem(c.accepted ? tr("yes") : (c.applicable ? tr("no") : tr("n/a"))));
+        m_candidates->setItem(i, 2, new QTableWidgetItem(QString::number(c.score, 'f', 3)));
+        m_candidates->setItem(i, 3, new QTableWidgetItem(c.applicable ? QString::number(c.evaluation.heldoutRms_um, 'f', 2) : QString()));
+        m_candidates->setItem(i, 4, new QTableWidgetItem(c.applicable ? QString::number(c.deltaIc, 'f', 1) : QString()));
+        auto *why = new QTableWidgetItem(c.applicable ? reasons.join(QStringLiteral("; ")) : QString::fromStdString(c.notApplicableReason));
+        why->setToolTip(QString::fromStdString(c.explanation));
+        m_candidates->setItem(i, 5, why);
+    }
+    m_candidates->resizeColumnsToContents();
+    std::vector<double> x, y, z;
+    residualGrid(r.predictions, false, x, y, z);
+    if (x.size() >= 2 && y.size() >= 2)
+        m_before->setGrid(x, y, z);
+    residualGrid(r.predictions, true, x, y, z);
+    if (x.size() >= 2 && y.size() >= 2)
+        m_after->setGrid(x, y, z);
+    for (ErrorSurfacePlot *p : {m_before, m_after})
+        p->setAxisTitle(QwtPlot::yRight, tr("residual (µm)"));
+    m_stage->setText(tr("done"));
+    emit finished(true);
+}
+
+} // namespace driftlab

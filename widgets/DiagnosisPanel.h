@@ -1,0 +1,71 @@
+#pragma once
+// Diagnosis workspace: pick a training and a validation session, run the mismatch
+// diagnosis in the background (progress by stage, cancel), and see the answer with its
+// explanation and location, every candidate's evidence, the held-out RMS before and after,
+// and the validation residual maps of the baseline and the corrected model.
+
+#include "DiagnosisTypes.h"
+
+#include <QWidget>
+
+#include <atomic>
+#include <thread>
+
+class QComboBox;
+class QLabel;
+class QProgressBar;
+class QPushButton;
+class QTableWidget;
+
+namespace driftlab {
+
+class ErrorSurfacePlot;
+class SessionStore;
+
+class DiagnosisPanel : public QWidget {
+    Q_OBJECT
+public:
+    explicit DiagnosisPanel(QWidget *parent = nullptr);
+    ~DiagnosisPanel() override;
+
+    void setStore(const SessionStore *store);
+    bool start(qint64 trainSession, qint64 validationSession);
+    void cancel();
+    bool running() const { return m_thread.joinable() && !m_finished; }
+    QString lastError() const { return m_lastError; }
+    const DiagnosisReport &report() const { return m_report; }
+    QTableWidget *candidateTable() const { return m_candidates; }
+    ErrorSurfacePlot *baselineResiduals() const { return m_before; }
+    ErrorSurfacePlot *correctedResiduals() const { return m_after; }
+
+    // Validation residual grid (target x run time) of the baseline (corrected = false) or
+    // the corrected model; reference-run points are left out.
+    static void residualGrid(const std::vector<DiagnosisPrediction> &predictions, bool corrected, std::vector<double> &x,
+                             std::vector<double> &y, std::vector<double> &z);
+
+signals:
+    void finished(bool ok);
+
+private:
+    void finish(bool ok, const QString &error);
+    void joinWorker();
+
+    const SessionStore *m_store = nullptr;
+    QComboBox *m_train;
+    QComboBox *m_validate;
+    QPushButton *m_run;
+    QPushButton *m_cancel;
+    QProgressBar *m_progress;
+    QLabel *m_stage;
+    QLabel *m_answer;
+    QTableWidget *m_candidates;
+    ErrorSurfacePlot *m_before;
+    ErrorSurfacePlot *m_after;
+    std::thread m_thread;
+    std::atomic<bool> m_cancelRequested{false};
+    bool m_finished = true;
+    QString m_lastError;
+    DiagnosisReport m_report;
+};
+
+} // namespace driftlab
