@@ -1,5 +1,6 @@
 // driftlab: the DriftLab desktop application.
 
+#include "DiagnosisPanel.h"
 #include "MainWindow.h"
 #include "ModelsPanel.h"
 
@@ -46,7 +47,10 @@ int main(int argc, char **argv)
                                  QStringLiteral("Open the Models dock and fit the seed-000 model to these sessions: "
                                                 "IDS[:HELDOUT], e.g. 1,2,3:4."),
                                  QStringLiteral("ids"));
-    p.addOptions({db, session, screenshot, view, compare, fit});
+    const QCommandLineOption diagnose(QStringLiteral("diagnose"),
+                                      QStringLiteral("Open the Diagnosis dock and diagnose: TRAIN:VALIDATE session ids."),
+                                      QStringLiteral("ids"));
+    p.addOptions({db, session, screenshot, view, compare, fit, diagnose});
     p.process(app);
 
     QTextStream err(stderr);
@@ -101,7 +105,25 @@ int main(int argc, char **argv)
             err << "driftlab: cannot fit: " << window.models()->lastError() << '\n';
     }
 
-    if (p.isSet(screenshot) && fitting) {
+    bool diagnosing = false;
+    if (p.isSet(diagnose)) {
+        const QStringList ids = p.value(diagnose).split(QLatin1Char(':'));
+        if (QDockWidget *dock = window.findChild<QDockWidget *>(QStringLiteral("DiagnosisDock")))
+            dock->show();
+        window.resize(1500, 1150);
+        diagnosing = ids.size() == 2 && window.diagnosis()->start(ids.at(0).toLongLong(), ids.at(1).toLongLong());
+        if (!diagnosing)
+            err << "driftlab: cannot diagnose: " << window.diagnosis()->lastError() << '\n';
+    }
+    if (p.isSet(screenshot) && diagnosing) {
+        QObject::connect(window.diagnosis(), &DiagnosisPanel::finished, &window, [&window, &err, png = p.value(screenshot)] {
+            QTimer::singleShot(300, &window, [&window, &err, png] {
+                const bool ok = window.grab().save(png, "PNG");
+                err << "driftlab: screenshot " << (ok ? "written to " : "FAILED: ") << png << '\n';
+                QApplication::exit(ok ? 0 : 1);
+            });
+        });
+    } else if (p.isSet(screenshot) && fitting) {
         // Wait for the fit, then take the picture.
         QObject::connect(window.models(), &ModelsPanel::fitFinished, &window, [&window, &err, png = p.value(screenshot)] {
             QTimer::singleShot(300, &window, [&window, &err, png] {
