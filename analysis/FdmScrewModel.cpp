@@ -1,5 +1,7 @@
 #include "FdmScrewModel.h"
 
+#include "ScrewExpansion.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -202,26 +204,14 @@ void FdmScrewModel::updateCoefficients(double v)
 
 double FdmScrewModel::expansionAt_um(double distanceFromFixedEnd_m) const
 {
-    // eq. (11)-(14) with E_n relative to the ambient at reset(): alpha (T_n - T_a) dx summed
-    // from the fixed end, plus alpha dT_a x (eq. 1), which is the same as alpha (T_n - T_a0) dx.
-    const double dx = m_settings.dx_m;
-    const double x = std::clamp(distanceFromFixedEnd_m, 0.0, dx * cellCount());
-    const int m = std::min(cellCount(), static_cast<int>(std::floor(x / dx)));
-    double sum = 0.0;
-    for (int i = 0; i < m; ++i)
-        sum += m_T[static_cast<size_t>(i)] - m_ambient0;
-    double e = sum * dx;
-    if (m < cellCount())
-        e += (x - m * dx) * (m_T[static_cast<size_t>(m)] - m_ambient0);
-    return m_geometry.expansion_per_K * e * 1e6;
+    return ScrewExpansion::expansionAt_um(m_T, m_ambient0, m_settings.dx_m, m_geometry.expansion_per_K,
+                                          distanceFromFixedEnd_m);
 }
 
 double FdmScrewModel::thermalError_um(double axisPosition_mm) const
 {
-    // eq. (15)/(16): the error grows away from the fixed end, signed by the side of the travel.
-    const double d_mm = axisPosition_mm - m_parameters.fixedEndPosition_mm;
-    const double te = expansionAt_um(std::fabs(d_mm) / 1000.0);
-    return d_mm >= 0 ? te : -te;
+    return ScrewExpansion::thermalError_um(m_T, m_ambient0, m_settings.dx_m, m_geometry.expansion_per_K, axisPosition_mm,
+                                           m_parameters.fixedEndPosition_mm);
 }
 
 double FdmScrewModel::elongation_um() const
