@@ -54,14 +54,18 @@ private slots:
             pushedAt_ms.push_back(clock.elapsed());
             QThread::msleep(20);
             const qint64 now = clock.elapsed();
+            // One read transaction: the raw samples and the decimated levels come from the
+            // same snapshot even when the writer commits in between.
+            reader.begin();
             const SampleBlock b = reader.samples(channel);
+            const DecimatedSeries d = reader.decimated(channel, -1, 1e9, 100);
+            reader.commit();
             QVERIFY(b.t.size() >= lastSeen); // committed data never disappears
             lastSeen = b.t.size();
             for (int k = 0; k < b.t.size(); k += 97)
                 QCOMPARE(b.v[k], value(k));
             if (!b.t.isEmpty()) {
                 ++readsWithData;
-                const DecimatedSeries d = reader.decimated(channel, -1, 1e9, 100);
                 QCOMPARE(d.tLast.back(), b.t.back());
             }
             // Everything pushed more than 1 s ago is committed (0.5 s batches + margin).
