@@ -1,5 +1,7 @@
 #include "CandidateEffect.h"
 
+#include <algorithm>
+
 #include "ChannelErrorTerm.h"
 #include "ChannelHeatSource.h"
 #include "EndHeatSource.h"
@@ -82,7 +84,7 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                    "heat k v reaching the fixed end through a first-order lag.",
                    "role:motor (fallback: feed)",
                    {},
-                   [](const DiagnosisRecording &train) {
+                   [](const DiagnosisRecording &train, int) {
                        if (train.hasRole("motor"))
                            return channelHeat("motor", {"G_motor_coupling", "W/K", 0.5, 0.0, 50.0, 0.1},
                                               ChannelHeatSource::Location::FixedEnd, true);
@@ -95,7 +97,7 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                    "Modelled as Q_E = k v into the free-end cell, k in W/(mm/min).",
                    "feed",
                    {},
-                   [](const DiagnosisRecording &) {
+                   [](const DiagnosisRecording &, int) {
                        CandidateModel m;
                        m.sources.push_back(std::make_shared<EndHeatSource>(EndHeatSource::End::Free));
                        return m;
@@ -106,7 +108,7 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                    "refitted linear laws.",
                    "feed",
                    {},
-                   [](const DiagnosisRecording &) {
+                   [](const DiagnosisRecording &, int) {
                        CandidateModel m;
                        m.sources.push_back(std::make_shared<FeedLawHeatSource>(FeedLawHeatSource::Law::Quadratic,
                                                                                FeedLawHeatSource::Location::Nut));
@@ -121,21 +123,25 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                    "bearing and at the nut.",
                    "feed",
                    {},
-                   [](const DiagnosisRecording &) {
+                   [](const DiagnosisRecording &, int start) {
+                       // Starts from a fast, a medium and a slow heat path (s).
+                       static const double tau[] = {1500.0, 5000.0, 15000.0};
+                       const double t = tau[std::clamp(start, 0, 2)];
                        CandidateModel m;
-                       m.sources.push_back(std::make_shared<FeedLawHeatSource>(FeedLawHeatSource::Law::Lagged,
-                                                                               FeedLawHeatSource::Location::Bearing));
-                       m.sources.push_back(std::make_shared<FeedLawHeatSource>(FeedLawHeatSource::Law::Lagged,
-                                                                               FeedLawHeatSource::Location::Nut));
+                       m.sources.push_back(std::make_shared<FeedLawHeatSource>(
+                           FeedLawHeatSource::Law::Lagged, FeedLawHeatSource::Location::Bearing, t));
+                       m.sources.push_back(std::make_shared<FeedLawHeatSource>(
+                           FeedLawHeatSource::Law::Lagged, FeedLawHeatSource::Location::Nut, t));
                        return m;
-                   }});
+                   },
+                   3});
     lib.push_back({"holding_heat",
                    "Heat is produced while the axis stands still (e.g. the motor holding position, a brake), so "
                    "the screw does not cool as the model expects. Modelled as constant power P_hold into the "
                    "fixed end whenever the feed is zero.",
                    "time (standstill)",
                    {},
-                   [](const DiagnosisRecording &) {
+                   [](const DiagnosisRecording &, int) {
                        CandidateModel m;
                        m.sources.push_back(std::make_shared<FeedLawHeatSource>(FeedLawHeatSource::Law::Standstill,
                                                                                FeedLawHeatSource::Location::Bearing));
@@ -147,21 +153,21 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                    "Modelled as c (T_structure(t) - T_structure(t_ref)), c in um/K.",
                    "role:structure",
                    {"structure"},
-                   [](const DiagnosisRecording &) { return structureTerms(false); }});
+                   [](const DiagnosisRecording &, int) { return structureTerms(false); }});
     lib.push_back({"structure_linear",
                    "The structure or the scale expands with its own temperature in proportion to the axis "
                    "position (a slope across the travel). Modelled as (c1 P_x + c0) (T_structure(t) - "
                    "T_structure(t_ref)), c1 in um/(m K), c0 in um/K.",
                    "role:structure",
                    {"structure"},
-                   [](const DiagnosisRecording &) { return structureTerms(true); }});
+                   [](const DiagnosisRecording &, int) { return structureTerms(true); }});
     lib.push_back({"screw_coolant",
                    "The screw is cooled internally by a coolant whose temperature differs from ambient, so it "
                    "runs cooler and follows the coolant (seed 000 has convection to ambient only). Modelled as "
                    "g (T_coolant - T_ambient) per metre of screw, g in W/(m K).",
                    "role:coolant",
                    {"coolant"},
-                   [](const DiagnosisRecording &) {
+                   [](const DiagnosisRecording &, int) {
                        return channelHeat("coolant", {"g_coolant", "W/(m K)", 5.0, 0.0, 500.0, 1.0},
                                           ChannelHeatSource::Location::Distributed, false);
                    }});

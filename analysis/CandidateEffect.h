@@ -27,7 +27,12 @@ struct CandidateEffect {
     std::string explanation;
     std::string driver;                     // "feed", "time", or "role:<role>"
     std::vector<std::string> requiredRoles; // all must exist in both recordings
-    std::function<CandidateModel(const DiagnosisRecording &train)> create;
+    // Builds the components; `start` in [0, starts) picks one of several starting points of
+    // the nonlinear parameters (the fit keeps the best on the training data). A bounded
+    // amplitude stuck at zero gives its time constant no gradient, so a lag is started at
+    // several values.
+    std::function<CandidateModel(const DiagnosisRecording &train, int start)> create;
+    int starts = 1;
 
     // Empty when usable with these recordings, else why not.
     std::string notApplicable(const DiagnosisRecording &train, const DiagnosisRecording &validate) const;

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -92,7 +93,9 @@ double DiagnosisEngine::crossValidate(const CandidateModel *model, const Diagnos
         lo = std::min(lo, p.t_s);
         hi = std::max(hi, p.t_s);
     }
-    const double gap = m_options.cvGap_s >= 0 ? m_options.cvGap_s : 3.0 * screwTimeConstant_s(options.initial.k2);
+    const double gap = m_options.cvGap_s >= 0
+                           ? m_options.cvGap_s
+                           : std::min(3.0 * screwTimeConstant_s(options.initial.k2), (hi - lo) / 6.0);
     IdentificationOptions o = options;
     o.maxIterations = m_options.cvMaxIterations;
     double sq = 0.0;
@@ -126,6 +129,44 @@ double DiagnosisEngine::crossValidate(const CandidateModel *model, const Diagnos
     return n ? std::sqrt(sq / n) : std::numeric_limits<double>::quiet_NaN();
 }
 
+std::vector<ObservationFit> DiagnosisEngine::predictTemperatures(ScrewModelIdentifier &id,
+                                                                 const IdentificationResult &fit,
+                                                                 const CandidateModel &model,
+                                                                 const DiagnosisRecording &train) const
+{
+    // One recording per sensor (ObservationFit::recording = sensor index); only points inside
+    // the drive. Location evidence only: a failure here never stops the diagnosis.
+    if (train.screwTemperatures.empty() || train.screw.drive.position_mm.size() < 2)
+        return {};
+    const double t0 = train.screw.drive.position_mm.t.front(), t1 = train.screw.drive.position_mm.t.back();
+    std::vector<ScrewRecording> recs;
+    for (const ScrewTemperatureSeries &s : train.screwTemperatures) {
+        ScrewRecording r;
+        r.name = train.screw.name + " / " + s.sensor;
+        r.drive = train.screw.drive;
+        for (const ScrewTemperaturePoint &p : s.points)
+            if (p.t_s >= t0 && p.t_s <= t1 && p.distance_m >= 0.0 && p.distance_m <= m_geometry.length_m)
+                r.screwTemperatures.push_back(p);
+        recs.push_back(std::move(r));
+    }
+    try {
+        if (model.bind)
+            model.bind(train);
+        std::vector<ObservationFit> out;
+        for (size_t k = 0; k < recs.size(); ++k) {
+            if (recs[k].screwTemperatures.empty())
+                continue;
+            for (ObservationFit p : id.predict(fit, {recs[k]}).points) {
+                p.recording = static_cast<int>(k);
+                out.push_back(p);
+            }
+        }
+        return out;
+    } catch (const std::exception &) {
+        return {};
+    }
+}
+
 DiagnosisEngine::Evaluated DiagnosisEngine::evaluate(const CandidateEffect *effect, const DiagnosisRecording &train,
                                                      const DiagnosisRecording &validate,
                                                      const IdentificationOptions &options, double effectiveN,
@@ -133,25 +174,35 @@ DiagnosisEngine::Evaluated DiagnosisEngine::evaluate(const CandidateEffect *effe
 {
     Evaluated out;
     CandidateModel model;
-    if (effect)
-        model = effect->create(train);
-    ScrewModelIdentifier id(m_geometry, options);
-    for (const auto &s : model.sources) {
-        id.addHeatSource(s);
-        if (amplitudeNames)
+    std::unique_ptr<ScrewModelIdentifier> best;
+    const int starts = effect ? std::max(1, effect->starts) : 1;
+    for (int start = 0; start < starts; ++start) {
+        CandidateModel m = effect ? effect->create(train, start) : CandidateModel{};
+        auto id = std::make_unique<ScrewModelIdentifier>(m_geometry, options);
+        for (const auto &s : m.sources)
+            id->addHeatSource(s);
+        for (const auto &t : m.terms)
+            id->addErrorTerm(t);
+        if (m.bind)
+            m.bind(train);
+        IdentificationResult fit = id->fit({train.screw});
+        if (!best || fit.weightedRms < out.fit.weightedRms) {
+            out.fit = std::move(fit);
+            model = std::move(m);
+            best = std::move(id);
+        }
+    }
+    if (amplitudeNames) {
+        for (const auto &s : model.sources)
             amplitudeNames->push_back(s->amplitude().name);
+        if (!model.terms.empty()) // the first error term is the candidate's main one
+            amplitudeNames->push_back(model.terms.front()->amplitude().name);
     }
-    for (size_t t = 0; t < model.terms.size(); ++t) {
-        id.addErrorTerm(model.terms[t]);
-        if (amplitudeNames && t == 0) // the first error term is the candidate's main one
-            amplitudeNames->push_back(model.terms[t]->amplitude().name);
-    }
-    if (model.bind)
-        model.bind(train);
-    out.fit = id.fit({train.screw});
+    ScrewModelIdentifier &id = *best;
     if (model.bind)
         model.bind(validate);
     out.heldout = id.predict(out.fit, {validate.screw});
+    out.temperatures = predictTemperatures(id, out.fit, model, train);
 
     ModelEvaluation &e = out.eval;
     e.parameters = parameterValues(out.fit);
@@ -224,6 +275,7 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &train, const Diag
     base = evaluate(nullptr, train, validate, opts, effectiveN, nullptr);
     report.baseline = base.eval;
     report.location = ResidualLocator::locate(train, base.fit.fit.points);
+    ResidualLocator::locateTemperatures(train, base.temperatures, m_geometry.length_m, report.location);
     ResidualLocator::checkPlausibility(base.fit, opts, train.drawingFixedEnd_mm, report.location);
     ResidualLocator::summarise(report.location);
     if (!tick(1.0, "residual analysis"))
@@ -333,7 +385,7 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &train, const Diag
                                 : 0.0;
         out.deltaIc = ev.eval.informationCriterion - b.informationCriterion;
         // Amplitudes: significance and bounds; nonlinear candidate parameters: bounds.
-        CandidateModel specs = effect.create(train);
+        CandidateModel specs = effect.create(train, 0);
         std::vector<ParameterSpec> bounded;
         for (const auto &s : specs.sources) {
             bounded.push_back(s->amplitude());
@@ -404,6 +456,8 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &train, const Diag
                 winner = &evaluated[c];
         report.corrected = w.evaluation;
         report.correctedLocation = ResidualLocator::locate(train, winner->fit.fit.points);
+        ResidualLocator::locateTemperatures(train, winner->temperatures, m_geometry.length_m,
+                                            report.correctedLocation);
         ResidualLocator::summarise(report.correctedLocation);
     } else {
         report.effect = "none";

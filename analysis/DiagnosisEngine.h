@@ -25,7 +25,9 @@ namespace driftlab {
 struct DiagnosisOptions {
     IdentificationOptions identification; // start values, bounds, grid (dt 30 s is plenty)
     int cvFolds = 3;
-    double cvGap_s = -1.0;                // < 0: three thermal time constants of the screw
+    // < 0: three thermal time constants of the screw, at most a sixth of the recording (a
+    // low fitted k2 would otherwise leave nothing to fit on).
+    double cvGap_s = -1.0;
     int cvMaxIterations = 10;
     // Acceptance thresholds of a candidate.
     double minHeldoutImprovement = 0.25;  // relative reduction of the validation RMS
@@ -71,10 +73,14 @@ private:
         ModelEvaluation eval;
         IdentificationResult fit;
         FitStatistics heldout;
+        std::vector<ObservationFit> temperatures; // training screw temperatures, predicted
     };
     Evaluated evaluate(const CandidateEffect *effect, const DiagnosisRecording &train,
                        const DiagnosisRecording &validate, const IdentificationOptions &options, double effectiveN,
                        std::vector<std::string> *amplitudeNames);
+    std::vector<ObservationFit> predictTemperatures(ScrewModelIdentifier &id, const IdentificationResult &fit,
+                                                    const CandidateModel &model,
+                                                    const DiagnosisRecording &train) const;
     double crossValidate(const CandidateModel *model, const DiagnosisRecording &train,
                          const IdentificationOptions &options);
 

@@ -16,8 +16,16 @@
 
 namespace driftlab {
 
+// Screw temperatures of one sensor (the infrared axial profile, a surface PT100): observed,
+// predicted by the model, never fitted by the diagnosis (they locate, they do not select).
+struct ScrewTemperatureSeries {
+    std::string sensor;
+    std::vector<ScrewTemperaturePoint> points;
+};
+
 struct DiagnosisRecording {
     ScrewRecording screw;
+    std::vector<ScrewTemperatureSeries> screwTemperatures;
     std::map<std::string, TimeSeries> channelsByRole; // auxiliary temperatures, degC
     // Drawing value of P_f (machine block); NaN = unknown (no plausibility check).
     double drawingFixedEnd_mm = std::numeric_limits<double>::quiet_NaN();
@@ -29,7 +37,8 @@ struct DiagnosisRecording {
     }
 };
 
-// A residual statistic of one group (phase, target, hour, sensor).
+// A residual statistic of one group (phase, target, hour, sensor). Temperature groups
+// (ResidualLocation::temperature*) hold K in the _um fields.
 struct ResidualGroup {
     std::string label;
     int count = 0;
@@ -56,6 +65,12 @@ struct ResidualLocation {
     std::vector<ResidualGroup> byScrewPart;  // near fixed end / middle / near free end
     std::vector<ResidualGroup> byHour;
     std::vector<ResidualGroup> bySensor;     // interferometer, screw_elongation
+    // Screw temperature residuals (model - measured rise, K) where the recording has them.
+    int temperaturePoints = 0;
+    double temperatureRms_K = 0.0;
+    std::vector<ResidualGroup> temperatureBySensor;    // "infrared profile", surface PT100 ids
+    std::vector<ResidualGroup> temperatureByScrewPart; // fixed-end / middle / free-end third
+    std::vector<ResidualGroup> temperatureByPhase;
     double lag1Autocorrelation = 0.0;        // of the time-ordered residuals per target
     double ljungBoxQ = 0.0;                  // on the run-mean residual series
     int ljungBoxLags = 0;

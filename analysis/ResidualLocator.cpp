@@ -325,6 +325,50 @@ ResidualLocation ResidualLocator::locate(const DiagnosisRecording &rec, const st
     return loc;
 }
 
+void ResidualLocator::locateTemperatures(const DiagnosisRecording &rec, const std::vector<ObservationFit> &points,
+                                         double length_m, ResidualLocation &loc)
+{
+    loc.temperaturePoints = 0;
+    loc.temperatureRms_K = 0.0;
+    loc.temperatureBySensor.clear();
+    loc.temperatureByScrewPart.clear();
+    loc.temperatureByPhase.clear();
+    std::map<int, Accumulator> sensor;
+    std::map<std::string, Accumulator> phase;
+    std::map<std::string, std::string> phaseOf;
+    Accumulator parts[3], all;
+    for (const ObservationFit &p : points) {
+        if (!p.temperature)
+            continue;
+        const double r = p.predicted_um - p.measured_um;
+        all.add(r);
+        sensor[p.recording].add(r);
+        const double u = length_m > 0 ? p.distance_m / length_m : 0.5;
+        parts[std::clamp(static_cast<int>(u * 3.0), 0, 2)].add(r);
+        // Phase per time (many profile points share a frame time).
+        const std::string key = std::to_string(std::lround(p.t_s));
+        auto it = phaseOf.find(key);
+        if (it == phaseOf.end())
+            it = phaseOf.emplace(key, phaseAt(rec.screw.drive, p.t_s)).first;
+        phase[it->second].add(r);
+    }
+    if (!all.n)
+        return;
+    loc.temperaturePoints = all.n;
+    loc.temperatureRms_K = all.group("all").rms_um;
+    for (const auto &g : sensor) {
+        const size_t k = static_cast<size_t>(g.first);
+        loc.temperatureBySensor.push_back(
+            g.second.group(k < rec.screwTemperatures.size() ? rec.screwTemperatures[k].sensor : "sensor " + std::to_string(k)));
+    }
+    const char *names[3] = {"fixed-end third of the screw", "middle third of the screw", "free-end third of the screw"};
+    for (int k = 0; k < 3; ++k)
+        if (parts[k].n)
+            loc.temperatureByScrewPart.push_back(parts[k].group(names[k]));
+    for (const auto &g : phase)
+        loc.temperatureByPhase.push_back(g.second.group(g.first));
+}
+
 void ResidualLocator::checkPlausibility(const IdentificationResult &r, const IdentificationOptions &o,
                                         double drawingFixedEnd_mm, ResidualLocation &loc)
 {
@@ -384,6 +428,15 @@ void ResidualLocator::summarise(ResidualLocation &loc)
     if (!loc.correlations.empty())
         s << "; strongest correlation with " << loc.correlations.front().channel << " (r = "
           << fmt(loc.correlations.front().correlation) << ")";
+    if (loc.temperaturePoints) {
+        s << "; screw temperature residual RMS " << fmt(loc.temperatureRms_K) << " K over " << loc.temperaturePoints
+          << " points";
+        if (const ResidualGroup *w = worst(loc.temperatureByScrewPart))
+            s << ", largest in the " << w->label << " (model " << (w->mean_um > 0 ? "warmer" : "colder")
+              << " than measured by " << fmt(std::fabs(w->mean_um)) << " K on average)";
+        if (const ResidualGroup *w = worst(loc.temperatureByPhase))
+            s << " and in phase '" << w->label << "' (RMS " << fmt(w->rms_um) << " K)";
+    }
     for (const PlausibilityFlag &f : loc.implausible)
         s << "; implausible: " << f.message;
     loc.summary = s.str();

@@ -18,6 +18,11 @@ class ResidualLocator {
 public:
     // points: the model's observations of `recording` (ScrewModelIdentifier fit or predict).
     static ResidualLocation locate(const DiagnosisRecording &recording, const std::vector<ObservationFit> &points);
+    // Screw temperature residuals (model - measured rise, K): `points` are predictions of
+    // recording.screwTemperatures with ObservationFit::recording = index of the sensor series.
+    // Fills the temperature* groups of `location` (by sensor, third of the screw, phase).
+    static void locateTemperatures(const DiagnosisRecording &recording, const std::vector<ObservationFit> &points,
+                                   double screwLength_m, ResidualLocation &location);
     // Adds plausibility flags for the identified seed-000 parameters.
     static void checkPlausibility(const IdentificationResult &result, const IdentificationOptions &options,
                                   double drawingFixedEnd_mm, ResidualLocation &location);

@@ -201,7 +201,8 @@ FitStatistics statistics(const ScrewResponseSimulator &sim, const Eigen::VectorX
     bool any = false;
     for (int r = 0; r < sim.rowCount(); ++r) {
         const ResponseObservation &o = sim.observations()[static_cast<size_t>(r)];
-        ObservationFit p{o.recording, o.elongation, o.t_s, o.position_mm, o.measured_um, predicted[r], o.temperature};
+        ObservationFit p{o.recording, o.elongation, o.t_s, o.position_mm, o.measured_um, predicted[r], o.temperature,
+                         o.distance_m};
         s.points.push_back(p);
         const double e = p.predicted_um - p.measured_um;
         if (o.temperature) {

@@ -66,6 +66,7 @@ struct ObservationFit {
     double measured_um = 0.0;
     double predicted_um = 0.0;  // K for screw temperatures
     bool temperature = false;
+    double distance_m = 0.0;    // screw temperatures: distance from the fixed end
 };
 
 struct FitStatistics {

@@ -1,5 +1,6 @@
 #include "SessionReviewData.h"
 
+#include "ScrewTemperatureReader.h"
 #include "SessionStore.h"
 
 #include <QJsonArray>
@@ -42,24 +43,7 @@ ThermalErrorTable SessionReviewData::thermalErrors() const
 
 InfraredCalibration SessionReviewData::infraredCalibration() const
 {
-    InfraredCalibration c;
-    const QJsonObject ir = m_info.manifest.value(QStringLiteral("infrared")).toObject();
-    c.scale = ir.value(QStringLiteral("scale")).toDouble(c.scale);
-    c.offset = ir.value(QStringLiteral("offset")).toDouble(c.offset);
-    const QJsonArray px = ir.value(QStringLiteral("screw_line_px")).toArray();
-    if (px.size() == 2) {
-        c.lineX0_px = px.at(0).toArray().at(0).toDouble();
-        c.lineY0_px = px.at(0).toArray().at(1).toDouble();
-        c.lineX1_px = px.at(1).toArray().at(0).toDouble();
-        c.lineY1_px = px.at(1).toArray().at(1).toDouble();
-    }
-    const QJsonArray m = ir.value(QStringLiteral("screw_line_m")).toArray();
-    if (m.size() == 2) {
-        c.line0_m = m.at(0).toDouble();
-        c.line1_m = m.at(1).toDouble();
-    }
-    c.screwWidth_px = ir.value(QStringLiteral("screw_width_px")).toDouble(c.screwWidth_px);
-    return c;
+    return ScrewTemperatureReader::calibration(m_info.manifest);
 }
 
 cv::Mat SessionReviewData::frameTemperature(qint64 frameId) const

@@ -33,6 +33,17 @@ QJsonArray groupsJson(const std::vector<ResidualGroup> &groups)
     return a;
 }
 
+QJsonArray temperatureGroupsJson(const std::vector<ResidualGroup> &groups)
+{
+    QJsonArray a;
+    for (const ResidualGroup &g : groups)
+        a.append(QJsonObject{{QStringLiteral("label"), QString::fromStdString(g.label)},
+                             {QStringLiteral("count"), g.count},
+                             {QStringLiteral("mean_K"), g.mean_um},
+                             {QStringLiteral("rms_K"), g.rms_um}});
+    return a;
+}
+
 QJsonObject locationJson(const ResidualLocation &l)
 {
     QJsonArray corr, flags;
@@ -56,6 +67,12 @@ QJsonObject locationJson(const ResidualLocation &l)
                                     {QStringLiteral("ljung_box_lags"), l.ljungBoxLags},
                                     {QStringLiteral("ljung_box_p"), l.ljungBoxP},
                                     {QStringLiteral("white"), l.white}}},
+                       {QStringLiteral("screw_temperature"),
+                        QJsonObject{{QStringLiteral("points"), l.temperaturePoints},
+                                    {QStringLiteral("rms_K"), l.temperatureRms_K},
+                                    {QStringLiteral("by_sensor"), temperatureGroupsJson(l.temperatureBySensor)},
+                                    {QStringLiteral("by_screw_part"), temperatureGroupsJson(l.temperatureByScrewPart)},
+                                    {QStringLiteral("by_phase"), temperatureGroupsJson(l.temperatureByPhase)}}},
                        {QStringLiteral("correlations"), corr},
                        {QStringLiteral("implausible_parameters"), flags}};
 }

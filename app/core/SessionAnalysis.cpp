@@ -1,5 +1,6 @@
 #include "SessionAnalysis.h"
 
+#include "ScrewTemperatureReader.h"
 #include "SessionStore.h"
 #include "ThermalErrorTable.h"
 
@@ -192,6 +193,16 @@ DiagnosisRecording SessionAnalysis::diagnosisRecording(QString *note) const
     const QJsonValue pf = m_info.machine.value(QStringLiteral("fixed_end_position_mm"));
     if (pf.isDouble())
         rec.drawingFixedEnd_mm = pf.toDouble();
+    int skipped = 0;
+    rec.screwTemperatures = ScrewTemperatureReader(m_store, m_sessionId).read(12, 60.0, &skipped);
+    if (note) {
+        for (const ScrewTemperatureSeries &s : rec.screwTemperatures)
+            *note += QStringLiteral("; screw temperatures: %1 (%2 points)")
+                         .arg(QString::fromStdString(s.sensor))
+                         .arg(s.points.size());
+        if (skipped)
+            *note += QStringLiteral("; %1 infrared frames not used (no pixels, axis position or P_f)").arg(skipped);
+    }
     return rec;
 }
 

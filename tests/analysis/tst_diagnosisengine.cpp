@@ -21,6 +21,7 @@ private slots:
     void chiSquareTail();
     void noneWhenTheBaselineIsAdequate();
     void findsStructureDrift();
+    void locatesScrewTemperatureResiduals();
 
 private:
     static DiagnosisRecording make(bool validation, double drift_um_K);
@@ -120,6 +121,52 @@ void TestDiagnosisEngine::findsStructureDrift()
     QVERIFY(found);
     // Predictions of the validation interferometer points.
     QCOMPARE(static_cast<int>(r.predictions.size()), static_cast<int>(b.screw.interferometer.size()));
+}
+
+void TestDiagnosisEngine::locatesScrewTemperatureResiduals()
+{
+    // Known residual pattern: the model is 1.5 K too cold on the free-end third of an 0.8 m
+    // screw (measured warmer there), right elsewhere; two sensors; first hour standstill.
+    DiagnosisRecording rec;
+    rec.screw.drive.feed_mm_min.t = {0.0, 3600.0, 3600.5, 7200.0};
+    rec.screw.drive.feed_mm_min.v = {0.0, 0.0, 6000.0, 6000.0};
+    rec.screwTemperatures = {{"infrared profile", {}}, {"TS3", {}}};
+    std::vector<ObservationFit> points;
+    for (double t = 600.0; t <= 7200.0; t += 600.0)
+        for (int k = 0; k < 8; ++k) {
+            ObservationFit p;
+            p.temperature = true;
+            p.t_s = t;
+            p.recording = k == 7 ? 1 : 0;
+            p.distance_m = 0.05 + 0.1 * k;
+            p.predicted_um = 2.0;
+            p.measured_um = p.distance_m > 0.8 * 2.0 / 3.0 ? 3.5 : 2.0;
+            points.push_back(p);
+        }
+    ObservationFit interferometer; // not a temperature: ignored
+    interferometer.measured_um = 100.0;
+    points.push_back(interferometer);
+
+    ResidualLocation loc;
+    ResidualLocator::locateTemperatures(rec, points, 0.8, loc);
+    QCOMPARE(loc.temperaturePoints, 12 * 8);
+    // 3 of 8 positions (0.55, 0.65, 0.75 m) are off by 1.5 K: RMS = 1.5 sqrt(3/8).
+    QVERIFY(std::fabs(loc.temperatureRms_K - 1.5 * std::sqrt(3.0 / 8.0)) < 1e-9);
+    QCOMPARE(loc.temperatureBySensor.size(), size_t(2));
+    QCOMPARE(loc.temperatureBySensor[0].label, std::string("infrared profile"));
+    QCOMPARE(loc.temperatureBySensor[1].label, std::string("TS3"));
+    QVERIFY(std::fabs(loc.temperatureBySensor[1].mean_um + 1.5) < 1e-9); // 0.75 m: all off
+    QCOMPARE(loc.temperatureByScrewPart.size(), size_t(3));
+    QCOMPARE(loc.temperatureByScrewPart[2].label, std::string("free-end third of the screw"));
+    QVERIFY(std::fabs(loc.temperatureByScrewPart[2].mean_um + 1.5) < 1e-9);
+    QVERIFY(std::fabs(loc.temperatureByScrewPart[0].rms_um) < 1e-12);
+    bool standstill = false;
+    for (const ResidualGroup &g : loc.temperatureByPhase)
+        standstill = standstill || g.label == "standstill";
+    QVERIFY(standstill);
+    ResidualLocator::summarise(loc);
+    QVERIFY2(loc.summary.find("free-end third of the screw (model colder than measured by 1.50 K") != std::string::npos,
+             loc.summary.c_str());
 }
 
 QTEST_GUILESS_MAIN(TestDiagnosisEngine)
