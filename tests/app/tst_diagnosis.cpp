@@ -15,6 +15,7 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include <algorithm>
 #include <map>
 #include <random>
 
@@ -96,9 +97,14 @@ QJsonObject TestDiagnosis::rig(const QString &effect, unsigned seed, bool valida
         on("superlinear_heat", {{QStringLiteral("bearing_exponent"), n}, {QStringLiteral("nut_exponent"), n},
                                 {QStringLiteral("reference_feed_mm_min"), 6000}});
     } else if (effect == QLatin1String("heat_path_lag"))
+        // Heat stored in well-insulated housings (time constants C / (contact + losses) of
+        // 0.6-1.8 h) before it reaches the screw: a slow path the refit cannot turn into a
+        // direct one. The housings' own losses are set low below.
         on("heat_path_lag", {{QStringLiteral("fraction"), uni(0.8, 1.0)},
-                             {QStringLiteral("bearing_housing_capacity_J_K"), uni(6000, 12000)},
-                             {QStringLiteral("nut_housing_capacity_J_K"), uni(6000, 12000)}});
+                             {QStringLiteral("bearing_contact_W_K"), uni(2.0, 4.0)},
+                             {QStringLiteral("nut_contact_W_K"), uni(2.0, 4.0)},
+                             {QStringLiteral("bearing_housing_capacity_J_K"), uni(8000, 16000)},
+                             {QStringLiteral("nut_housing_capacity_J_K"), uni(8000, 16000)}});
     else if (effect == QLatin1String("holding_heat"))
         on("holding_heat", {{QStringLiteral("power_W"), uni(3.0, 6.0)}});
     else if (effect == QLatin1String("structure_offset"))
@@ -135,24 +141,42 @@ QJsonObject TestDiagnosis::rig(const QString &effect, unsigned seed, bool valida
         t += d;
         moving = !moving;
     }
-    auto pt = [](const char *id, const char *loc) {
-        return QJsonObject{{QStringLiteral("id"), QLatin1String(id)}, {QStringLiteral("location"), QLatin1String(loc)},
-                           {QStringLiteral("noise_K"), 0.02}, {QStringLiteral("rate_Hz"), 1}};
+    // Driver channels: neutral ids in a random order, so nothing can lean on a channel's name
+    // (the diagnosis finds drivers by role only).
+    std::vector<const char *> locations{"ambient", "fixed_bearing", "nut", "free_bearing", "motor", "bed", "coolant"};
+    std::shuffle(locations.begin(), locations.end(), rng);
+    QJsonArray pt100;
+    for (size_t k = 0; k < locations.size(); ++k)
+        pt100.append(QJsonObject{{QStringLiteral("id"), QStringLiteral("TC%1").arg(k + 1, 2, 10, QLatin1Char('0'))},
+                                 {QStringLiteral("location"), QLatin1String(locations[k])},
+                                 {QStringLiteral("noise_K"), 0.02},
+                                 {QStringLiteral("rate_Hz"), 1}});
+    // Housing-to-screw contact: small (the seed-000 model's adiabatic bearing/nut contact is
+    // then nearly right, as "none" requires); heat_path_lag raises it in the rig.
+    const bool lag = effect == QLatin1String("heat_path_lag");
+    auto housing = [&] {
+        QJsonObject o{{QStringLiteral("to_screw_W_K"), uni(0.0, 0.1)}};
+        if (lag) {
+            o.insert(QStringLiteral("to_ambient_W_K"), uni(0.1, 0.3));
+            o.insert(QStringLiteral("to_bed_W_K"), 0.05);
+        }
+        return o;
     };
-    QJsonArray pt100{pt("T_amb", "ambient"), pt("T_fixed_bearing", "fixed_bearing"), pt("T_nut", "nut"),
-                     pt("T_free_bearing", "free_bearing"), pt("T_motor", "motor"), pt("T_bed", "bed"),
-                     pt("T_coolant", "coolant")};
+    const QJsonObject fixedHousing = housing(), freeHousing = housing(), nutHousing = housing();
     return QJsonObject{
         {QStringLiteral("format"), QStringLiteral("driftlab-rig")},
         {QStringLiteral("version"), 1},
         {QStringLiteral("name"), QStringLiteral("diagnosis %1 seed %2").arg(effect).arg(seed)},
         {QStringLiteral("seed"), static_cast<double>(seed)},
         {QStringLiteral("machine"), QJsonObject{{QStringLiteral("travel_mm"), QJsonArray{20, 500}}}},
-        {QStringLiteral("thermal"), QJsonObject{{QStringLiteral("bed_heat_W"), bedHeat}}},
+        {QStringLiteral("thermal"), QJsonObject{{QStringLiteral("bed_heat_W"), bedHeat},
+                                                 {QStringLiteral("fixed_bearing_housing"), fixedHousing},
+                                                 {QStringLiteral("free_bearing_housing"), freeHousing},
+                                                 {QStringLiteral("nut_housing"), nutHousing}}},
         {QStringLiteral("effects"), effects},
         {QStringLiteral("sensors"),
          QJsonObject{{QStringLiteral("pt100"), pt100},
-                     {QStringLiteral("infrared"), QJsonObject{{QStringLiteral("enabled"), false}}},
+                     {QStringLiteral("infrared"), QJsonObject{{QStringLiteral("enabled"), true}, {QStringLiteral("interval_s"), 900}}},
                      {QStringLiteral("interferometer"),
                       QJsonObject{{QStringLiteral("interval_s"), interval}, {QStringLiteral("targets_mm"), targets},
                                   {QStringLiteral("noise_um"), 0.25}}}}},
@@ -241,6 +265,10 @@ void TestDiagnosis::concealedEffects()
     // Contract: every candidate reported, CSV rows for B's interferometer targets.
     QVERIFY(d.value(QStringLiteral("candidates")).toArray().size() >= 8);
     QVERIFY(d.value(QStringLiteral("location")).toObject().contains(QStringLiteral("summary")));
+    // The infrared axial profile is located too (the rig records a frame every 15 min).
+    const QJsonObject irLoc = d.value(QStringLiteral("location")).toObject().value(QStringLiteral("screw_temperature")).toObject();
+    QVERIFY2(irLoc.value(QStringLiteral("points")).toInt() > 50, QJsonDocument(irLoc).toJson().constData());
+    QVERIFY(irLoc.value(QStringLiteral("by_screw_part")).toArray().size() == 3);
     QFile c(csv);
     QVERIFY(c.open(QIODevice::ReadOnly | QIODevice::Text));
     QCOMPARE(c.readLine().trimmed(), QByteArray("time_s,position_mm,baseline_um,corrected_um"));
