@@ -69,11 +69,6 @@ QString FitCommand::summary() const
         "'simulate --model'. The fitted model is stored with each session.");
 }
 
-ScrewRecording FitCommand::loadRecording(const SessionStore &store, qint64 sessionId, QString *note)
-{
-    return SessionAnalysis(store, sessionId).recording(note);
-}
-
 QJsonObject FitCommand::modelJson(const IdentificationResult &r, const ScrewGeometry &g, const IdentificationOptions &o)
 {
     const FdmParameters &p = r.parameters;
@@ -161,7 +156,7 @@ int FitCommand::run(const QStringList &args)
     bool anyInterferometer = false;
     for (qint64 id : ids) {
         QString note;
-        recs.push_back(loadRecording(store, id, &note));
+        recs.push_back(SessionAnalysis(store, id).recording(&note));
         anyInterferometer = anyInterferometer || !recs.back().interferometer.empty();
         CliSupport::progress(QStringLiteral("session %1: %2").arg(id).arg(note));
     }
@@ -193,7 +188,7 @@ int FitCommand::run(const QStringList &args)
     FitStatistics validation;
     if (holdoutId >= 0) {
         QString note;
-        const ScrewRecording held = loadRecording(store, holdoutId, &note);
+        const ScrewRecording held = SessionAnalysis(store, holdoutId).recording(&note);
         CliSupport::progress(QStringLiteral("held-out session %1: %2").arg(holdoutId).arg(note));
         validation = identifier.predict(result, {held});
         QJsonObject v = statsJson(validation);

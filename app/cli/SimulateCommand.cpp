@@ -2,9 +2,9 @@
 
 #include "BearingHeatSource.h"
 #include "CliSupport.h"
-#include "FitCommand.h"
 #include "NutHeatSource.h"
 #include "ScrewResponseSimulator.h"
+#include "SessionAnalysis.h"
 #include "SessionStore.h"
 
 #include <QCommandLineParser>
@@ -117,7 +117,7 @@ int SimulateCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("simulate: %1 has no session %2").arg(path).arg(id));
 
     QString note;
-    ScrewRecording rec = FitCommand::loadRecording(store, id, &note);
+    ScrewRecording rec = SessionAnalysis(store, id).recording(&note);
     CliSupport::progress(QStringLiteral("session %1: %2").arg(id).arg(note));
     const bool measuredProbe = !rec.elongation_um.empty();
     if (!measuredProbe) {
