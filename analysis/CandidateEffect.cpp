@@ -120,13 +120,30 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                    "Friction heat does not enter the screw directly but through the thermal mass of the nut and "
                    "bearing housings and their contact resistance, so the screw responds late (seed 000 assumes "
                    "heat enters the screw directly). Modelled as heat k v through a first-order lag tau at the "
-                   "bearing and at the nut.",
-                   "feed",
+                   "bearing and at the nut or, where the housings' temperatures are recorded (roles "
+                   "fixed_bearing and nut), as heat G (T_housing - T_ambient) passed from each housing to the "
+                   "screw under it; the better fit on the training data is kept.",
+                   "feed (or roles fixed_bearing + nut)",
                    {},
-                   [](const DiagnosisRecording &, int start) {
+                   [](const DiagnosisRecording &train, int start) {
+                       if (start == 3 && train.hasRole("fixed_bearing") && train.hasRole("nut")) {
+                           auto bearing = std::make_shared<ChannelHeatSource>(
+                               ParameterSpec{"G_bearing_housing", "W/K", 0.5, 0.0, 20.0, 0.5},
+                               ChannelHeatSource::Location::FixedBearing, true);
+                           auto nut = std::make_shared<ChannelHeatSource>(
+                               ParameterSpec{"G_nut_housing", "W/K", 0.5, 0.0, 20.0, 0.5},
+                               ChannelHeatSource::Location::Nut, true);
+                           CandidateModel m;
+                           m.sources = {bearing, nut};
+                           m.bind = [bearing, nut](const DiagnosisRecording &r) {
+                               bearing->bind(roleSeries(r, "fixed_bearing"), ambientOf(r), startOf(r));
+                               nut->bind(roleSeries(r, "nut"), ambientOf(r), startOf(r));
+                           };
+                           return m;
+                       }
                        // Starts from a fast, a medium and a slow heat path (s).
-                       static const double tau[] = {1500.0, 5000.0, 15000.0};
-                       const double t = tau[std::clamp(start, 0, 2)];
+                       static const double tau[] = {1500.0, 5000.0, 15000.0, 3000.0};
+                       const double t = tau[std::clamp(start, 0, 3)];
                        CandidateModel m;
                        m.sources.push_back(std::make_shared<FeedLawHeatSource>(
                            FeedLawHeatSource::Law::Lagged, FeedLawHeatSource::Location::Bearing, t));
@@ -134,7 +151,7 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                            FeedLawHeatSource::Law::Lagged, FeedLawHeatSource::Location::Nut, t));
                        return m;
                    },
-                   3});
+                   4});
     lib.push_back({"holding_heat",
                    "Heat is produced while the axis stands still (e.g. the motor holding position, a brake), so "
                    "the screw does not cool as the model expects. Modelled as constant power P_hold into the "

@@ -1,5 +1,8 @@
 #include "ChannelHeatSource.h"
 
+#include "ScrewCellLayout.h"
+
+#include <algorithm>
 #include <stdexcept>
 
 namespace driftlab {
@@ -49,6 +52,22 @@ void ChannelHeatSource::addUnitHeat(const HeatStepInput &step, double *watts)
         const double perCell = d * step.layout->dx_m();
         for (int i = 0; i < n; ++i)
             watts[i] += perCell;
+        break;
+    }
+    case Location::FixedBearing: {
+        const int cells = std::max(1, step.layout->bearingCells());
+        for (int i = 0; i < cells && i < n; ++i)
+            watts[i] += d / cells;
+        break;
+    }
+    case Location::Nut: {
+        double total = 0.0;
+        for (int i = 0; i < n; ++i)
+            total += step.nutOccupancy ? step.nutOccupancy[i] : 0.0;
+        if (total <= 0.0)
+            break;
+        for (int i = 0; i < n; ++i)
+            watts[i] += d * step.nutOccupancy[i] / total;
         break;
     }
     }

@@ -3,7 +3,8 @@
 // Q = G (T_channel(t) - T_ambient(t)) into the fixed-end cell (motor heat through the
 // coupling), the free-end cell, or spread along the whole screw per metre (internal coolant:
 // the screw exchanges heat with a coolant at T_channel; q' = g (T_c - T_a) per metre, the
-// screw's own departure from ambient is left to the refitted convection). The driver is a
+// screw's own departure from ambient is left to the refitted convection), or into the
+// fixed-bearing region / under the nut (heat stored in a housing passed on to the screw). The driver is a
 // channel found by its role and bound per recording with bind() before fit()/predict().
 // `relativeToStart` subtracts the difference at the start of the recording (the model's
 // screw starts at ambient; a sensor offset must not become a constant heat).
@@ -19,7 +20,9 @@ namespace driftlab {
 
 class ChannelHeatSource : public HeatSourceComponent {
 public:
-    enum class Location { FixedEnd, FreeEnd, Distributed };
+    // FixedBearing: spread over the fixed-bearing cells; Nut: over the cells the nut covered
+    // during the step (a housing that travels with the nut).
+    enum class Location { FixedEnd, FreeEnd, Distributed, FixedBearing, Nut };
     ChannelHeatSource(ParameterSpec amplitude, Location location, bool relativeToStart);
 
     // channel: driver temperature; ambient: may be null or empty (then the channel's own start

@@ -114,7 +114,9 @@ double ResidualLocator::lag1Autocorrelation(const std::vector<ObservationFit> &p
         return 0.0;
     mean /= static_cast<double>(points.size());
     for (const ObservationFit &p : points) {
-        const long key = p.elongation ? -999999999L : std::lround(p.position_mm * 10.0);
+        const long key = p.temperature   ? -2000000000L + std::lround(p.distance_m * 1000.0)
+                         : p.elongation ? -999999999L
+                                        : std::lround(p.position_mm * 10.0);
         streams[key].emplace_back(p.t_s, p.predicted_um - p.measured_um - mean);
     }
     double num = 0.0, den = 0.0;
@@ -134,7 +136,9 @@ double ResidualLocator::effectiveSampleSize(const std::vector<ObservationFit> &p
 {
     std::map<long, std::vector<std::pair<double, double>>> streams;
     for (const ObservationFit &p : points) {
-        const long key = p.elongation ? -999999999L : std::lround(p.position_mm * 10.0);
+        const long key = p.temperature   ? -2000000000L + std::lround(p.distance_m * 1000.0)
+                         : p.elongation ? -999999999L
+                                        : std::lround(p.position_mm * 10.0);
         streams[key].emplace_back(p.t_s, p.predicted_um - p.measured_um);
     }
     double total = 0.0;
@@ -180,6 +184,8 @@ ResidualLocation ResidualLocator::locate(const DiagnosisRecording &rec, const st
     std::map<std::string, std::string> phaseCache;
     std::vector<const ObservationFit *> ip;
     for (const ObservationFit &p : points) {
+        if (p.temperature)
+            continue; // located by locateTemperatures()
         const double r = p.predicted_um - p.measured_um;
         (p.elongation ? elong : interf).add(r);
         if (p.elongation)
@@ -389,9 +395,12 @@ void ResidualLocator::checkPlausibility(const IdentificationResult &r, const Ide
     };
     if (atBound(p.k1, o.k1Lower, o.k1Upper))
         loc.implausible.push_back({"k1", p.k1, 0.911e-3, "k1 at its bound"});
-    if (atBound(p.k2, o.k2Lower, o.k2Upper) || p.k2 < 2.0 || p.k2 > 150.0)
+    if (atBound(p.k2, o.k2Lower, o.k2Upper) || p.k2 < 8.0 || p.k2 > 150.0)
         loc.implausible.push_back({"k2", p.k2, 26.0,
-                                   "still-air convection k2 = " + fmt(p.k2, 1) + " W/(m^2 K) outside 2..150"});
+                                   "still-air convection k2 = " + fmt(p.k2, 1) +
+                                       " W/(m^2 K) outside 8..150 (natural convection plus radiation of a bare "
+                                       "screw is ~8 or more: a lower value makes the screw slower and cooler than "
+                                       "physics allows, e.g. to absorb heat that reaches it late)"});
     if (p.k3 <= 1e-9)
         loc.implausible.push_back({"k3", p.k3, 0.9e-3, "no bearing heat identified (k3 = 0)"});
     if (p.k4 <= 1e-9)

@@ -3,7 +3,6 @@
 #include "BundleTransfer.h"
 #include "CliSupport.h"
 #include "DiagnosisEngine.h"
-#include "FitCommand.h"
 #include "SessionAnalysis.h"
 #include "SessionStore.h"
 
@@ -121,11 +120,6 @@ QString DiagnoseCommand::summary() const
         "significant amplitude, or 'none'. A and B: bundle directories, .zip bundles or session ids in --db.");
 }
 
-DiagnosisRecording DiagnoseCommand::loadRecording(const SessionStore &store, qint64 sessionId, QString *note)
-{
-    return SessionAnalysis(store, sessionId).diagnosisRecording(note);
-}
-
 QJsonObject DiagnoseCommand::reportJson(const DiagnosisReport &r)
 {
     QJsonArray cands;
@@ -182,7 +176,11 @@ int DiagnoseCommand::run(const QStringList &args)
                                      QStringLiteral("list"));
     const QCommandLineOption dt(QStringLiteral("dt"), QStringLiteral("Implicit time step of the fits, s (default 20)."),
                                 QStringLiteral("seconds"), QStringLiteral("20"));
-    p.addOptions({train, validate, json, predictions, db, effects, dt});
+    const QCommandLineOption fitTemperatures(
+        QStringLiteral("fit-screw-temperatures"),
+        QStringLiteral("Also fit the screw temperatures of A (infrared profile, surface PT100s; sigma 0.3 K). "
+                       "Default: they are predicted and located, not fitted."));
+    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures});
     if (!parse(p, args))
         return 0;
     if (!p.isSet(train) || !p.isSet(validate))
@@ -194,6 +192,7 @@ int DiagnoseCommand::run(const QStringList &args)
     if (!ok || !(step > 0) || step > 600)
         throw UsageError(QStringLiteral("diagnose: --dt must be a time step in (0, 600] s, got '%1'").arg(p.value(dt)));
     DiagnosisOptions options;
+    options.fitScrewTemperatures = p.isSet(fitTemperatures);
     if (p.isSet(effects)) {
         const std::vector<std::string> known = CandidateEffectLibrary::codes();
         for (const QString &e : p.value(effects).split(QLatin1Char(','), Qt::SkipEmptyParts)) {
@@ -241,7 +240,7 @@ int DiagnoseCommand::run(const QStringList &args)
     auto load = [&](const std::pair<SessionStore *, qint64> &s, const char *what, DiagnosisRecording &out) {
         QString note;
         try {
-            out = loadRecording(*s.first, s.second, &note);
+            out = SessionAnalysis(*s.first, s.second).diagnosisRecording(&note);
         } catch (const std::runtime_error &e) {
             throw UsageError(QStringLiteral("diagnose: %1 '%2': %3").arg(QLatin1String(what), p.value(what == std::string("--train") ? train : validate), QString::fromUtf8(e.what())));
         }

@@ -21,9 +21,6 @@ public:
     QString summary() const override;
     int run(const QStringList &args) override;
 
-    // A stored session as a diagnosis recording: FitCommand::loadRecording plus every
-    // temperature channel by role (first channel of each role), the drawing P_f.
-    static DiagnosisRecording loadRecording(const SessionStore &store, qint64 sessionId, QString *note);
     static QJsonObject reportJson(const DiagnosisReport &report);
 };
 

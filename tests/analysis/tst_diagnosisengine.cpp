@@ -4,6 +4,7 @@
 // channel. Fast unit-level check; the blind rig sweep is tests/app/tst_diagnosis.
 
 #include "CandidateEffect.h"
+#include "ChannelHeatSource.h"
 #include "DiagnosisEngine.h"
 #include "ResidualLocator.h"
 #include "SyntheticScrewTest.h"
@@ -22,6 +23,7 @@ private slots:
     void noneWhenTheBaselineIsAdequate();
     void findsStructureDrift();
     void locatesScrewTemperatureResiduals();
+    void housingHeatGoesWhereTheHousingIs();
 
 private:
     static DiagnosisRecording make(bool validation, double drift_um_K);
@@ -167,6 +169,45 @@ void TestDiagnosisEngine::locatesScrewTemperatureResiduals()
     ResidualLocator::summarise(loc);
     QVERIFY2(loc.summary.find("free-end third of the screw (model colder than measured by 1.50 K") != std::string::npos,
              loc.summary.c_str());
+}
+
+void TestDiagnosisEngine::housingHeatGoesWhereTheHousingIs()
+{
+    // A housing 2 K above ambient passes G x 2 K to the screw (G = 1 W/K at unit amplitude):
+    // all of it into the fixed-bearing cells, or under the nut in proportion to occupancy.
+    ScrewGeometry g;
+    const ScrewCellLayout layout(g, FdmSettings{0.01, 20.0});
+    const int n = layout.cellCount();
+    std::vector<double> occupancy(static_cast<size_t>(n), 0.0);
+    for (int i = 30; i < 50; ++i)
+        occupancy[static_cast<size_t>(i)] = i < 40 ? 1.0 : 0.5;
+    HeatStepInput step;
+    step.dt_s = 20.0;
+    step.nutOccupancy = occupancy.data();
+    step.layout = &layout;
+    step.geometry = &g;
+    TimeSeries housing, ambient;
+    housing.t = ambient.t = {0.0, 1000.0};
+    housing.v = {22.0, 22.0};
+    ambient.v = {20.0, 20.0};
+    for (auto where : {ChannelHeatSource::Location::FixedBearing, ChannelHeatSource::Location::Nut}) {
+        ChannelHeatSource src({"G", "W/K", 1.0, 0.0, 20.0, 1.0}, where, false);
+        src.bind(&housing, &ambient, 0.0);
+        src.beginRecording();
+        std::vector<double> watts(static_cast<size_t>(n), 0.0);
+        src.addUnitHeat(step, watts.data());
+        double total = 0.0, outside = 0.0;
+        for (int i = 0; i < n; ++i) {
+            total += watts[static_cast<size_t>(i)];
+            const bool inside = where == ChannelHeatSource::Location::FixedBearing ? i < layout.bearingCells()
+                                                                                     : occupancy[static_cast<size_t>(i)] > 0;
+            outside += inside ? 0.0 : std::fabs(watts[static_cast<size_t>(i)]);
+        }
+        QVERIFY(std::fabs(total - 2.0) < 1e-12);
+        QCOMPARE(outside, 0.0);
+        if (where == ChannelHeatSource::Location::Nut)
+            QVERIFY(std::fabs(watts[35] - 2.0 * watts[45]) < 1e-12);
+    }
 }
 
 QTEST_GUILESS_MAIN(TestDiagnosisEngine)
