@@ -177,7 +177,9 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                    "T_structure(t_ref)), c1 in um/(m K), c0 in um/K.",
                    "role:structure",
                    {"structure"},
-                   [](const DiagnosisRecording &, int) { return structureTerms(true); }});
+                   [](const DiagnosisRecording &, int) { return structureTerms(true); },
+                   1,
+                   {"structure_offset"}});
     lib.push_back({"screw_coolant",
                    "The screw is cooled internally by a coolant whose temperature differs from ambient, so it "
                    "runs cooler and follows the coolant (seed 000 has convection to ambient only). Modelled as "

@@ -12,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace driftlab {
@@ -23,6 +24,15 @@ struct CandidateModel {
 };
 
 struct CandidateEffect {
+    CandidateEffect(std::string code_, std::string explanation_, std::string driver_,
+                    std::vector<std::string> requiredRoles_,
+                    std::function<CandidateModel(const DiagnosisRecording &, int)> create_, int starts_ = 1,
+                    std::vector<std::string> nests_ = {})
+        : code(std::move(code_)), explanation(std::move(explanation_)), driver(std::move(driver_)),
+          requiredRoles(std::move(requiredRoles_)), create(std::move(create_)), starts(starts_), nests(std::move(nests_))
+    {
+    }
+
     std::string code;
     std::string explanation;
     std::string driver;                     // "feed", "time", or "role:<role>"
@@ -33,6 +43,10 @@ struct CandidateEffect {
     // several values.
     std::function<CandidateModel(const DiagnosisRecording &train, int start)> create;
     int starts = 1;
+    // Simpler candidates this one contains as a special case (structure_linear contains
+    // structure_offset): when both are accepted the simpler wins unless the larger one's AICc
+    // is lower by the engine's maxDeltaIc margin.
+    std::vector<std::string> nests;
 
     // Empty when usable with these recordings, else why not.
     std::string notApplicable(const DiagnosisRecording &train, const DiagnosisRecording &validate) const;

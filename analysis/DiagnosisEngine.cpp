@@ -472,6 +472,32 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
         if (o.accepted && (best < 0 || o.score > report.candidates[static_cast<size_t>(best)].score))
             best = static_cast<int>(c);
     }
+    // Parsimony: an accepted simpler candidate nested in the winner takes its place unless the
+    // winner's extra freedom buys a clearly lower AICc.
+    for (bool changed = best >= 0; changed;) {
+        changed = false;
+        CandidateOutcome &w = report.candidates[static_cast<size_t>(best)];
+        const auto lib = std::find_if(library.begin(), library.end(),
+                                      [&](const CandidateEffect &e) { return e.code == w.effect; });
+        if (lib == library.end())
+            break;
+        for (size_t c = 0; c < report.candidates.size(); ++c) {
+            CandidateOutcome &s = report.candidates[c];
+            if (!s.accepted || std::find(lib->nests.begin(), lib->nests.end(), s.effect) == lib->nests.end())
+                continue;
+            if (w.deltaIc - s.deltaIc > m_options.maxDeltaIc) {
+                s.reasons.push_back("named instead of " + w.effect + ", which contains it: the larger model's AICc "
+                                    "differs by " + fmt(w.deltaIc - s.deltaIc, 1) + ", not below " +
+                                    fmt(m_options.maxDeltaIc, 0));
+                w.reasons.push_back("contains " + s.effect + " and its AICc differs from it by only " +
+                                    fmt(w.deltaIc - s.deltaIc, 1) + " (needs " + fmt(m_options.maxDeltaIc, 0) +
+                                    " or lower): the simpler model is named");
+                best = static_cast<int>(c);
+                changed = true;
+                break;
+            }
+        }
+    }
     const Evaluated *winner = nullptr;
     if (best >= 0) {
         const CandidateOutcome &w = report.candidates[static_cast<size_t>(best)];
@@ -495,7 +521,9 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
         report.correctedLocation = report.location;
     }
     std::stable_sort(report.candidates.begin(), report.candidates.end(),
-                     [](const CandidateOutcome &a, const CandidateOutcome &b) {
+                     [&report](const CandidateOutcome &a, const CandidateOutcome &b) {
+                         if ((a.effect == report.effect) != (b.effect == report.effect))
+                             return a.effect == report.effect; // the named effect first
                          if (a.accepted != b.accepted)
                              return a.accepted;
                          if (a.applicable != b.applicable)
