@@ -36,8 +36,9 @@ DiagnosisRecording make(const std::vector<SyntheticPhase> &phases, unsigned seed
     r.screw = SyntheticScrewTest::generate(spec, g, truth, FdmSettings{0.01, 0.1});
     r.drawingFixedEnd_mm = truth.fixedEndPosition_mm;
     // Auxiliary channels (1 Hz): a motor warming with the feed, a slowly warming structure,
-    // a chiller-cycled coolant.
-    TimeSeries motor, structure, coolant;
+    // a chiller-cycled coolant, bearing and nut housings following the feed (so the
+    // housing-driven heat-path-lag start runs too: the full library at its largest).
+    TimeSeries motor, structure, coolant, bearing, nut;
     double m = 0.0;
     for (double t = 0.0; t <= spec.duration_s(); t += 1.0) {
         m += (spec.feedAt(t) * 1e-3 - m) * (1.0 / 1800.0);
@@ -47,7 +48,13 @@ DiagnosisRecording make(const std::vector<SyntheticPhase> &phases, unsigned seed
         structure.v.push_back(20.0 + 0.6 * (1.0 - std::exp(-t / 7200.0)));
         coolant.t.push_back(t);
         coolant.v.push_back(19.5 + 0.5 * std::sin(t * 2.0 * 3.14159265358979 / 2400.0));
+        bearing.t.push_back(t);
+        bearing.v.push_back(spec.ambientAt(t) + 1.5 * m);
+        nut.t.push_back(t);
+        nut.v.push_back(spec.ambientAt(t) + 0.8 * m);
     }
+    r.channelsByRole["fixed_bearing"] = bearing;
+    r.channelsByRole["nut"] = nut;
     r.channelsByRole["motor"] = motor;
     r.channelsByRole["structure"] = structure;
     r.channelsByRole["coolant"] = coolant;

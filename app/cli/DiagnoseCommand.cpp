@@ -21,25 +21,15 @@ namespace driftlab {
 
 namespace {
 
-QJsonArray groupsJson(const std::vector<ResidualGroup> &groups)
+// unit: "um" for positioning residuals, "K" for screw temperature residuals.
+QJsonArray groupsJson(const std::vector<ResidualGroup> &groups, const QString &unit = QStringLiteral("um"))
 {
     QJsonArray a;
     for (const ResidualGroup &g : groups)
         a.append(QJsonObject{{QStringLiteral("label"), QString::fromStdString(g.label)},
                              {QStringLiteral("count"), g.count},
-                             {QStringLiteral("mean_um"), g.mean_um},
-                             {QStringLiteral("rms_um"), g.rms_um}});
-    return a;
-}
-
-QJsonArray temperatureGroupsJson(const std::vector<ResidualGroup> &groups)
-{
-    QJsonArray a;
-    for (const ResidualGroup &g : groups)
-        a.append(QJsonObject{{QStringLiteral("label"), QString::fromStdString(g.label)},
-                             {QStringLiteral("count"), g.count},
-                             {QStringLiteral("mean_K"), g.mean_um},
-                             {QStringLiteral("rms_K"), g.rms_um}});
+                             {QStringLiteral("mean_") + unit, g.mean_um},
+                             {QStringLiteral("rms_") + unit, g.rms_um}});
     return a;
 }
 
@@ -69,9 +59,9 @@ QJsonObject locationJson(const ResidualLocation &l)
                        {QStringLiteral("screw_temperature"),
                         QJsonObject{{QStringLiteral("points"), l.temperaturePoints},
                                     {QStringLiteral("rms_K"), l.temperatureRms_K},
-                                    {QStringLiteral("by_sensor"), temperatureGroupsJson(l.temperatureBySensor)},
-                                    {QStringLiteral("by_screw_part"), temperatureGroupsJson(l.temperatureByScrewPart)},
-                                    {QStringLiteral("by_phase"), temperatureGroupsJson(l.temperatureByPhase)}}},
+                                    {QStringLiteral("by_sensor"), groupsJson(l.temperatureBySensor, QStringLiteral("K"))},
+                                    {QStringLiteral("by_screw_part"), groupsJson(l.temperatureByScrewPart, QStringLiteral("K"))},
+                                    {QStringLiteral("by_phase"), groupsJson(l.temperatureByPhase, QStringLiteral("K"))}}},
                        {QStringLiteral("correlations"), corr},
                        {QStringLiteral("implausible_parameters"), flags}};
 }
