@@ -445,6 +445,13 @@ void ResidualLocator::summarise(ResidualLocation &loc)
               << " than measured by " << fmt(std::fabs(w->mean_um)) << " K on average)";
         if (const ResidualGroup *w = worst(loc.temperatureByPhase))
             s << " and in phase '" << w->label << "' (RMS " << fmt(w->rms_um) << " K)";
+        if (loc.temperatureByScrewPart.size() > 1) {
+            s << " (mean model - measured by third:";
+            for (const ResidualGroup &g : loc.temperatureByScrewPart)
+                s << ' ' << g.label.substr(0, g.label.find(" third")) << ' ' << (g.mean_um >= 0 ? "+" : "")
+                  << fmt(g.mean_um) << " K";
+            s << ')';
+        }
     }
     for (const PlausibilityFlag &f : loc.implausible)
         s << "; implausible: " << f.message;

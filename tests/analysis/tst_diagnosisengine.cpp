@@ -169,6 +169,8 @@ void TestDiagnosisEngine::locatesScrewTemperatureResiduals()
     ResidualLocator::summarise(loc);
     QVERIFY2(loc.summary.find("free-end third of the screw (model colder than measured by 1.50 K") != std::string::npos,
              loc.summary.c_str());
+    QVERIFY2(loc.summary.find("by third: fixed-end +0.00 K middle +0.00 K free-end -1.50 K") != std::string::npos,
+             loc.summary.c_str());
 }
 
 void TestDiagnosisEngine::housingHeatGoesWhereTheHousingIs()
