@@ -438,7 +438,9 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
                                   fmt(ev.fit.parameters.k2, 1) + " W/(m^2 K) (baseline below " +
                                   fmt(m_options.minPlausibleK2_W_m2K, 0) +
                                   "), so a held-out RMS no worse than the baseline's suffices");
-        const bool cvOk = !std::isfinite(b.cvRms_um) || out.cvImprovement >= m_options.minCvImprovement;
+        const bool cvPassed = !std::isfinite(b.cvRms_um) || out.cvImprovement >= m_options.minCvImprovement;
+        const bool cvWaived = !cvPassed && out.heldoutImprovement >= m_options.cvWaiverHeldoutImprovement;
+        const bool cvOk = cvPassed || cvWaived;
         const bool icOk = out.deltaIc <= m_options.maxDeltaIc;
         const bool zOk = zMax >= m_options.minAmplitudeZ;
         out.plausibilityDistance = plausibilityDistance(ev.fit.parameters, train.drawingFixedEnd_mm);
@@ -453,14 +455,22 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
                               " um (" + fmt(100.0 * out.heldoutImprovement, 1) + " % better" +
                               (heldOk ? ")" : ", below the " + fmt(100.0 * heldNeeded, 0) + " % needed)"));
         out.reasons.push_back("cross-validation RMS " + fmt(ev.eval.cvRms_um) + " um vs " + fmt(b.cvRms_um) + " um (" +
-                              fmt(100.0 * out.cvImprovement, 1) + " % better" + (cvOk ? ")" : ", not enough)"));
+                              fmt(100.0 * out.cvImprovement, 1) + " % better" +
+                              (cvPassed ? ")"
+                               : cvWaived
+                                   ? ", not enough; waived: the held-out gain on the independent recording is " +
+                                         fmt(100.0 * out.heldoutImprovement, 0) + " % >= " +
+                                         fmt(100.0 * m_options.cvWaiverHeldoutImprovement, 0) +
+                                         " % — the training blocks do not cover what the validation run does)"
+                                   : ", not enough)"));
         out.reasons.push_back("AICc change " + fmt(out.deltaIc, 1) + " at effective n = " + fmt(effectiveN, 0) +
                               (icOk ? "" : " (not enough)"));
         out.reasons.push_back("main amplitude |value|/SE = " + fmt(zMax, 1) + (zOk ? "" : " (confidence interval includes zero)"));
         // Plausibility is evidence, not a veto: a refit that drives lambda / P_f further from
         // physics scores lower.
         out.accepted = heldOk && cvOk && icOk && zOk && out.insideBounds;
-        out.score = out.heldoutImprovement + 0.5 * out.cvImprovement -
+        const double cvTerm = cvWaived ? std::max(out.cvImprovement, 0.0) : out.cvImprovement;
+        out.score = out.heldoutImprovement + 0.5 * cvTerm -
                     0.05 * std::max(0.0, out.plausibilityDistance - baseDistance);
         report.candidates.push_back(out);
     }

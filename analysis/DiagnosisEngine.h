@@ -32,6 +32,10 @@ struct DiagnosisOptions {
     // Acceptance thresholds of a candidate.
     double minHeldoutImprovement = 0.25;  // relative reduction of the validation RMS
     double minCvImprovement = 0.10;       // relative reduction of the cross-validation RMS
+    // A held-out gain this large on the independent validation recording stands in for the
+    // cross-validation: blocks of one training recording may not span the operating range
+    // (e.g. two feed levels for a feed-law term), and then the folds extrapolate wildly.
+    double cvWaiverHeldoutImprovement = 0.50;
     double maxDeltaIc = -10.0;            // AICc(candidate) - AICc(baseline)
     double minAmplitudeZ = 3.0;           // |value| / standard error of its main amplitude
     // Physical plausibility of the refit's seed-000 parameters (see plausibilityDistance): a
