@@ -121,18 +121,22 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                    "bearing housings and their contact resistance, so the screw responds late (seed 000 assumes "
                    "heat enters the screw directly). Modelled as heat k v through a first-order lag tau at the "
                    "bearing and at the nut or, where the housings' temperatures are recorded (roles "
-                   "fixed_bearing and nut), as heat G (T_housing - T_ambient) passed from each housing to the "
-                   "screw under it; the better fit on the training data is kept.",
+                   "fixed_bearing and nut), as a contact conductance G between each housing and the screw under "
+                   "it, Q = G (a (T_housing - T_ambient) - (T_screw - T_ambient)), G in W/K, a ~ 1; the better "
+                   "fit on the training data is kept.",
                    "feed (or roles fixed_bearing + nut)",
                    {},
                    [](const DiagnosisRecording &train, int start) {
                        if (start == 3 && train.hasRole("fixed_bearing") && train.hasRole("nut")) {
+                           // Contact variant: each housing touches the screw through G (W/K).
                            auto bearing = std::make_shared<ChannelHeatSource>(
-                               ParameterSpec{"G_bearing_housing", "W/K", 0.5, 0.0, 20.0, 0.5},
-                               ChannelHeatSource::Location::FixedBearing, true);
+                               ParameterSpec{"a_bearing_housing", "1", 1.0, 0.0, 3.0, 1.0},
+                               ChannelHeatSource::Location::FixedBearing, true,
+                               ParameterSpec{"G_bearing_contact", "W/K", 2.0, 0.0, 20.0, 1.0});
                            auto nut = std::make_shared<ChannelHeatSource>(
-                               ParameterSpec{"G_nut_housing", "W/K", 0.5, 0.0, 20.0, 0.5},
-                               ChannelHeatSource::Location::Nut, true);
+                               ParameterSpec{"a_nut_housing", "1", 1.0, 0.0, 3.0, 1.0},
+                               ChannelHeatSource::Location::Nut, true,
+                               ParameterSpec{"G_nut_contact", "W/K", 2.0, 0.0, 20.0, 1.0});
                            CandidateModel m;
                            m.sources = {bearing, nut};
                            m.bind = [bearing, nut](const DiagnosisRecording &r) {
@@ -152,6 +156,9 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                        return m;
                    },
                    4});
+    // Every machine has some housing contact: the contact variant counts only when one of its
+    // conductances is large enough to carry the heat the lag describes.
+    lib.back().minimumSize = {{"G_bearing_contact", 0.5}, {"G_nut_contact", 0.5}};
     lib.push_back({"holding_heat",
                    "Heat is produced while the axis stands still (e.g. the motor holding position, a brake), so "
                    "the screw does not cool as the model expects. Modelled as constant power P_hold into the "

@@ -47,6 +47,10 @@ struct CandidateEffect {
     // structure_offset): when both are accepted the simpler wins unless the larger one's AICc
     // is lower by the engine's maxDeltaIc margin.
     std::vector<std::string> nests;
+    // Parameters that measure the effect's size, with the least value (of |value|) for the
+    // effect to be named: when the refit reports any of them and none reaches its minimum, the
+    // candidate is not accepted. Empty: no such rule.
+    std::vector<std::pair<std::string, double>> minimumSize;
 
     // Empty when usable with these recordings, else why not.
     std::string notApplicable(const DiagnosisRecording &train, const DiagnosisRecording &validate) const;

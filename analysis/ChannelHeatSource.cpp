@@ -12,6 +12,35 @@ ChannelHeatSource::ChannelHeatSource(ParameterSpec amplitude, Location location,
 {
 }
 
+ChannelHeatSource::ChannelHeatSource(ParameterSpec amplitude, Location location, bool relativeToStart,
+                                     ParameterSpec contact)
+    : m_amplitude(std::move(amplitude)), m_contactSpec(std::move(contact)), m_contact(true),
+      m_conductance(m_contactSpec.initial), m_location(location), m_relative(relativeToStart)
+{
+    if (!(m_contactSpec.lower >= 0.0) || !(m_contactSpec.upper >= m_contactSpec.lower))
+        throw std::invalid_argument("ChannelHeatSource '" + m_amplitude.name + "': contact conductance bounds must be "
+                                    "0 <= lower <= upper");
+}
+
+std::vector<ParameterSpec> ChannelHeatSource::nonlinearParameters() const
+{
+    if (!m_contact)
+        return {};
+    return {m_contactSpec};
+}
+
+void ChannelHeatSource::setNonlinearParameters(const double *values)
+{
+    if (m_contact)
+        m_conductance = std::max(0.0, values[0]);
+}
+
+void ChannelHeatSource::addConductance(const HeatStepInput &step, double *wattsPerKelvin) const
+{
+    if (m_contact)
+        distribute(step, m_conductance, wattsPerKelvin);
+}
+
 void ChannelHeatSource::bind(const TimeSeries *channel, const TimeSeries *ambient, double t0_s)
 {
     if (!channel || channel->empty())
@@ -39,7 +68,11 @@ void ChannelHeatSource::addUnitHeat(const HeatStepInput &step, double *watts)
 {
     const double t = m_t0 + (static_cast<double>(m_step) + 0.5) * step.dt_s;
     ++m_step;
-    const double d = driver(t);
+    distribute(step, m_contact ? m_conductance * driver(t) : driver(t), watts);
+}
+
+void ChannelHeatSource::distribute(const HeatStepInput &step, double d, double *watts) const
+{
     const int n = step.layout->cellCount();
     switch (m_location) {
     case Location::FixedEnd:

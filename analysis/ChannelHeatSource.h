@@ -8,6 +8,12 @@
 // channel found by its role and bound per recording with bind() before fit()/predict().
 // `relativeToStart` subtracts the difference at the start of the recording (the model's
 // screw starts at ambient; a sensor offset must not become a constant heat).
+//
+// Contact mode (a fourth constructor argument): the channel is a body touching the screw
+// through a contact conductance G (W/K, a nonlinear parameter) and the heat is
+// Q = G (a (T_channel - T_a) - (T_screw - T_a)): the screw gives heat back as it warms and
+// relaxes to the channel's temperature instead of taking heat without limit. The amplitude a
+// (dimensionless, ~1) scales the measured difference to the contact face's.
 
 #include "HeatSourceComponent.h"
 
@@ -15,6 +21,7 @@
 #include "TimeSeries.h"
 
 #include <string>
+#include <vector>
 
 namespace driftlab {
 
@@ -24,6 +31,7 @@ public:
     // during the step (a housing that travels with the nut).
     enum class Location { FixedEnd, FreeEnd, Distributed, FixedBearing, Nut };
     ChannelHeatSource(ParameterSpec amplitude, Location location, bool relativeToStart);
+    ChannelHeatSource(ParameterSpec amplitude, Location location, bool relativeToStart, ParameterSpec contact);
 
     // channel: driver temperature; ambient: may be null or empty (then the channel's own start
     // value is the reference); t0_s: start of the recording's drive. Pointers must outlive use.
@@ -33,12 +41,22 @@ public:
     ParameterSpec amplitude() const override { return m_amplitude; }
     void beginRecording() override { m_step = 0; }
     void addUnitHeat(const HeatStepInput &step, double *watts) override;
+    std::vector<ParameterSpec> nonlinearParameters() const override;
+    void setNonlinearParameters(const double *values) override;
+    void addConductance(const HeatStepInput &step, double *wattsPerKelvin) const override;
+    bool hasConductance() const override { return m_contact; }
 
     // Driver value (K) at time t.
     double driver(double t_s) const;
 
 private:
+    // Spreads `value` over the cells of the location (sum = value).
+    void distribute(const HeatStepInput &step, double value, double *cells) const;
+
     ParameterSpec m_amplitude;
+    ParameterSpec m_contactSpec;
+    bool m_contact = false;
+    double m_conductance = 0.0; // W/K, contact mode
     Location m_location;
     bool m_relative;
     const TimeSeries *m_channel = nullptr;

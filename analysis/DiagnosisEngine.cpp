@@ -429,6 +429,23 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
                 }
         }
         out.minAmplitudeZ = zMax;
+        bool sizeOk = true;
+        {
+            std::string sizes;
+            bool reported = false, reached = false;
+            for (const IdentifiedParameter &p : ev.fit.all)
+                for (const auto &[name, least] : effect.minimumSize)
+                    if (p.name == name) {
+                        reported = true;
+                        reached = reached || std::fabs(p.value) >= least;
+                        sizes += (sizes.empty() ? "" : ", ") + p.name + " = " + fmt(p.value, 2) + " (needs " +
+                                 fmt(least, 2) + ")";
+                    }
+            if (reported && !reached) {
+                sizeOk = false;
+                out.reasons.push_back("too small to be the effect: " + sizes);
+            }
+        }
         const bool restores = base.fit.parameters.k2 < m_options.minPlausibleK2_W_m2K &&
                               ev.fit.parameters.k2 >= m_options.minPlausibleK2_W_m2K;
         const double heldNeeded = restores ? 0.0 : m_options.minHeldoutImprovement;
@@ -468,7 +485,7 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
         out.reasons.push_back("main amplitude |value|/SE = " + fmt(zMax, 1) + (zOk ? "" : " (confidence interval includes zero)"));
         // Plausibility is evidence, not a veto: a refit that drives lambda / P_f further from
         // physics scores lower.
-        out.accepted = heldOk && cvOk && icOk && zOk && out.insideBounds;
+        out.accepted = heldOk && cvOk && icOk && zOk && sizeOk && out.insideBounds;
         const double cvTerm = cvWaived ? std::max(out.cvImprovement, 0.0) : out.cvImprovement;
         out.score = out.heldoutImprovement + 0.5 * cvTerm -
                     0.05 * std::max(0.0, out.plausibilityDistance - baseDistance);

@@ -46,6 +46,13 @@ public:
     virtual void beginRecording() {}
     // Adds the mean heat flow (W) into each cell over the step for amplitude 1.
     virtual void addUnitHeat(const HeatStepInput &step, double *watts) = 0;
+    // Adds a conductance (W/K) from each cell to the ambient over the step: a contact through
+    // which the screw also gives heat back, -G (T_cell - T_a). Set by the nonlinear parameters,
+    // independent of the amplitude, so the field stays linear in the amplitudes. Called before
+    // addUnitHeat() in every step. Default: none.
+    virtual void addConductance(const HeatStepInput & /*step*/, double * /*wattsPerKelvin*/) const {}
+    // True when addConductance() adds anything (lets the simulator skip the call).
+    virtual bool hasConductance() const { return false; }
 };
 
 } // namespace driftlab

@@ -395,12 +395,20 @@ void ResidualLocator::checkPlausibility(const IdentificationResult &r, const Ide
     };
     if (atBound(p.k1, o.k1Lower, o.k1Upper))
         loc.implausible.push_back({"k1", p.k1, 0.911e-3, "k1 at its bound"});
-    if (atBound(p.k2, o.k2Lower, o.k2Upper) || p.k2 < 8.0 || p.k2 > 150.0)
+    if (p.k2 < 8.0)
         loc.implausible.push_back({"k2", p.k2, 26.0,
                                    "still-air convection k2 = " + fmt(p.k2, 1) +
-                                       " W/(m^2 K) outside 8..150 (natural convection plus radiation of a bare "
-                                       "screw is ~8 or more: a lower value makes the screw slower and cooler than "
-                                       "physics allows, e.g. to absorb heat that reaches it late)"});
+                                       " W/(m^2 K) below 8 (natural convection plus radiation of a bare screw is "
+                                       "~8 or more: a lower value makes the screw slower and cooler than physics "
+                                       "allows, e.g. to absorb heat that reaches it late)"});
+    else if (p.k2 > 150.0)
+        loc.implausible.push_back({"k2", p.k2, 26.0,
+                                   "still-air convection k2 = " + fmt(p.k2, 1) +
+                                       " W/(m^2 K) above 150 (more than forced air cools a screw: the model needs a "
+                                       "heat sink it does not contain, e.g. heat that leaves by another path such as "
+                                       "a coolant)"});
+    else if (atBound(p.k2, o.k2Lower, o.k2Upper))
+        loc.implausible.push_back({"k2", p.k2, 26.0, "k2 at its bound"});
     if (p.k3 <= 1e-9)
         loc.implausible.push_back({"k3", p.k3, 0.9e-3, "no bearing heat identified (k3 = 0)"});
     if (p.k4 <= 1e-9)

@@ -324,16 +324,36 @@ double ScrewResponseSimulator::runRecording(Prepared &p, const std::vector<std::
     in.fineCount = p.substeps;
     size_t next = 0;
     const double hr = half * r;
+    // Contact conductances of the components (W/K per cell), refilled every step.
+    std::vector<double> contact(static_cast<size_t>(n), 0.0);
+    bool anyContact = false;
+    for (const auto &s : sources)
+        anyContact = anyContact || s->hasConductance();
     for (int j = 0; j < p.steps; ++j) {
         const double vbar = p.meanFeed[static_cast<size_t>(j)];
         const double *occ = p.occ.data() + static_cast<size_t>(j) * n;
         const double *vocc = p.vocc.data() + static_cast<size_t>(j) * n;
+        in.meanFeed_mm_min = vbar;
+        in.nutOccupancy = occ;
+        in.nutFeed = vocc;
+        in.fineFeed_mm_min = p.fineFeed.data() + static_cast<size_t>(j) * p.substeps;
+        in.ambientDeviation_K =
+            0.5 * (p.ambientDev[static_cast<size_t>(j)] + p.ambientDev[static_cast<size_t>(j) + 1]);
         for (int i = 0; i < n; ++i) {
             // mean over the step of h(t) x (not under nut or bearing)
             const double shielded = i < nb ? 0.0 : k1 * (vbar - vocc[i]) + k2 * (1.0 - occ[i]);
             conv[static_cast<size_t>(i)] = lat * std::max(0.0, shielded);
         }
         conv[static_cast<size_t>(n) - 1] += face * std::max(0.0, k1 * vbar + k2);
+        if (anyContact) {
+            // Contacts (W/K) act like convection: a sink to ambient on the diagonal, the
+            // ambient's share through column 0.
+            std::fill(contact.begin(), contact.end(), 0.0);
+            for (const auto &s : sources)
+                s->addConductance(in, contact.data());
+            for (int i = 0; i < n; ++i)
+                conv[static_cast<size_t>(i)] += wattsToRate * contact[static_cast<size_t>(i)];
+        }
         for (int i = 0; i < n; ++i)
             diag[static_cast<size_t>(i)] = 1.0 + half * (2.0 * r + conv[static_cast<size_t>(i)]);
         diag[0] -= hr;
@@ -341,12 +361,7 @@ double ScrewResponseSimulator::runRecording(Prepared &p, const std::vector<std::
         solver.factor(lower.data(), diag.data(), upper.data(), n);
 
         // Forcing (K/s): ambient through convection in column 0, unit heat in the others.
-        const double TaMid = 0.5 * (p.ambientDev[static_cast<size_t>(j)] + p.ambientDev[static_cast<size_t>(j) + 1]);
-        in.meanFeed_mm_min = vbar;
-        in.nutOccupancy = occ;
-        in.nutFeed = vocc;
-        in.fineFeed_mm_min = p.fineFeed.data() + static_cast<size_t>(j) * p.substeps;
-        in.ambientDeviation_K = TaMid;
+        const double TaMid = in.ambientDeviation_K;
         for (int i = 0; i < n; ++i)
             F[static_cast<size_t>(i) * cols] = dt * conv[static_cast<size_t>(i)] * TaMid;
         for (int c = 1; c < cols; ++c) {

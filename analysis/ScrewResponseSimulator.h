@@ -7,7 +7,9 @@
 // (one tridiagonal factorisation per step, one solve per input) and returns the design
 // matrix: row = observation, column 0 = the response to the recorded ambient (coefficient 1,
 // not fitted), then one column per heat-source component at unit amplitude, then one per
-// error-term component. Prediction = column 0 + sum amplitude_c x column c.
+// error-term component. Prediction = column 0 + sum amplitude_c x column c. A component's
+// contact conductance (HeatSourceComponent::addConductance, set by its nonlinear parameters)
+// enters the operator like convection, so the field stays linear in the amplitudes.
 //
 // Large steps: the nut position and feed are sampled at `driveSample_s` inside each step and
 // the nut heat, the nut's shielding from convection and the feed-dependent h are averaged

@@ -5,9 +5,13 @@
 //    grid (dx/2, dt/2) over the Table-2 programme;
 //  - energy conservation of every heat column without convection (k1 = k2 = 0):
 //    elongation = alpha * integral(Q dt) / (rho c A), also for the lagged motor source;
-//  - error-term columns against their definitions.
+//  - error-term columns against their definitions;
+//  - a contact conductance (ChannelHeatSource contact mode) to a housing held Delta T above
+//    ambient: spread uniformly it is the lumped exponential Delta T (1 - exp(-t g / (rho c A)))
+//    exactly; at the bearing or under the nut the screw relaxes to the housing temperature.
 
 #include "BearingHeatSource.h"
+#include "ChannelHeatSource.h"
 #include "CrankNicolsonScrewModel.h"
 #include "EndHeatSource.h"
 #include "NutHeatSource.h"
@@ -52,6 +56,7 @@ private slots:
     void referenceRunIsSubtracted();
     void threadsGiveSameResult();
     void rejectsBadRecordings();
+    void contactRelaxesToHousingTemperature();
 };
 
 void TestScrewResponseSimulator::reproducesCrankNicolsonModel()
@@ -257,6 +262,96 @@ void TestScrewResponseSimulator::threadsGiveSameResult()
     QCOMPARE(phi[0].rows(), phi[1].rows());
     QVERIFY(phi[0].cwiseAbs().maxCoeff() > 0);
     QCOMPARE((phi[0] - phi[1]).cwiseAbs().maxCoeff(), 0.0);
+}
+
+void TestScrewResponseSimulator::contactRelaxesToHousingTemperature()
+{
+    const ScrewGeometry g;
+    const double hours = 12.0, dT = 2.0, t0 = 100.0;
+    // Standstill with the nut at 300 mm, constant ambient, probe samples every 60 s.
+    ScrewRecording rec;
+    rec.name = "contact";
+    for (double t = t0; t <= t0 + hours * 3600.0 + 1e-9; t += 60.0) {
+        rec.drive.position_mm.t.push_back(t);
+        rec.drive.position_mm.v.push_back(300.0);
+        rec.drive.feed_mm_min.t.push_back(t);
+        rec.drive.feed_mm_min.v.push_back(0.0);
+        rec.drive.ambient_C.t.push_back(t);
+        rec.drive.ambient_C.v.push_back(21.0);
+        if (t > t0) {
+            rec.elongation_um.t.push_back(t);
+            rec.elongation_um.v.push_back(0.0);
+        }
+    }
+    for (double d : {0.005, 0.1, 0.3, 0.5, 0.79}) {
+        ScrewTemperaturePoint tp;
+        tp.t_s = t0 + hours * 3600.0;
+        tp.distance_m = d;
+        tp.temperature_C = 21.0;
+        rec.screwTemperatures.push_back(tp);
+    }
+    TimeSeries housing = rec.drive.ambient_C;
+    for (double &v : housing.v)
+        v += dT;
+    const double area = kPi * g.diameter_m * g.diameter_m / 4.0;
+    const double rhoC = g.density_kg_m3 * g.specificHeat_J_kgK;
+    const double full = g.expansion_per_K * g.length_m * dT * 1e6; // um, whole screw at T_a + dT
+
+    using Location = ChannelHeatSource::Location;
+    for (Location where : {Location::Distributed, Location::FixedBearing, Location::Nut}) {
+        // Distributed: g in W/(m K); elsewhere G in W/K.
+        const double G = where == Location::Distributed ? 4.0 : 3.0;
+        auto contact = std::make_shared<ChannelHeatSource>(ParameterSpec{"a", "1", 1.0, 0.0, 3.0, 1.0}, where, false,
+                                                           ParameterSpec{"G", "W/K", G, 0.0, 20.0, 1.0});
+        QCOMPARE(contact->nonlinearParameters().size(), size_t(1));
+        contact->setNonlinearParameters(&G);
+        contact->bind(&housing, &rec.drive.ambient_C, t0);
+        std::vector<std::shared_ptr<HeatSourceComponent>> sources = seedSources();
+        sources.push_back(contact);
+        ScrewResponseSimulator sim(g, {rec}, ResponseSimulatorOptions{}, sources);
+        Eigen::MatrixXd phi;
+        sim.simulate(0.0, 0.0, 200.0, 0.0, phi); // no convection: the contact is the only path
+        QVERIFY(phi.col(0).cwiseAbs().maxCoeff() < 1e-12); // constant ambient
+        const double tau = rhoC * area / G;            // lumped, per metre (Distributed)
+        double worst = 0.0;
+        for (int r = 0; r < sim.rowCount(); ++r) {
+            if (sim.observations()[static_cast<size_t>(r)].temperature)
+                continue;
+            const double t = sim.observations()[static_cast<size_t>(r)].t_s - t0;
+            const double e = phi(r, 3);
+            QVERIFY2(e >= -1e-9 && e <= full * (1.0 + 1e-9), qPrintable(QString("t = %1 s: %2 um").arg(t).arg(e)));
+            if (where == Location::Distributed)
+                worst = std::max(worst, std::fabs(e - full * (1.0 - std::exp(-t / tau))));
+        }
+        if (where == Location::Distributed)
+            QVERIFY2(worst < 1e-3 * full, qPrintable(QString("lumped exponential off by %1 um").arg(worst)));
+        // After 12 h (contact time constant rho c A L / G ~ 850 s, slowest axial mode
+        // 4 L^2 rho c / (pi^2 lambda) ~ 1.3 h) the whole screw sits at the housing temperature.
+        int last = -1;
+        for (int r = 0; r < sim.rowCount(); ++r) {
+            const ResponseObservation &o = sim.observations()[static_cast<size_t>(r)];
+            if (o.temperature)
+                QVERIFY2(std::fabs(phi(r, 3) - dT) < 2e-3 * dT,
+                         qPrintable(QString("location %1: %2 K at %3 m after 12 h, housing %4 K")
+                                        .arg(int(where)).arg(phi(r, 3)).arg(o.distance_m).arg(dT)));
+            else
+                last = r;
+        }
+        QVERIFY(last > 0);
+        const double end = phi(last, 3);
+        QVERIFY2(std::fabs(end - full) < 2e-3 * full,
+                 qPrintable(QString("location %1: %2 um at 12 h vs %3 um").arg(int(where)).arg(end).arg(full)));
+        // Half-way time: the bearing contact (one end) is slower than the spread contact.
+        if (where == Location::FixedBearing) {
+            int half = 0;
+            while (half < sim.rowCount() && phi(half, 3) < 0.5 * full)
+                ++half;
+            const double tHalf = sim.observations()[static_cast<size_t>(half)].t_s - t0;
+            const double lumped = std::log(2.0) * rhoC * area * g.length_m / G;
+            QVERIFY2(tHalf >= lumped - 60.0 && tHalf < 10.0 * lumped,
+                     qPrintable(QString("half-way after %1 s, lumped bound %2 s").arg(tHalf).arg(lumped)));
+        }
+    }
 }
 
 void TestScrewResponseSimulator::rejectsBadRecordings()
