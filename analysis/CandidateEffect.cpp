@@ -132,11 +132,11 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                            auto bearing = std::make_shared<ChannelHeatSource>(
                                ParameterSpec{"a_bearing_housing", "1", 1.0, 0.0, 3.0, 1.0},
                                ChannelHeatSource::Location::FixedBearing, true,
-                               ParameterSpec{"G_bearing_contact", "W/K", 2.0, 0.0, 20.0, 1.0});
+                               ParameterSpec{"G_bearing_contact", "W/K", 2.0, 0.0, 100.0, 1.0});
                            auto nut = std::make_shared<ChannelHeatSource>(
                                ParameterSpec{"a_nut_housing", "1", 1.0, 0.0, 3.0, 1.0},
                                ChannelHeatSource::Location::Nut, true,
-                               ParameterSpec{"G_nut_contact", "W/K", 2.0, 0.0, 20.0, 1.0});
+                               ParameterSpec{"G_nut_contact", "W/K", 2.0, 0.0, 100.0, 1.0});
                            CandidateModel m;
                            m.sources = {bearing, nut};
                            m.bind = [bearing, nut](const DiagnosisRecording &r) {
