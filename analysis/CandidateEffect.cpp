@@ -34,6 +34,10 @@ double startOf(const DiagnosisRecording &r)
     return r.screw.drive.position_mm.empty() ? 0.0 : r.screw.drive.position_mm.t.front();
 }
 
+// The lag's housing contacts (nonlinear conductances; also named by the size rule).
+const ParameterSpec kBearingContact{"G_bearing_contact", "W/K", 2.0, 0.0, 100.0, 1.0};
+const ParameterSpec kNutContact{"G_nut_contact", "W/K", 2.0, 0.0, 100.0, 1.0};
+
 CandidateModel channelHeat(const std::string &role, ParameterSpec spec, ChannelHeatSource::Location where,
                            bool relative)
 {
@@ -131,12 +135,10 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                            // Contact variant: each housing touches the screw through G (W/K).
                            auto bearing = std::make_shared<ChannelHeatSource>(
                                ParameterSpec{"a_bearing_housing", "1", 1.0, 0.0, 3.0, 1.0},
-                               ChannelHeatSource::Location::FixedBearing, true,
-                               ParameterSpec{"G_bearing_contact", "W/K", 2.0, 0.0, 100.0, 1.0});
+                               ChannelHeatSource::Location::FixedBearing, true, kBearingContact);
                            auto nut = std::make_shared<ChannelHeatSource>(
                                ParameterSpec{"a_nut_housing", "1", 1.0, 0.0, 3.0, 1.0},
-                               ChannelHeatSource::Location::Nut, true,
-                               ParameterSpec{"G_nut_contact", "W/K", 2.0, 0.0, 100.0, 1.0});
+                               ChannelHeatSource::Location::Nut, true, kNutContact);
                            CandidateModel m;
                            m.sources = {bearing, nut};
                            m.bind = [bearing, nut](const DiagnosisRecording &r) {
@@ -158,7 +160,7 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                    4});
     // Every machine has some housing contact: the contact variant counts only when one of its
     // conductances is large enough to carry the heat the lag describes.
-    lib.back().minimumSize = {{"G_bearing_contact", 0.5}, {"G_nut_contact", 0.5}};
+    lib.back().minimumSize = {{kBearingContact.name, 0.5}, {kNutContact.name, 0.5}};
     lib.push_back({"holding_heat",
                    "Heat is produced while the axis stands still (e.g. the motor holding position, a brake), so "
                    "the screw does not cool as the model expects. Modelled as constant power P_hold into the "

@@ -14,10 +14,10 @@ ChannelHeatSource::ChannelHeatSource(ParameterSpec amplitude, Location location,
 
 ChannelHeatSource::ChannelHeatSource(ParameterSpec amplitude, Location location, bool relativeToStart,
                                      ParameterSpec contact)
-    : m_amplitude(std::move(amplitude)), m_contactSpec(std::move(contact)), m_contact(true),
-      m_conductance(m_contactSpec.initial), m_location(location), m_relative(relativeToStart)
+    : m_amplitude(std::move(amplitude)), m_contact(std::move(contact)), m_conductance(m_contact->initial),
+      m_location(location), m_relative(relativeToStart)
 {
-    if (!(m_contactSpec.lower >= 0.0) || !(m_contactSpec.upper >= m_contactSpec.lower))
+    if (!(m_contact->lower >= 0.0) || !(m_contact->upper >= m_contact->lower))
         throw std::invalid_argument("ChannelHeatSource '" + m_amplitude.name + "': contact conductance bounds must be "
                                     "0 <= lower <= upper");
 }
@@ -26,7 +26,7 @@ std::vector<ParameterSpec> ChannelHeatSource::nonlinearParameters() const
 {
     if (!m_contact)
         return {};
-    return {m_contactSpec};
+    return {*m_contact};
 }
 
 void ChannelHeatSource::setNonlinearParameters(const double *values)

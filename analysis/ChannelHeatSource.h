@@ -18,6 +18,7 @@
 #include "HeatSourceComponent.h"
 
 #include <memory>
+#include <optional>
 #include "TimeSeries.h"
 
 #include <string>
@@ -44,7 +45,6 @@ public:
     std::vector<ParameterSpec> nonlinearParameters() const override;
     void setNonlinearParameters(const double *values) override;
     void addConductance(const HeatStepInput &step, double *wattsPerKelvin) const override;
-    bool hasConductance() const override { return m_contact; }
 
     // Driver value (K) at time t.
     double driver(double t_s) const;
@@ -54,9 +54,8 @@ private:
     void distribute(const HeatStepInput &step, double value, double *cells) const;
 
     ParameterSpec m_amplitude;
-    ParameterSpec m_contactSpec;
-    bool m_contact = false;
-    double m_conductance = 0.0; // W/K, contact mode
+    std::optional<ParameterSpec> m_contact; // contact mode: the conductance's description
+    double m_conductance = 0.0;             // W/K, contact mode
     Location m_location;
     bool m_relative;
     const TimeSeries *m_channel = nullptr;

@@ -66,6 +66,22 @@ std::string fmt(double v, int prec = 3)
     return o.str();
 }
 
+// Empty when the fit reports none of the effect's size parameters or one reaches its minimum;
+// otherwise the sizes found, e.g. "G_nut_contact = 0.09 (needs 0.50)".
+std::string sizeShortfall(const CandidateEffect &effect, const IdentificationResult &fit)
+{
+    std::string sizes;
+    bool reached = false;
+    for (const IdentifiedParameter &p : fit.all)
+        for (const auto &[name, least] : effect.minimumSize) {
+            if (p.name != name)
+                continue;
+            reached = reached || std::fabs(p.value) >= least;
+            sizes += (sizes.empty() ? "" : ", ") + p.name + " = " + fmt(p.value, 2) + " (needs " + fmt(least, 2) + ")";
+        }
+    return reached ? std::string() : sizes;
+}
+
 } // namespace
 
 DiagnosisEngine::DiagnosisEngine(const ScrewGeometry &geometry, const DiagnosisOptions &options)
@@ -429,23 +445,10 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
                 }
         }
         out.minAmplitudeZ = zMax;
-        bool sizeOk = true;
-        {
-            std::string sizes;
-            bool reported = false, reached = false;
-            for (const IdentifiedParameter &p : ev.fit.all)
-                for (const auto &[name, least] : effect.minimumSize)
-                    if (p.name == name) {
-                        reported = true;
-                        reached = reached || std::fabs(p.value) >= least;
-                        sizes += (sizes.empty() ? "" : ", ") + p.name + " = " + fmt(p.value, 2) + " (needs " +
-                                 fmt(least, 2) + ")";
-                    }
-            if (reported && !reached) {
-                sizeOk = false;
-                out.reasons.push_back("too small to be the effect: " + sizes);
-            }
-        }
+        const std::string tooSmall = sizeShortfall(effect, ev.fit);
+        const bool sizeOk = tooSmall.empty();
+        if (!sizeOk)
+            out.reasons.push_back("too small to be the effect: " + tooSmall);
         const bool restores = base.fit.parameters.k2 < m_options.minPlausibleK2_W_m2K &&
                               ev.fit.parameters.k2 >= m_options.minPlausibleK2_W_m2K;
         const double heldNeeded = restores ? 0.0 : m_options.minHeldoutImprovement;

@@ -51,8 +51,6 @@ public:
     // independent of the amplitude, so the field stays linear in the amplitudes. Called before
     // addUnitHeat() in every step. Default: none.
     virtual void addConductance(const HeatStepInput & /*step*/, double * /*wattsPerKelvin*/) const {}
-    // True when addConductance() adds anything (lets the simulator skip the call).
-    virtual bool hasConductance() const { return false; }
 };
 
 } // namespace driftlab

@@ -326,9 +326,6 @@ double ScrewResponseSimulator::runRecording(Prepared &p, const std::vector<std::
     const double hr = half * r;
     // Contact conductances of the components (W/K per cell), refilled every step.
     std::vector<double> contact(static_cast<size_t>(n), 0.0);
-    bool anyContact = false;
-    for (const auto &s : sources)
-        anyContact = anyContact || s->hasConductance();
     for (int j = 0; j < p.steps; ++j) {
         const double vbar = p.meanFeed[static_cast<size_t>(j)];
         const double *occ = p.occ.data() + static_cast<size_t>(j) * n;
@@ -345,15 +342,13 @@ double ScrewResponseSimulator::runRecording(Prepared &p, const std::vector<std::
             conv[static_cast<size_t>(i)] = lat * std::max(0.0, shielded);
         }
         conv[static_cast<size_t>(n) - 1] += face * std::max(0.0, k1 * vbar + k2);
-        if (anyContact) {
-            // Contacts (W/K) act like convection: a sink to ambient on the diagonal, the
-            // ambient's share through column 0.
-            std::fill(contact.begin(), contact.end(), 0.0);
-            for (const auto &s : sources)
-                s->addConductance(in, contact.data());
-            for (int i = 0; i < n; ++i)
-                conv[static_cast<size_t>(i)] += wattsToRate * contact[static_cast<size_t>(i)];
-        }
+        // Contacts (W/K) act like convection: a sink to ambient on the diagonal, the ambient's
+        // share through column 0.
+        std::fill(contact.begin(), contact.end(), 0.0);
+        for (const auto &s : sources)
+            s->addConductance(in, contact.data());
+        for (int i = 0; i < n; ++i)
+            conv[static_cast<size_t>(i)] += wattsToRate * contact[static_cast<size_t>(i)];
         for (int i = 0; i < n; ++i)
             diag[static_cast<size_t>(i)] = 1.0 + half * (2.0 * r + conv[static_cast<size_t>(i)]);
         diag[0] -= hr;

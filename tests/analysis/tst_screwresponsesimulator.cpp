@@ -346,6 +346,7 @@ void TestScrewResponseSimulator::contactRelaxesToHousingTemperature()
             int half = 0;
             while (half < sim.rowCount() && phi(half, 3) < 0.5 * full)
                 ++half;
+            QVERIFY(half < sim.rowCount());
             const double tHalf = sim.observations()[static_cast<size_t>(half)].t_s - t0;
             const double lumped = std::log(2.0) * rhoC * area * g.length_m / G;
             QVERIFY2(tHalf >= lumped - 60.0 && tHalf < 10.0 * lumped,
