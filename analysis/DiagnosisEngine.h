@@ -14,6 +14,7 @@
 
 #include "CandidateEffect.h"
 #include "DiagnosisTypes.h"
+#include "ParameterPlausibility.h"
 #include "ScrewModelIdentifier.h"
 
 #include <functional>
@@ -46,8 +47,8 @@ struct DiagnosisOptions {
     // allows to absorb something (a heat-path lag does exactly this). A candidate that brings
     // k2 back above it is "restoring" and needs only a held-out RMS no worse than the
     // baseline's (its other tests unchanged): implausibility counts as evidence.
-    double minPlausibleK2_W_m2K = 8.0;
-    double steelConductivity_W_mK = 45.0;
+    double minPlausibleK2_W_m2K = ParameterPlausibility::kMinK2_W_m2K;
+    double steelConductivity_W_mK = ParameterPlausibility::kSteelConductivity_W_mK;
     int threads = 0;                      // candidates refitted in parallel (0 = hardware)
     // Physical bounds of the refits (issue 7: "parameters inside physical bounds"): lambda of
     // a steel screw (the 1-D model's simplifications allowed for), P_f within this distance

@@ -1,5 +1,7 @@
 #include "ResidualLocator.h"
 
+#include "ParameterPlausibility.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -378,41 +380,8 @@ void ResidualLocator::locateTemperatures(const DiagnosisRecording &rec, const st
 void ResidualLocator::checkPlausibility(const IdentificationResult &r, const IdentificationOptions &o,
                                         double drawingFixedEnd_mm, ResidualLocation &loc)
 {
-    const FdmParameters &p = r.parameters;
-    const double steel = 45.0;
-    if (p.conductivity_W_mK < steel / 2.0 || p.conductivity_W_mK > steel * 2.0)
-        loc.implausible.push_back({"lambda", p.conductivity_W_mK, steel,
-                                   "conductivity " + fmt(p.conductivity_W_mK, 1) +
-                                       " W/(m K) is far from steel's ~45 W/(m K): the model bends heat flow to "
-                                       "fit something it does not contain"});
-    if (std::isfinite(drawingFixedEnd_mm) && o.fitFixedEnd && std::fabs(p.fixedEndPosition_mm - drawingFixedEnd_mm) > 30.0)
-        loc.implausible.push_back({"P_f", p.fixedEndPosition_mm, drawingFixedEnd_mm,
-                                   "fixed end identified at " + fmt(p.fixedEndPosition_mm, 1) + " mm, the drawing says " +
-                                       fmt(drawingFixedEnd_mm, 1) + " mm"});
-    auto atBound = [](double v, double lo, double hi) {
-        const double tol = 1e-6 * std::max(1.0, hi - lo);
-        return v <= lo + tol || v >= hi - tol;
-    };
-    if (atBound(p.k1, o.k1Lower, o.k1Upper))
-        loc.implausible.push_back({"k1", p.k1, 0.911e-3, "k1 at its bound"});
-    if (p.k2 < 8.0)
-        loc.implausible.push_back({"k2", p.k2, 26.0,
-                                   "still-air convection k2 = " + fmt(p.k2, 1) +
-                                       " W/(m^2 K) below 8 (natural convection plus radiation of a bare screw is "
-                                       "~8 or more: a lower value makes the screw slower and cooler than physics "
-                                       "allows, e.g. to absorb heat that reaches it late)"});
-    else if (p.k2 > 150.0)
-        loc.implausible.push_back({"k2", p.k2, 26.0,
-                                   "still-air convection k2 = " + fmt(p.k2, 1) +
-                                       " W/(m^2 K) above 150 (more than forced air cools a screw: the model needs a "
-                                       "heat sink it does not contain, e.g. heat that leaves by another path such as "
-                                       "a coolant)"});
-    else if (atBound(p.k2, o.k2Lower, o.k2Upper))
-        loc.implausible.push_back({"k2", p.k2, 26.0, "k2 at its bound"});
-    if (p.k3 <= 1e-9)
-        loc.implausible.push_back({"k3", p.k3, 0.9e-3, "no bearing heat identified (k3 = 0)"});
-    if (p.k4 <= 1e-9)
-        loc.implausible.push_back({"k4", p.k4, 0.9e-3, "no nut heat identified (k4 = 0)"});
+    const std::vector<PlausibilityFlag> flags = ParameterPlausibility::implausible(r, o, drawingFixedEnd_mm);
+    loc.implausible.insert(loc.implausible.end(), flags.begin(), flags.end());
 }
 
 void ResidualLocator::summarise(ResidualLocation &loc)

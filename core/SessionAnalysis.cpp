@@ -7,6 +7,7 @@
 #include <QJsonArray>
 #include <QStringList>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -35,6 +36,12 @@ ScrewGeometry SessionAnalysis::geometry() const
     read("specific_heat_J_kgK", g.specificHeat_J_kgK);
     read("expansion_per_K", g.expansion_per_K);
     return g;
+}
+
+double SessionAnalysis::drawingFixedEnd_mm() const
+{
+    const QJsonValue pf = m_info.machine.value(QStringLiteral("fixed_end_position_mm"));
+    return pf.isDouble() ? pf.toDouble() : std::numeric_limits<double>::quiet_NaN();
 }
 
 FdmParameters SessionAnalysis::defaultParameters() const
@@ -82,7 +89,14 @@ ElongationCheck SessionAnalysis::checkElongation(const FdmParameters &parameters
     check.geometry = geometry();
     const ScrewDrive d = drive();
     const TimeSeries probe = channelByRole(QStringLiteral("screw_elongation"));
-    FdmSimulation sim(check.geometry, parameters);
+    // Table 1's dt (0.1 s), shortened where the parameters (e.g. a fitted large lambda) need it
+    // for the explicit scheme to stay stable at the recording's fastest feed.
+    FdmSettings settings;
+    double maxFeed = 0.0;
+    for (double f : d.feed_mm_min.v)
+        maxFeed = std::max(maxFeed, std::fabs(f));
+    settings.dt_s = std::min(settings.dt_s, 0.9 * FdmScrewModel(check.geometry, parameters, settings).maxStableTimeStep(maxFeed));
+    FdmSimulation sim(check.geometry, parameters, settings);
     check.comparison = sim.compareElongation(d, probe);
     check.duration_s = probe.empty() ? 0.0 : probe.t.back() - probe.t.front();
     return check;

@@ -30,6 +30,8 @@ public:
     ScrewGeometry geometry() const;
     // Model parameters: Table 3 (X) with P_f from the machine block when present.
     FdmParameters defaultParameters() const;
+    // The drawing's P_f (machine block fixed_end_position_mm), NaN when the block has none.
+    double drawingFixedEnd_mm() const;
     // Throws std::runtime_error naming the missing role if a needed channel is absent.
     ScrewDrive drive() const;
     // The session as an identification recording: drive channels by role, thermal errors

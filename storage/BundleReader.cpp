@@ -3,11 +3,13 @@
 #include "BundleError.h"
 #include "IrFrameCodec.h"
 
+#include <QCryptographicHash>
 #include <QDateTime>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonParseError>
 #include <QSet>
+#include <QUuid>
 
 #include <charconv>
 #include <cmath>
@@ -211,6 +213,43 @@ BundleReader::BundleReader(const QString &path) : m_archive(std::make_unique<Bun
     const QString ir = optionalFile(QStringLiteral("infrared"), QStringLiteral("index"), QStringLiteral("ir/index.csv"));
     if (!ir.isEmpty())
         readFrames(ir);
+    m_content.session.contentSha256 = QString::fromLatin1(contentHash().toHex());
+}
+
+QByteArray BundleReader::contentHash() const
+{
+    QCryptographicHash h(QCryptographicHash::Sha256);
+    const auto text = [&h](const QString &s) {
+        const QByteArray b = s.toUtf8();
+        const qint64 n = b.size();
+        h.addData(reinterpret_cast<const char *>(&n), sizeof n);
+        h.addData(b);
+    };
+    const auto numbers = [&h](const double *v, qint64 n) {
+        h.addData(reinterpret_cast<const char *>(&n), sizeof n);
+        h.addData(reinterpret_cast<const char *>(v), static_cast<int>(n * static_cast<qint64>(sizeof(double))));
+    };
+    const BundleContent &c = m_content;
+    text(c.session.started);
+    for (int i = 0; i < c.channels.size(); ++i) {
+        text(c.channels[i].key);
+        numbers(c.samples[i].t.constData(), c.samples[i].t.size());
+        numbers(c.samples[i].v.constData(), c.samples[i].v.size());
+    }
+    for (const InterferometerPoint &p : c.interferometer) {
+        const double v[] = {p.t, static_cast<double>(p.run), p.position_mm, p.error_um};
+        numbers(v, 4);
+        text(p.direction);
+    }
+    for (const EventRecord &e : c.events) {
+        numbers(&e.t, 1);
+        text(e.label);
+    }
+    for (const IrFrame &f : c.frames) {
+        const double v[] = {f.t, static_cast<double>(f.width), static_cast<double>(f.height)};
+        numbers(v, 3);
+    }
+    return h.result();
 }
 
 BundleReader::~BundleReader() = default;
@@ -250,6 +289,11 @@ void BundleReader::readManifest()
                           QStringLiteral("'%1' is not an ISO 8601 date-time").arg(info.started));
     info.operatorName = str(s, QStringLiteral("operator"), QStringLiteral("session.operator"), false);
     info.notes = str(s, QStringLiteral("notes"), QStringLiteral("session.notes"), false);
+    // DriftLab's own key (unknown keys are allowed): the session's identity across databases.
+    info.uuid = str(s, QStringLiteral("uuid"), QStringLiteral("session.uuid"), false).toLower();
+    if (!info.uuid.isEmpty() && (QUuid::fromString(info.uuid).isNull() || info.uuid.startsWith(QLatin1Char('{'))))
+        throw BundleError(kManifest, 0, QStringLiteral("session.uuid"),
+                          QStringLiteral("'%1' is not a UUID (8-4-4-4-12 hexadecimal digits)").arg(info.uuid));
     info.complete = true;
     info.manifest = m;
     const QJsonValue machine = m.value(QStringLiteral("machine"));

@@ -1,5 +1,5 @@
 #pragma once
-// Reads and validates a recording bundle (../shared/spec/recording-bundle.md, version 1)
+// Reads and validates a recording bundle (docs/recording-bundle.md, version 1)
 // completely before anything is imported: every CSV cell is parsed and every frame decoded.
 
 #include "BundleArchive.h"
@@ -33,6 +33,11 @@ public:
     const BundleContent &content() const { return m_content; }
     // Frame i with its pixels (decoded again from the bundle).
     IrFrame frame(int i) const;
+    // SHA-256 of the recorded content (session start, channel ids and samples, interferometer
+    // points, events, frame times and sizes), independent of CSV number formatting and of
+    // directory vs .zip; also in content().session.contentSha256 (hex). Name, operator and
+    // notes are not part of it: a renamed copy of a recording is still the same recording.
+    QByteArray contentHash() const;
 
 private:
     void readManifest();

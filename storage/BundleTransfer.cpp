@@ -2,6 +2,7 @@
 
 #include "BundleArchive.h"
 #include "BundleReader.h"
+#include "DuplicateSessionError.h"
 #include "IrFrameCodec.h"
 #include "SessionStore.h"
 
@@ -53,13 +54,29 @@ QByteArray BundleTransfer::formatDouble(double v)
     return QByteArray(buf, static_cast<int>(r.ptr - buf));
 }
 
-qint64 BundleTransfer::importBundle(SessionStore &store, const QString &bundlePath)
+qint64 BundleTransfer::importBundle(SessionStore &store, const QString &bundlePath, bool allowDuplicate)
 {
     const BundleReader reader(bundlePath); // validates everything first
     const BundleContent &c = reader.content();
+    SessionInfo session = c.session;
+    const qint64 sameUuid = session.uuid.isEmpty() ? 0 : store.sessionByUuid(session.uuid);
+    const qint64 sameContent = store.sessionByContentHash(session.contentSha256);
+    if ((sameUuid || sameContent) && !allowDuplicate) {
+        const qint64 existing = sameUuid ? sameUuid : sameContent;
+        throw DuplicateSessionError(
+            QStringLiteral("%1 is already in %2 as session %3 '%4' (%5); nothing imported")
+                .arg(bundlePath, store.path())
+                .arg(existing)
+                .arg(store.session(existing).name,
+                     sameUuid ? QStringLiteral("same session UUID %1").arg(session.uuid)
+                              : QStringLiteral("same recorded content")),
+            existing, sameUuid != 0);
+    }
+    if (sameUuid)
+        session.uuid.clear(); // a deliberate second copy is a session of its own
     store.begin();
     try {
-        const qint64 id = store.createSession(c.session);
+        const qint64 id = store.createSession(session);
         for (int i = 0; i < c.channels.size(); ++i) {
             const qint64 channel = store.addChannel(id, c.channels[i]);
             store.appendSamples(channel, c.samples[i].t, c.samples[i].v);
@@ -92,6 +109,7 @@ void BundleTransfer::exportBundle(const SessionStore &store, qint64 sessionId, c
     m.insert(QStringLiteral("format"), QStringLiteral("thermal-error-bundle"));
     m.insert(QStringLiteral("version"), 1);
     QJsonObject s = m.value(QStringLiteral("session")).toObject();
+    s.insert(QStringLiteral("uuid"), info.uuid);
     s.insert(QStringLiteral("name"), info.name);
     s.insert(QStringLiteral("started"), info.started);
     if (!info.operatorName.isEmpty() || s.contains(QStringLiteral("operator")))

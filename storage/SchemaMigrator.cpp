@@ -119,6 +119,15 @@ CREATE TABLE fitted_models (
 CREATE INDEX events_session_time ON events(session_id, t);
 CREATE INDEX analysis_results_session ON analysis_results(session_id, kind)
 )"),
+        // 2 -> 3: session identity. uuid (filled for existing sessions by SessionStore's data
+        // step) travels in bundles as session.uuid; content_sha256 is the hash of an imported
+        // bundle's recorded content. Both find a bundle imported twice.
+        QStringLiteral(R"(
+ALTER TABLE sessions ADD COLUMN uuid TEXT;
+ALTER TABLE sessions ADD COLUMN content_sha256 TEXT NOT NULL DEFAULT '';
+CREATE UNIQUE INDEX sessions_uuid ON sessions(uuid);
+CREATE INDEX sessions_content ON sessions(content_sha256)
+)"),
     };
     return list;
 }

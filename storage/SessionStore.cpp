@@ -11,6 +11,7 @@
 #include <QJsonDocument>
 #include <QSqlError>
 #include <QSqlQuery>
+#include <QUuid>
 #include <QVariant>
 
 #include <algorithm>
@@ -68,6 +69,8 @@ SessionStore::SessionStore(const QString &path) : m_path(path)
     SchemaMigrator::migrate(m_db, [this](int toVersion) {
         if (toVersion == 2)
             convertLegacySamples();
+        if (toVersion == 3)
+            assignMissingUuids();
     });
 }
 
@@ -106,6 +109,29 @@ void SessionStore::convertLegacySamples()
     m_samples->flush();
     if (!q.exec(QStringLiteral("DELETE FROM samples")))
         failSql(QStringLiteral("cannot empty the version-1 sample table"), q.lastError());
+}
+
+// Gives every session of a version-2 database its UUID.
+void SessionStore::assignMissingUuids()
+{
+    QSqlQuery q(m_db);
+    if (!q.exec(QStringLiteral("SELECT id FROM sessions WHERE uuid IS NULL")))
+        failSql(QStringLiteral("cannot list sessions without UUID"), q.lastError());
+    QVector<qint64> ids;
+    while (q.next())
+        ids.push_back(q.value(0).toLongLong());
+    q.finish();
+    QSqlQuery u = SqlSupport::prepared(m_db, m_path, QStringLiteral("UPDATE sessions SET uuid = ? WHERE id = ?"));
+    for (qint64 id : ids) {
+        u.addBindValue(newUuid());
+        u.addBindValue(id);
+        SqlSupport::run(u, m_path, QStringLiteral("cannot give session %1 a UUID").arg(id));
+    }
+}
+
+QString SessionStore::newUuid()
+{
+    return QUuid::createUuid().toString(QUuid::WithoutBraces);
 }
 
 SessionStore::~SessionStore()
@@ -167,9 +193,14 @@ QSqlQuery &SessionStore::cached(const char *sql)
 
 qint64 SessionStore::createSession(const SessionInfo &info)
 {
+    QString uuid = info.uuid.isEmpty() ? newUuid() : info.uuid.toLower();
+    if (QUuid::fromString(uuid).isNull() || uuid.startsWith(QLatin1Char('{')))
+        throw StorageError(QStringLiteral("%1: '%2' is not a session UUID").arg(m_path, info.uuid).toStdString());
+    if (const qint64 other = sessionByUuid(uuid))
+        throw StorageError(QStringLiteral("%1: session %2 already has UUID %3").arg(m_path).arg(other).arg(uuid).toStdString());
     QSqlQuery q = SqlSupport::prepared(m_db, m_path,
                            QStringLiteral("INSERT INTO sessions(name, started, operator, notes, machine_json, complete, "
-                                          "manifest_json) VALUES(?, ?, ?, ?, ?, ?, ?)"));
+                                          "manifest_json, uuid, content_sha256) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?)"));
     q.addBindValue(text(info.name));
     q.addBindValue(text(info.started));
     q.addBindValue(text(info.operatorName));
@@ -177,8 +208,74 @@ qint64 SessionStore::createSession(const SessionInfo &info)
     q.addBindValue(QString::fromUtf8(QJsonDocument(info.machine).toJson(QJsonDocument::Compact)));
     q.addBindValue(info.complete ? 1 : 0);
     q.addBindValue(json(info.manifest));
+    q.addBindValue(uuid);
+    q.addBindValue(text(info.contentSha256));
     SqlSupport::run(q, m_path, QStringLiteral("cannot create session"));
     return q.lastInsertId().toLongLong();
+}
+
+void SessionStore::updateSessionText(qint64 sessionId, const char *column, const QString &value)
+{
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
+                                       QStringLiteral("UPDATE sessions SET %1 = ? WHERE id = ?").arg(QLatin1String(column)));
+    q.addBindValue(text(value));
+    q.addBindValue(sessionId);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot change the %1 of session %2").arg(QLatin1String(column)).arg(sessionId));
+    if (q.numRowsAffected() != 1)
+        throw StorageError(QStringLiteral("%1: no session with id %2").arg(m_path).arg(sessionId).toStdString());
+}
+
+void SessionStore::renameSession(qint64 sessionId, const QString &name)
+{
+    if (name.trimmed().isEmpty())
+        throw StorageError(QStringLiteral("%1: session %2: a session name must not be empty").arg(m_path).arg(sessionId).toStdString());
+    updateSessionText(sessionId, "name", name.trimmed());
+}
+
+void SessionStore::setSessionNotes(qint64 sessionId, const QString &notes)
+{
+    updateSessionText(sessionId, "notes", notes);
+}
+
+void SessionStore::deleteSession(qint64 sessionId)
+{
+    const bool own = !m_inTransaction;
+    if (own)
+        begin();
+    try {
+        // Blocks and mipmap rows go with their channels, everything else with the session
+        // (ON DELETE CASCADE); the legacy narrow table is emptied by the version-2 migration.
+        QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("DELETE FROM sessions WHERE id = ?"));
+        q.addBindValue(sessionId);
+        SqlSupport::run(q, m_path, QStringLiteral("cannot delete session %1").arg(sessionId));
+        if (q.numRowsAffected() != 1)
+            throw StorageError(QStringLiteral("%1: no session with id %2").arg(m_path).arg(sessionId).toStdString());
+    } catch (...) {
+        if (own)
+            rollback();
+        throw;
+    }
+    if (own)
+        commit();
+    m_samples->reset(); // channel ids of the deleted session may be given out again
+}
+
+qint64 SessionStore::sessionByUuid(const QString &uuid) const
+{
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT id FROM sessions WHERE uuid = ?"));
+    q.addBindValue(uuid.toLower());
+    SqlSupport::run(q, m_path, QStringLiteral("cannot look up session UUID %1").arg(uuid));
+    return q.next() ? q.value(0).toLongLong() : 0;
+}
+
+qint64 SessionStore::sessionByContentHash(const QString &sha256) const
+{
+    if (sha256.isEmpty())
+        return 0;
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT id FROM sessions WHERE content_sha256 = ? ORDER BY id LIMIT 1"));
+    q.addBindValue(sha256);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot look up session content"));
+    return q.next() ? q.value(0).toLongLong() : 0;
 }
 
 qint64 SessionStore::addChannel(qint64 sessionId, const ChannelInfo &c)
@@ -319,9 +416,11 @@ SessionInfo sessionFromQuery(const QSqlQuery &q)
     s.machine = QJsonDocument::fromJson(q.value(5).toString().toUtf8()).object();
     s.complete = q.value(6).toInt() != 0;
     s.manifest = object(q.value(7));
+    s.uuid = q.value(8).toString();
+    s.contentSha256 = q.value(9).toString();
     return s;
 }
-const char *kSessionColumns = "id, name, started, operator, notes, machine_json, complete, manifest_json";
+const char *kSessionColumns = "id, name, started, operator, notes, machine_json, complete, manifest_json, uuid, content_sha256";
 } // namespace
 
 QVector<SessionInfo> SessionStore::sessions() const

@@ -27,7 +27,18 @@ public:
 
     QString path() const { return m_path; }
 
+    // Creates a session; an empty info.uuid gets a new random UUID. Throws StorageError if
+    // the UUID is malformed or already names a session.
     qint64 createSession(const SessionInfo &info);
+    // Session management: rename, notes, delete (the session and everything recorded,
+    // fitted or analysed with it, in one transaction). Throw StorageError (e.g. no such id).
+    void renameSession(qint64 sessionId, const QString &name);
+    void setSessionNotes(qint64 sessionId, const QString &notes);
+    void deleteSession(qint64 sessionId);
+    // The session with this UUID / imported content hash, or 0.
+    qint64 sessionByUuid(const QString &uuid) const;
+    qint64 sessionByContentHash(const QString &sha256) const;
+    static QString newUuid();
     qint64 addChannel(qint64 sessionId, const ChannelInfo &channel);
     // Appends samples of one channel (in one transaction unless begin() was called). Times
     // must be non-decreasing and not before the channel's last stored sample; values finite
@@ -75,6 +86,8 @@ public:
 private:
     QSqlQuery &cached(const char *sql);
     void convertLegacySamples();
+    void assignMissingUuids();
+    void updateSessionText(qint64 sessionId, const char *column, const QString &value);
     [[noreturn]] void failSql(const QString &what, const QSqlError &error) const;
 
     QString m_path;

@@ -11,6 +11,12 @@ namespace driftlab {
 
 struct SessionInfo {
     qint64 id = 0;
+    // Identity that travels with the session (bundle manifest "session.uuid") and will name
+    // it in a central store: generated at creation when empty, lower-case, without braces.
+    QString uuid;
+    // SHA-256 (hex) of the recorded content of the bundle the session was imported from
+    // (BundleReader::contentHash); empty for recorded sessions.
+    QString contentSha256;
     QString name;
     QString started;      // ISO 8601, UTC
     QString operatorName;

@@ -1,6 +1,7 @@
 #include "ModelsPanel.h"
 
 #include "ErrorSurfacePlot.h"
+#include "ParameterPlausibility.h"
 #include "SessionAnalysis.h"
 #include "SessionStore.h"
 
@@ -25,7 +26,16 @@ namespace driftlab {
 
 namespace {
 constexpr int kIdRole = Qt::UserRole + 1;
+
+// Analysis units are ASCII ("W/(m^2 K)"); the GUI shows the typeset form.
+QString unitText(const std::string &unit)
+{
+    QString u = QString::fromStdString(unit);
+    u.replace(QStringLiteral("^2"), QStringLiteral("²"));
+    u.replace(QStringLiteral("um"), QStringLiteral("µm"));
+    return u;
 }
+} // namespace
 
 ModelsPanel::ModelsPanel(QWidget *parent)
     : QWidget(parent),
@@ -35,7 +45,7 @@ ModelsPanel::ModelsPanel(QWidget *parent)
       m_cancel(new QPushButton(tr("Cancel"), this)),
       m_progress(new QProgressBar(this)),
       m_status(new QLabel(this)),
-      m_parameters(new QTableWidget(0, 4, this)),
+      m_parameters(new QTableWidget(0, 5, this)),
       m_show(new QComboBox(this)),
       m_measured(new ErrorSurfacePlot(this)),
       m_predicted(new ErrorSurfacePlot(this)),
@@ -53,7 +63,7 @@ ModelsPanel::ModelsPanel(QWidget *parent)
     left->addWidget(m_progress);
     left->addWidget(m_status);
     m_status->setWordWrap(true);
-    m_parameters->setHorizontalHeaderLabels({tr("parameter"), tr("value"), tr("± std. error"), tr("unit")});
+    m_parameters->setHorizontalHeaderLabels({tr("parameter"), tr("value"), tr("± std. error"), tr("unit"), tr("check")});
     m_parameters->horizontalHeader()->setStretchLastSection(true);
     m_parameters->verticalHeader()->hide();
     left->addWidget(m_parameters, 1);
@@ -153,6 +163,7 @@ bool ModelsPanel::startFit(const QVector<qint64> &training, qint64 heldOut)
             if (recordings.size() == 1) {
                 geometry = a.geometry();
                 initial = a.defaultParameters();
+                m_drawingFixedEnd_mm = a.drawingFixedEnd_mm();
             }
         }
         if (heldOut > 0) {
@@ -171,6 +182,7 @@ bool ModelsPanel::startFit(const QVector<qint64> &training, qint64 heldOut)
     m_status->setText(tr("Simulating unit responses and fitting..."));
     IdentificationOptions options;
     options.initial = initial;
+    m_options = options;
     options.progress = [this](int iteration, double cost) {
         QMetaObject::invokeMethod(this, [this, iteration, cost] {
             m_progress->setRange(0, 100);
@@ -240,15 +252,49 @@ void ModelsPanel::finish(bool ok, const QString &error)
                     .arg(m_validation.interferometerPeakToValley_um, 0, 'f', 1)
                     .arg(m_validation.elongationRms_um, 0, 'f', 2);
     m_status->setText(text);
+    // The same plausibility rules as `fit` and the diagnosis (ParameterPlausibility).
+    const std::vector<PlausibilityFlag> implausible =
+        ParameterPlausibility::implausible(m_result, m_options, m_drawingFixedEnd_mm);
+    const std::vector<PlausibilityFlag> poorly = ParameterPlausibility::poorlyIdentified(m_result);
+    int flagged = 0;
     m_parameters->setRowCount(static_cast<int>(m_result.all.size()));
     for (int r = 0; r < static_cast<int>(m_result.all.size()); ++r) {
         const IdentifiedParameter &p = m_result.all[static_cast<size_t>(r)];
         m_parameters->setItem(r, 0, new QTableWidgetItem(QString::fromStdString(p.name)));
         m_parameters->setItem(r, 1, new QTableWidgetItem(QString::number(p.value, 'g', 5)));
         m_parameters->setItem(r, 2, new QTableWidgetItem(p.fitted ? QString::number(p.standardError, 'g', 3) : tr("fixed")));
-        m_parameters->setItem(r, 3, new QTableWidgetItem(QString::fromStdString(p.unit)));
+        m_parameters->setItem(r, 3, new QTableWidgetItem(unitText(p.unit)));
+        QStringList checks, messages;
+        for (const PlausibilityFlag &f : implausible)
+            if (f.parameter == p.name) {
+                checks << tr("implausible");
+                messages << QString::fromStdString(f.message);
+            }
+        for (const PlausibilityFlag &f : poorly)
+            if (f.parameter == p.name) {
+                checks << tr("poorly identified");
+                messages << QString::fromStdString(f.message);
+            }
+        checks.removeDuplicates();
+        auto *check = new QTableWidgetItem(checks.isEmpty() ? tr("ok") : checks.join(QStringLiteral(", ")));
+        if (!checks.isEmpty()) {
+            ++flagged;
+            const QColor warn(255, 224, 178);
+            for (int c = 0; c < 4; ++c)
+                m_parameters->item(r, c)->setBackground(warn);
+            check->setBackground(warn);
+            const QString tip = messages.join(QLatin1Char('\n'));
+            for (int c = 0; c < 4; ++c)
+                m_parameters->item(r, c)->setToolTip(tip);
+            check->setToolTip(tip);
+        }
+        m_parameters->setItem(r, 4, check);
     }
     m_parameters->resizeColumnsToContents();
+    if (flagged > 0)
+        m_status->setText(m_status->text() +
+                          tr(" %n parameter(s) flagged (implausible or poorly identified): see the table's check column.",
+                             nullptr, flagged));
     m_show->blockSignals(true);
     m_show->clear();
     m_show->addItems(m_recordingNames);

@@ -77,6 +77,8 @@ private:
     IdentificationResult m_result;
     FitStatistics m_validation;
     QStringList m_recordingNames;
+    IdentificationOptions m_options;       // of the last fit (bounds for the plausibility check)
+    double m_drawingFixedEnd_mm = 0.0;      // the first training session's drawing P_f (NaN: none)
 };
 
 } // namespace driftlab

@@ -5,8 +5,11 @@
 #include "SessionStore.h"
 
 #include <QCommandLineParser>
+#include <QJsonArray>
 #include <QJsonObject>
 #include <QTextStream>
+
+#include <algorithm>
 
 namespace driftlab {
 
@@ -14,7 +17,9 @@ QString AnalyseCommand::summary() const
 {
     return QStringLiteral("Run the seed-000 finite-difference screw model over a session's recorded axis position,\n"
                           "feed and ambient temperature, compare its screw-end elongation with the probe channel,\n"
-                          "and store the result with the session.");
+                          "and store the result with the session. The model uses the parameters last fitted to\n"
+                          "the session ('fit') when there are any, else the defaults (seed-000 Table 3, X axis,\n"
+                          "P_f from the machine block); the output says which (--parameters chooses).");
 }
 
 int AnalyseCommand::run(const QStringList &args)
@@ -25,9 +30,16 @@ int AnalyseCommand::run(const QStringList &args)
                                      QStringLiteral("id"));
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
                                   QStringLiteral("file"));
-    p.addOptions({db, session, json});
+    const QCommandLineOption parameters(QStringLiteral("parameters"),
+                                        QStringLiteral("Model parameters: auto (the session's last fdm-seed000 fit, else "
+                                                       "default), fitted (fail without a fit) or default."),
+                                        QStringLiteral("source"), QStringLiteral("auto"));
+    p.addOptions({db, session, json, parameters});
     if (!parse(p, args))
         return 0;
+    const QString source = p.value(parameters);
+    if (source != QLatin1String("auto") && source != QLatin1String("fitted") && source != QLatin1String("default"))
+        throw UsageError(QStringLiteral("analyse: --parameters must be auto, fitted or default, got '%1'").arg(source));
     if (!p.positionalArguments().isEmpty())
         throw UsageError(QStringLiteral("analyse: unexpected argument '%1'").arg(p.positionalArguments().first()));
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
@@ -48,21 +60,56 @@ int AnalyseCommand::run(const QStringList &args)
             throw UsageError(QStringLiteral("analyse: %1 has no session %2").arg(path).arg(id));
     }
     SessionAnalysis analysis(store, id);
-    CliSupport::progress(QStringLiteral("simulating the seed-000 model over session %1").arg(id));
-    const ElongationCheck check = analysis.checkElongation(analysis.defaultParameters());
+    FdmParameters used = analysis.defaultParameters();
+    QString usedText = QStringLiteral("the default parameters (seed-000 Table 3, X axis; P_f %1 mm), not fitted to this "
+                                      "session: run 'driftlab-cli fit %2' to fit them")
+                           .arg(used.fixedEndPosition_mm)
+                           .arg(id);
+    QJsonObject sourceJson{{QStringLiteral("kind"), QStringLiteral("default")},
+                           {QStringLiteral("description"), QStringLiteral("seed-000 Table 3 (X axis), P_f from the machine block")}};
+    if (source != QLatin1String("default")) {
+        const QVector<FittedModel> models = store.fittedModels(id);
+        const auto fitted = std::find_if(models.rbegin(), models.rend(),
+                                         [](const FittedModel &m) { return m.model == QLatin1String("fdm-seed000"); });
+        if (fitted != models.rend()) {
+            const QJsonObject q = fitted->parameters;
+            used.k1 = q.value(QStringLiteral("k1")).toDouble(used.k1);
+            used.k2 = q.value(QStringLiteral("k2")).toDouble(used.k2);
+            used.k3 = q.value(QStringLiteral("k3")).toDouble(used.k3);
+            used.k4 = q.value(QStringLiteral("k4")).toDouble(used.k4);
+            used.conductivity_W_mK = q.value(QStringLiteral("lambda_W_mK")).toDouble(used.conductivity_W_mK);
+            used.fixedEndPosition_mm = q.value(QStringLiteral("fixed_end_position_mm")).toDouble(used.fixedEndPosition_mm);
+            QStringList sessions;
+            for (const QJsonValue &v : fitted->provenance.value(QStringLiteral("sessions")).toArray())
+                sessions << QString::number(v.toVariant().toLongLong());
+            usedText = QStringLiteral("the parameters fitted %1 to session(s) %2 (fitted model %3)")
+                           .arg(fitted->created, sessions.join(QStringLiteral(", ")))
+                           .arg(fitted->id);
+            sourceJson = QJsonObject{{QStringLiteral("kind"), QStringLiteral("fitted")},
+                                     {QStringLiteral("fitted_model"), static_cast<double>(fitted->id)},
+                                     {QStringLiteral("created"), fitted->created},
+                                     {QStringLiteral("sessions"), fitted->provenance.value(QStringLiteral("sessions"))}};
+        } else if (source == QLatin1String("fitted")) {
+            throw UsageError(QStringLiteral("analyse: session %1 has no fitted fdm-seed000 model (run 'driftlab-cli fit %1')").arg(id));
+        }
+    }
+    CliSupport::progress(QStringLiteral("simulating the seed-000 model over session %1 with %2").arg(id).arg(usedText));
+    const ElongationCheck check = analysis.checkElongation(used);
     QJsonObject result = SessionAnalysis::toJson(check);
+    result.insert(QStringLiteral("parameters_source"), sourceJson);
     store.addAnalysisResult(id, QStringLiteral("fdm-elongation-check"), result);
     result.insert(QStringLiteral("session"), static_cast<double>(id));
     if (p.isSet(json)) {
         CliSupport::writeJson(QJsonDocument(result), p.value(json));
     } else {
         QTextStream(stdout) << QStringLiteral("session %1: screw-end elongation measured peak %2 um, model peak %3 um, "
-                                              "RMS difference %4 um over %5 samples\n")
+                                              "RMS difference %4 um over %5 samples\n  model: seed-000 with %6\n")
                                    .arg(id)
                                    .arg(check.comparison.measuredPeak_um, 0, 'f', 2)
                                    .arg(check.comparison.predictedPeak_um, 0, 'f', 2)
                                    .arg(check.comparison.rms_um, 0, 'f', 3)
-                                   .arg(check.comparison.samples);
+                                   .arg(check.comparison.samples)
+                                   .arg(usedText);
     }
     return 0;
 }

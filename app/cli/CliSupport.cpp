@@ -9,6 +9,7 @@
 #include <QStandardPaths>
 #include <QTextStream>
 
+#include <cmath>
 #include <cstdio>
 
 namespace driftlab {
@@ -22,15 +23,26 @@ QString CliSupport::defaultDatabasePath()
 
 QString CliSupport::databasePath(const QString &option, const QString &fallback, bool mustExist)
 {
-    QString path = !option.isEmpty() ? option : (!fallback.isEmpty() ? fallback : defaultDatabasePath());
+    const QString named = !option.isEmpty() ? option : fallback;
+    const QString path = !named.isEmpty() ? named : defaultDatabasePath();
     if (mustExist && !QFileInfo::exists(path))
         throw UsageError(QStringLiteral("database %1 does not exist").arg(path));
-    if (!mustExist) {
-        const QFileInfo info(path);
-        if (!QDir().mkpath(info.absolutePath()))
-            throw UsageError(QStringLiteral("cannot create folder %1 for the database").arg(info.absolutePath()));
-    }
+    if (QFileInfo(path).isDir())
+        throw UsageError(QStringLiteral("database %1 is a folder, not a file").arg(path));
+    if (!mustExist && !named.isEmpty())
+        checkOutput(path, QStringLiteral("db"), false);
     return path;
+}
+
+void CliSupport::checkOutput(const QString &path, const QString &option, bool mustNotExist)
+{
+    if (path == QLatin1String("-"))
+        return;
+    const QFileInfo info(path);
+    if (!QFileInfo(info.absolutePath()).isDir())
+        throw UsageError(QStringLiteral("--%1 %2: folder %3 does not exist").arg(option, path, info.absolutePath()));
+    if (mustNotExist && info.exists())
+        throw UsageError(QStringLiteral("--%1 %2 already exists (choose a new name)").arg(option, path));
 }
 
 void CliSupport::writeJson(const QJsonDocument &doc, const QString &target)
@@ -57,11 +69,14 @@ double CliSupport::parseDuration(const QString &text, const QString &option)
     if (parts.size() > 3 || text.isEmpty())
         throw UsageError(QStringLiteral("--%1: '%2' is not a duration (SECONDS or H:MM:SS)").arg(option, text));
     double total = 0.0;
-    for (const QString &p : parts) {
+    for (int i = 0; i < parts.size(); ++i) {
         bool ok = false;
-        const double v = p.toDouble(&ok);
-        if (!ok || v < 0)
+        const double v = parts[i].toDouble(&ok);
+        if (!ok || !(v >= 0) || !std::isfinite(v))
             throw UsageError(QStringLiteral("--%1: '%2' is not a duration (SECONDS or H:MM:SS)").arg(option, text));
+        if (i > 0 && v >= 60.0)
+            throw UsageError(QStringLiteral("--%1: '%2': %3 must be below 60 in H:MM:SS")
+                                 .arg(option, text, i + 1 == parts.size() ? QStringLiteral("seconds") : QStringLiteral("minutes")));
         total = total * 60.0 + v;
     }
     if (total <= 0)

@@ -14,13 +14,18 @@ public:
     // driftlab.sqlite in the user's data directory (created if needed).
     static QString defaultDatabasePath();
     // The --db value, else `fallback` (a positional argument), else the default path.
-    // With mustExist, a missing file is a UsageError naming it.
+    // With mustExist, a missing file is a UsageError naming it. Without, the file may be
+    // new but a named file's folder must exist (only the default data folder is created).
     static QString databasePath(const QString &option, const QString &fallback, bool mustExist);
+    // Checks an output named by `option` before any work starts: its folder must exist and,
+    // with mustNotExist, the path itself must not (else UsageError). "-" (stdout) passes.
+    static void checkOutput(const QString &path, const QString &option, bool mustNotExist);
     // Writes JSON to a file or, for "-", to standard output. Throws std::runtime_error.
     static void writeJson(const QJsonDocument &doc, const QString &target);
     // Writes a progress line to standard error.
     static void progress(const QString &line);
-    // Parses "SECONDS" or "H:MM:SS" (also "MM:SS"). Throws UsageError naming `option`.
+    // Parses "SECONDS" or "H:MM:SS" (also "MM:SS"; minutes and seconds after the first field
+    // below 60). Throws UsageError naming `option`.
     static double parseDuration(const QString &text, const QString &option);
 };
 

@@ -2,6 +2,7 @@
 
 #include "BundleTransfer.h"
 #include "CliSupport.h"
+#include "DuplicateSessionError.h"
 #include "DiagnosisEngine.h"
 #include "SessionAnalysis.h"
 #include "SessionStore.h"
@@ -206,6 +207,8 @@ int DiagnoseCommand::run(const QStringList &args)
             qint64 id = -1;
             try {
                 id = BundleTransfer::importBundle(*tmpStore, arg);
+            } catch (const DuplicateSessionError &e) { // the other recording is this one
+                return {tmpStore.get(), e.existingSession()};
             } catch (const std::exception &e) {
                 throw UsageError(QStringLiteral("diagnose: %1 '%2' is not a readable recording bundle: %3")
                                      .arg(QLatin1String(what), arg, QString::fromUtf8(e.what())));
@@ -225,6 +228,11 @@ int DiagnoseCommand::run(const QStringList &args)
     };
     const auto a = resolve(p.value(train), "--train");
     const auto b = resolve(p.value(validate), "--validate");
+    const SessionInfo infoA = a.first->session(a.second), infoB = b.first->session(b.second);
+    if (infoA.uuid == infoB.uuid || (!infoA.contentSha256.isEmpty() && infoA.contentSha256 == infoB.contentSha256))
+        throw UsageError(QStringLiteral("diagnose: --train '%1' and --validate '%2' are the same recording (session UUID %3): "
+                                        "held-out numbers need a recording that was not fitted")
+                             .arg(p.value(train), p.value(validate), infoA.uuid));
 
     DiagnosisRecording recA, recB;
     auto load = [&](const std::pair<SessionStore *, qint64> &s, const char *what, DiagnosisRecording &out) {

@@ -1,6 +1,7 @@
 #include "FitCommand.h"
 
 #include "CliSupport.h"
+#include "ParameterPlausibility.h"
 #include "SessionAnalysis.h"
 #include "SessionStore.h"
 #include "ThermalErrorTable.h"
@@ -10,6 +11,7 @@
 #include <QJsonArray>
 #include <QTextStream>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -56,6 +58,16 @@ QString statsLine(const FitStatistics &s)
     return line;
 }
 
+QJsonArray flagsJson(const std::vector<PlausibilityFlag> &flags)
+{
+    QJsonArray a;
+    for (const PlausibilityFlag &f : flags)
+        a.append(QJsonObject{{QStringLiteral("parameter"), QString::fromStdString(f.parameter)},
+                             {QStringLiteral("value"), f.value},
+                             {QStringLiteral("message"), QString::fromStdString(f.message)}});
+    return a;
+}
+
 } // namespace
 
 QString FitCommand::summary() const
@@ -66,7 +78,10 @@ QString FitCommand::summary() const
         "elongation channel are the observations (sigma 1 um each, probe decimated to one sample a\n"
         "minute). Without interferometer runs the fit uses the elongation alone and holds P_f at the\n"
         "machine block's value. Prints parameters with standard errors; --json writes MODEL.json for\n"
-        "'simulate --model'. The fitted model is stored with each session.");
+        "'simulate --model'. The fitted model is stored with each session.\n"
+        "Parameters are flagged IMPLAUSIBLE outside physical ranges (lambda 22.5-90 W/(m K), k2 8-150\n"
+        "W/(m^2 K), P_f within 30 mm of the drawing) or at a bound (k3 = 0, k4 = 0, ...), and POORLY\n"
+        "IDENTIFIED when the standard error exceeds a third of the value (the same rules as 'diagnose').");
 }
 
 QJsonObject FitCommand::modelJson(const IdentificationResult &r, const ScrewGeometry &g, const IdentificationOptions &o)
@@ -151,6 +166,11 @@ int FitCommand::run(const QStringList &args)
     for (const QString &a : p.positionalArguments())
         ids.push_back(sessionIdArg(store, a, QStringLiteral("SESSION")));
     const qint64 holdoutId = p.isSet(holdout) ? sessionIdArg(store, p.value(holdout), QStringLiteral("--holdout")) : -1;
+    if (std::find(ids.begin(), ids.end(), holdoutId) != ids.end())
+        throw UsageError(QStringLiteral("fit: --holdout %1 is also a fitted session: a held-out session must not be fitted")
+                             .arg(holdoutId));
+    if (p.isSet(json))
+        CliSupport::checkOutput(p.value(json), QStringLiteral("json"), false);
 
     std::vector<ScrewRecording> recs;
     bool anyInterferometer = false;
@@ -178,6 +198,13 @@ int FitCommand::run(const QStringList &args)
     ScrewModelIdentifier identifier(geometry, options);
     const IdentificationResult result = identifier.fit(recs);
     QJsonObject out = modelJson(result, geometry, options);
+    const std::vector<PlausibilityFlag> implausible =
+        ParameterPlausibility::implausible(result, options, first.drawingFixedEnd_mm());
+    const std::vector<PlausibilityFlag> poorlyIdentified = ParameterPlausibility::poorlyIdentified(result);
+    out.insert(QStringLiteral("plausibility"),
+               QJsonObject{{QStringLiteral("implausible"), flagsJson(implausible)},
+                           {QStringLiteral("poorly_identified"), flagsJson(poorlyIdentified)},
+                           {QStringLiteral("max_relative_standard_error"), ParameterPlausibility::kMaxRelativeStandardError}});
     QJsonArray sessionList;
     for (qint64 id : ids)
         sessionList.append(static_cast<double>(id));
@@ -208,6 +235,7 @@ int FitCommand::run(const QStringList &args)
                                 {QStringLiteral("weights"), out.value(QStringLiteral("weights"))},
                                 {QStringLiteral("software"), QStringLiteral("driftlab-cli " DRIFTLAB_VERSION)}};
     fm.metrics = out.value(QStringLiteral("fit")).toObject();
+    fm.metrics.insert(QStringLiteral("plausibility"), out.value(QStringLiteral("plausibility")));
     if (holdoutId >= 0)
         fm.metrics.insert(QStringLiteral("validation"), out.value(QStringLiteral("validation")));
     for (qint64 id : ids)
@@ -221,10 +249,24 @@ int FitCommand::run(const QStringList &args)
         o << "fdm-seed000 fitted to " << ids.size() << " session(s) in " << QString::number(result.wallTime_s, 'f', 2)
           << " s (" << result.iterations << " iterations, " << (result.converged ? "converged" : "NOT converged")
           << ")\n";
-        for (const IdentifiedParameter &e : result.all)
+        const auto flagged = [](const std::vector<PlausibilityFlag> &flags, const std::string &name) {
+            return std::any_of(flags.begin(), flags.end(), [&](const PlausibilityFlag &f) { return f.parameter == name; });
+        };
+        for (const IdentifiedParameter &e : result.all) {
+            QString mark;
+            if (flagged(implausible, e.name))
+                mark += QStringLiteral("  IMPLAUSIBLE");
+            if (flagged(poorlyIdentified, e.name))
+                mark += QStringLiteral("  POORLY IDENTIFIED");
             o << "  " << QString::fromStdString(e.name).leftJustified(8) << QString::number(e.value, 'g', 6).rightJustified(12)
               << (e.fitted ? QStringLiteral(" +- %1").arg(e.standardError, 0, 'g', 3) : QStringLiteral(" (held)"))
-              << ' ' << QString::fromStdString(e.unit) << '\n';
+              << ' ' << QString::fromStdString(e.unit) << mark << '\n';
+        }
+        for (const auto *flags : {&implausible, &poorlyIdentified})
+            for (const PlausibilityFlag &f : *flags)
+                o << "  warning: " << QString::fromStdString(f.message) << '\n';
+        if (implausible.empty() && poorlyIdentified.empty())
+            o << "  every parameter physically plausible and identified to better than a third of its value\n";
         o << "  fit: " << statsLine(result.fit) << '\n';
         if (holdoutId >= 0)
             o << "  held-out session " << holdoutId << ": " << statsLine(validation) << '\n';

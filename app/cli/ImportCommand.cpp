@@ -3,6 +3,7 @@
 #include "BundleError.h"
 #include "BundleTransfer.h"
 #include "CliSupport.h"
+#include "DuplicateSessionError.h"
 #include "SessionStore.h"
 
 #include <QCommandLineParser>
@@ -16,7 +17,9 @@ QString ImportCommand::summary() const
 {
     return QStringLiteral("Import a recording bundle (NAME.bundle directory or .zip) into a session database.\n"
                           "The whole bundle is validated first; a bad bundle is refused (exit code 2) with\n"
-                          "a message naming file, line and field, and nothing is imported.");
+                          "a message naming file, line and field, and nothing is imported. A bundle already in\n"
+                          "the database (same session UUID, or same recorded content) is refused (exit code 2)\n"
+                          "unless --allow-duplicate.");
 }
 
 int ImportCommand::run(const QStringList &args)
@@ -26,7 +29,10 @@ int ImportCommand::run(const QStringList &args)
                                 QStringLiteral("file"));
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
                                   QStringLiteral("file"));
-    p.addOptions({db, json});
+    const QCommandLineOption allowDuplicate(QStringLiteral("allow-duplicate"),
+                                            QStringLiteral("Import even if the database already holds this recording "
+                                                           "(same session UUID or content); the copy gets a new UUID."));
+    p.addOptions({db, json, allowDuplicate});
     p.addPositionalArgument(QStringLiteral("BUNDLE"), QStringLiteral("Bundle directory or .zip."));
     if (!parse(p, args))
         return 0;
@@ -40,9 +46,11 @@ int ImportCommand::run(const QStringList &args)
     timer.start();
     qint64 id = 0;
     try {
-        id = BundleTransfer::importBundle(store, bundle);
+        id = BundleTransfer::importBundle(store, bundle, p.isSet(allowDuplicate));
     } catch (const BundleError &e) {
         throw UsageError(QStringLiteral("import: %1: %2 (nothing imported)").arg(bundle, QString::fromStdString(e.what())));
+    } catch (const DuplicateSessionError &e) {
+        throw UsageError(QStringLiteral("import: %1 (use --allow-duplicate to import a second copy)").arg(QString::fromStdString(e.what())));
     }
     const SessionInfo info = store.session(id);
     qint64 samples = 0;
@@ -52,6 +60,7 @@ int ImportCommand::run(const QStringList &args)
     const QJsonObject result{{QStringLiteral("database"), path},
                              {QStringLiteral("bundle"), bundle},
                              {QStringLiteral("session"), static_cast<double>(id)},
+                             {QStringLiteral("uuid"), info.uuid},
                              {QStringLiteral("name"), info.name},
                              {QStringLiteral("channels"), channels.size()},
                              {QStringLiteral("samples"), static_cast<double>(samples)},

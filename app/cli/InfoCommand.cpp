@@ -38,28 +38,37 @@ int InfoCommand::run(const QStringList &args)
     for (const SessionInfo &s : store.sessions()) {
         QJsonArray channels;
         if (!p.isSet(json))
-            out << QStringLiteral("session %1: %2 (%3)%4\n").arg(s.id).arg(s.name, s.started, s.complete ? QString() : QStringLiteral(" INCOMPLETE"));
+            out << QStringLiteral("session %1: %2 (%3)%4\n  uuid %5%6%7\n")
+                       .arg(s.id)
+                       .arg(s.name, s.started, s.complete ? QString() : QStringLiteral(" INCOMPLETE"), s.uuid,
+                            s.operatorName.isEmpty() ? QString() : QStringLiteral(", operator ") + s.operatorName,
+                            s.notes.isEmpty() ? QString() : QStringLiteral(", notes: ") + s.notes);
         for (const ChannelInfo &c : store.channels(s.id)) {
-            const SampleBlock b = store.samples(c.id);
-            const double t0 = b.t.isEmpty() ? 0.0 : b.t.front();
-            const double t1 = b.t.isEmpty() ? 0.0 : b.t.back();
+            // Count and time range from the index, not by reading every sample.
+            const qint64 n = store.sampleCount(c.id);
+            const DecimatedSeries whole = store.decimated(c.id, -1e300, 1e300, 1);
+            const double t0 = whole.tFirst.isEmpty() ? 0.0 : whole.tFirst.front();
+            const double t1 = whole.tLast.isEmpty() ? 0.0 : whole.tLast.back();
             channels.append(QJsonObject{{QStringLiteral("id"), c.key},
                                         {QStringLiteral("kind"), c.kind},
                                         {QStringLiteral("unit"), c.unit},
                                         {QStringLiteral("role"), c.role},
-                                        {QStringLiteral("samples"), b.t.size()},
+                                        {QStringLiteral("samples"), static_cast<double>(n)},
                                         {QStringLiteral("t_first_s"), t0},
                                         {QStringLiteral("t_last_s"), t1}});
             if (!p.isSet(json))
                 out << QStringLiteral("  %1 [%2] %3: %4 samples, %5 .. %6 s\n")
                            .arg(c.key, c.unit, c.role)
-                           .arg(b.t.size())
+                           .arg(n)
                            .arg(t0)
                            .arg(t1);
         }
         sessions.append(QJsonObject{{QStringLiteral("id"), static_cast<double>(s.id)},
+                                    {QStringLiteral("uuid"), s.uuid},
                                     {QStringLiteral("name"), s.name},
                                     {QStringLiteral("started"), s.started},
+                                    {QStringLiteral("operator"), s.operatorName},
+                                    {QStringLiteral("notes"), s.notes},
                                     {QStringLiteral("complete"), s.complete},
                                     {QStringLiteral("machine"), s.machine},
                                     {QStringLiteral("channels"), channels}});

@@ -38,6 +38,7 @@ int ListCommand::run(const QStringList &args)
             samples += store.sampleCount(c.id);
         const int frames = store.irFrames(s.id).size();
         list.append(QJsonObject{{QStringLiteral("id"), static_cast<double>(s.id)},
+                                {QStringLiteral("uuid"), s.uuid},
                                 {QStringLiteral("name"), s.name},
                                 {QStringLiteral("started"), s.started},
                                 {QStringLiteral("complete"), s.complete},

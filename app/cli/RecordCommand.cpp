@@ -85,6 +85,13 @@ int RecordCommand::run(const QStringList &args)
             throw UsageError(QStringLiteral("record: --speed must be a number in (0, 1e7], got '%1'").arg(p.value(speed)));
     }
 
+    // Every output is checked before the recording starts.
+    const QString path = CliSupport::databasePath(p.value(out), QString(), false);
+    if (p.isSet(exportOpt))
+        CliSupport::checkOutput(p.value(exportOpt), QStringLiteral("export"), true);
+    if (p.isSet(json))
+        CliSupport::checkOutput(p.value(json), QStringLiteral("json"), false);
+
     RigConfig config;
     if (p.isSet(rig)) {
         try {
@@ -112,7 +119,6 @@ int RecordCommand::run(const QStringList &args)
                                                                QString::fromUtf8(e.what())));
     }
 
-    const QString path = CliSupport::databasePath(p.value(out), QString(), false);
     const QString sessionName =
         p.isSet(name) ? p.value(name) : QStringLiteral("Simulated rig '%1', %2").arg(config.name, hms(seconds));
     CliSupport::progress(QStringLiteral("recording %1 of simulated rig '%2' into %3%4")

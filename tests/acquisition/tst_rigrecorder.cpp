@@ -110,7 +110,7 @@ void TestRigRecorder::bundleRoundTrip()
     const qint64 id = recorder.record(QStringLiteral("bundle"), 3600.0);
     const QString bundle = m_dir.filePath(QStringLiteral("sim.bundle"));
     BundleTransfer::exportBundle(store, id, bundle);
-    const qint64 back = BundleTransfer::importBundle(store, bundle);
+    const qint64 back = BundleTransfer::importBundle(store, bundle, true); // a second copy beside the original
     const QVector<ChannelInfo> a = store.channels(id), b = store.channels(back);
     QCOMPARE(b.size(), a.size());
     for (int i = 0; i < a.size(); ++i) {

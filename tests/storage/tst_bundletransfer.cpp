@@ -4,6 +4,7 @@
 
 #include "BundleError.h"
 #include "BundleTransfer.h"
+#include "DuplicateSessionError.h"
 #include "IrFrameCodec.h"
 #include "SessionStore.h"
 
@@ -318,10 +319,29 @@ private slots:
         const QString outZip = m_tmp.filePath(QStringLiteral("out.zip"));
         BundleTransfer::exportBundle(store, a, outZip);
         QVERIFY_EXCEPTION_THROWN(BundleTransfer::exportBundle(store, a, outZip), BundleError); // never overwrites
-        const qint64 b = BundleTransfer::importBundle(store, outDir);
+        // The export carries the session's UUID: importing it again is a duplicate unless asked for.
+        const QString uuid = store.session(a).uuid;
+        QCOMPARE(QJsonDocument::fromJson(readFile(outDir, QStringLiteral("manifest.json")))
+                     .object().value(QStringLiteral("session")).toObject().value(QStringLiteral("uuid")).toString(),
+                 uuid);
+        try {
+            BundleTransfer::importBundle(store, outDir);
+            QFAIL("a bundle already in the database was imported again");
+        } catch (const DuplicateSessionError &e) {
+            QCOMPARE(e.existingSession(), a);
+            QVERIFY(e.sameUuid());
+        }
+        QCOMPARE(store.sessions().size(), 1);
+        const qint64 b = BundleTransfer::importBundle(store, outDir, true);
         checkSession(store, b);
-        const qint64 c = BundleTransfer::importBundle(store, outZip);
+        QVERIFY(store.session(b).uuid != uuid); // a deliberate copy is a session of its own
+        const qint64 c = BundleTransfer::importBundle(store, outZip, true);
         checkSession(store, c);
+        {
+            // Into another database the UUID travels unchanged.
+            SessionStore other(m_tmp.filePath(QStringLiteral("rt-other.sqlite")));
+            QCOMPARE(other.session(BundleTransfer::importBundle(other, outZip)).uuid, uuid);
+        }
         // Unknown manifest keys survive the round trip.
         const QJsonObject m = QJsonDocument::fromJson(readFile(outDir, QStringLiteral("manifest.json"))).object();
         QCOMPARE(m.value(QStringLiteral("channels")).toArray().at(4).toObject().value(QStringLiteral("calibrated")).toBool(), true);
@@ -335,7 +355,16 @@ private slots:
         }
         const QString folderZip = m_tmp.filePath(QStringLiteral("folder.zip"));
         zipEntries(folderZip, entries);
-        checkSession(store, BundleTransfer::importBundle(store, folderZip));
+        // base.bundle has no UUID: the same recorded content (zip vs folder, CSV number
+        // formatting aside) still finds it.
+        try {
+            BundleTransfer::importBundle(store, folderZip);
+            QFAIL("the same content was imported again");
+        } catch (const DuplicateSessionError &e) {
+            QCOMPARE(e.existingSession(), a);
+            QVERIFY(!e.sameUuid());
+        }
+        checkSession(store, BundleTransfer::importBundle(store, folderZip, true));
     }
 
     void recordedSessionExportsAValidBundle()
@@ -370,7 +399,7 @@ private slots:
         store.addIrFrame(id, f);
         const QString out = m_tmp.filePath(QStringLiteral("recorded.zip"));
         BundleTransfer::exportBundle(store, id, out);
-        const qint64 back = BundleTransfer::importBundle(store, out);
+        const qint64 back = BundleTransfer::importBundle(store, out, true);
         const auto channels = store.channels(back);
         QCOMPARE(channels.size(), 2);
         QCOMPARE(channels[0].screwPosition_m.value_or(-1), 0.3);

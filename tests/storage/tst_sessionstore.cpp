@@ -9,6 +9,7 @@
 #include <QSqlDatabase>
 #include <QSqlQuery>
 #include <QTemporaryDir>
+#include <QUuid>
 #include <QtTest>
 
 #include <algorithm>
@@ -38,10 +39,10 @@ private:
     }
 
 private slots:
-    void schemaVersionIsTwo()
+    void schemaVersionIsThree()
     {
         SessionStore s(db(QStringLiteral("v.sqlite")));
-        QCOMPARE(SchemaMigrator::currentVersion(), 2);
+        QCOMPARE(SchemaMigrator::currentVersion(), 3);
         QCOMPARE(s.integrityCheck(), QStringLiteral("ok"));
     }
 
@@ -331,6 +332,111 @@ private slots:
         }
         QCOMPARE(s.decimated(ch[1].id, -1, 1e9, 1).max.value(0), 19999 * 0.25 - 3.0);
         QCOMPARE(s.session(1).name, QStringLiteral("old"));
+        // Version 3: the old session got a UUID of its own.
+        QVERIFY(!QUuid::fromString(s.session(1).uuid).isNull());
+        QCOMPARE(s.sessionByUuid(s.session(1).uuid), qint64(1));
+    }
+
+    void sessionsHaveUniqueUuids()
+    {
+        SessionStore s(db(QStringLiteral("uuid.sqlite")));
+        qint64 ch = 0;
+        const qint64 a = makeSession(s, &ch);
+        const qint64 b = makeSession(s, &ch);
+        const QString ua = s.session(a).uuid;
+        QCOMPARE(QUuid::fromString(ua).toString(QUuid::WithoutBraces), ua);
+        QVERIFY(ua != s.session(b).uuid);
+        SessionInfo copy;
+        copy.name = QStringLiteral("copy");
+        copy.started = QStringLiteral("2026-01-01T00:00:00Z");
+        copy.uuid = ua.toUpper();
+        QVERIFY_EXCEPTION_THROWN(s.createSession(copy), StorageError); // case does not make it new
+        copy.uuid = QStringLiteral("not-a-uuid");
+        QVERIFY_EXCEPTION_THROWN(s.createSession(copy), StorageError);
+        QCOMPARE(s.sessions().size(), 2);
+    }
+
+    void renameNotesAndDelete()
+    {
+        const QString path = db(QStringLiteral("manage.sqlite"));
+        SessionStore s(path);
+        qint64 chA = 0, chB = 0;
+        const qint64 a = makeSession(s, &chA);
+        QVERIFY(makeSession(s, &chB) > a);
+        for (qint64 ch : {chA, chB})
+            s.appendSamples(ch, {0.0, 1.0, 2.0}, {1.0, 2.0, 3.0});
+        IrFrame f;
+        f.width = 2;
+        f.height = 1;
+        f.pixels = {1, 2};
+        s.addIrFrame(a, f);
+        s.addInterferometerPoints(a, {{1.0, 0, 10.0, 0.5, QString()}});
+        s.addEvent(a, {0.5, QStringLiteral("start")});
+        s.addAnalysisResult(a, QStringLiteral("x"), QJsonObject{{QStringLiteral("v"), 1}});
+        FittedModel m;
+        m.model = QStringLiteral("m");
+        s.addFittedModel(a, m);
+
+        s.renameSession(a, QStringLiteral("  warm-up X  "));
+        QCOMPARE(s.session(a).name, QStringLiteral("warm-up X"));
+        QVERIFY_EXCEPTION_THROWN(s.renameSession(a, QStringLiteral("   ")), StorageError);
+        s.setSessionNotes(a, QStringLiteral("door opened at 2 h"));
+        QCOMPARE(s.session(a).notes, QStringLiteral("door opened at 2 h"));
+        QVERIFY_EXCEPTION_THROWN(s.renameSession(999, QStringLiteral("x")), StorageError);
+
+        // Rows of session a in every table, counted through a connection of our own.
+        QSqlDatabase d = QSqlDatabase::addDatabase(QStringLiteral("QSQLITE"), QStringLiteral("count"));
+        d.setDatabaseName(path);
+        QVERIFY(d.open());
+        const auto rows = [&d](qint64 session) {
+            const QString c = QStringLiteral("(SELECT id FROM channels WHERE session_id = %1)").arg(session);
+            int n = 0;
+            for (const QString &sql :
+                 {QStringLiteral("SELECT count(*) FROM sessions WHERE id = %1").arg(session),
+                  QStringLiteral("SELECT count(*) FROM channels WHERE session_id = %1").arg(session),
+                  QStringLiteral("SELECT count(*) FROM sample_blocks WHERE channel_id IN %1").arg(c),
+                  QStringLiteral("SELECT count(*) FROM sample_levels WHERE channel_id IN %1").arg(c),
+                  QStringLiteral("SELECT count(*) FROM ir_frames WHERE session_id = %1").arg(session),
+                  QStringLiteral("SELECT count(*) FROM interferometer_points WHERE session_id = %1").arg(session),
+                  QStringLiteral("SELECT count(*) FROM events WHERE session_id = %1").arg(session),
+                  QStringLiteral("SELECT count(*) FROM analysis_results WHERE session_id = %1").arg(session),
+                  QStringLiteral("SELECT count(*) FROM fitted_models WHERE session_id = %1").arg(session)}) {
+                QSqlQuery q(d);
+                if (!q.exec(sql) || !q.next())
+                    return -1;
+                n += q.value(0).toInt();
+            }
+            return n;
+        };
+        const int before = rows(a);
+        QVERIFY(before >= 9);
+        {
+            // A failure inside the delete (here a trigger on the infrared frames) leaves
+            // everything in place: one transaction.
+            QSqlQuery q(d);
+            QVERIFY(q.exec(QStringLiteral("CREATE TRIGGER keep_frames BEFORE DELETE ON ir_frames "
+                                          "BEGIN SELECT RAISE(ABORT, 'frames are locked'); END")));
+        }
+        QVERIFY_EXCEPTION_THROWN(s.deleteSession(a), StorageError);
+        QCOMPARE(rows(a), before);
+        {
+            QSqlQuery q(d);
+            QVERIFY(q.exec(QStringLiteral("DROP TRIGGER keep_frames")));
+        }
+        s.deleteSession(a);
+        QCOMPARE(rows(a), 0);
+        QCOMPARE(s.sessions().size(), 1);
+        QCOMPARE(s.samples(chB).v, (QVector<double>{1.0, 2.0, 3.0})); // the other session untouched
+        QVERIFY_EXCEPTION_THROWN(s.deleteSession(a), StorageError);
+        // Channel ids may be given out again: appends to a new channel start clean.
+        const qint64 c = makeSession(s, &chA);
+        s.appendSamples(chA, {0.0}, {5.0});
+        QCOMPARE(s.samples(chA).v, QVector<double>{5.0});
+        QVERIFY(c > 0);
+        d.close();
+        d = QSqlDatabase();
+        QSqlDatabase::removeDatabase(QStringLiteral("count"));
+        QCOMPARE(s.integrityCheck(), QStringLiteral("ok"));
     }
 };
 

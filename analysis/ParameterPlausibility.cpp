@@ -1,0 +1,88 @@
+#include "ParameterPlausibility.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace driftlab {
+
+namespace {
+
+std::string fmt(double v, int prec)
+{
+    std::ostringstream o;
+    o.setf(std::ios::fixed);
+    o.precision(prec);
+    o << v;
+    return o.str();
+}
+
+bool atBound(double v, double lo, double hi)
+{
+    const double tol = 1e-6 * std::max(1.0, hi - lo);
+    return v <= lo + tol || v >= hi - tol;
+}
+
+} // namespace
+
+std::vector<PlausibilityFlag> ParameterPlausibility::implausible(const IdentificationResult &r, const IdentificationOptions &o,
+                                                                 double drawingFixedEnd_mm)
+{
+    std::vector<PlausibilityFlag> out;
+    const FdmParameters &p = r.parameters;
+    if (p.conductivity_W_mK < kMinConductivity_W_mK || p.conductivity_W_mK > kMaxConductivity_W_mK)
+        out.push_back({"lambda", p.conductivity_W_mK, kSteelConductivity_W_mK,
+                       "conductivity " + fmt(p.conductivity_W_mK, 1) + " W/(m K) is far from steel's ~" +
+                           fmt(kSteelConductivity_W_mK, 0) + " W/(m K) (plausible " + fmt(kMinConductivity_W_mK, 1) + " to " +
+                           fmt(kMaxConductivity_W_mK, 0) +
+                           "): the model bends heat flow to fit something it does not contain"});
+    else if (atBound(p.conductivity_W_mK, o.lambdaLower, o.lambdaUpper))
+        out.push_back({"lambda", p.conductivity_W_mK, kSteelConductivity_W_mK, "lambda at its bound"});
+    if (o.fitFixedEnd) {
+        if (std::isfinite(drawingFixedEnd_mm) && std::fabs(p.fixedEndPosition_mm - drawingFixedEnd_mm) > kMaxFixedEndOffset_mm)
+            out.push_back({"P_f", p.fixedEndPosition_mm, drawingFixedEnd_mm,
+                           "fixed end identified at " + fmt(p.fixedEndPosition_mm, 1) + " mm, the drawing says " +
+                               fmt(drawingFixedEnd_mm, 1) + " mm"});
+        else if (atBound(p.fixedEndPosition_mm, o.fixedEndLower_mm, o.fixedEndUpper_mm))
+            out.push_back({"P_f", p.fixedEndPosition_mm, drawingFixedEnd_mm, "P_f at its bound"});
+    }
+    if (atBound(p.k1, o.k1Lower, o.k1Upper))
+        out.push_back({"k1", p.k1, 0.911e-3, "k1 at its bound"});
+    if (p.k2 < kMinK2_W_m2K)
+        out.push_back({"k2", p.k2, 26.0,
+                       "still-air convection k2 = " + fmt(p.k2, 1) + " W/(m^2 K) below " + fmt(kMinK2_W_m2K, 0) +
+                           " (natural convection plus radiation of a bare screw is ~" + fmt(kMinK2_W_m2K, 0) +
+                           " or more: a lower value makes the screw slower and cooler than physics allows, e.g. to "
+                           "absorb heat that reaches it late)"});
+    else if (p.k2 > kMaxK2_W_m2K)
+        out.push_back({"k2", p.k2, 26.0,
+                       "still-air convection k2 = " + fmt(p.k2, 1) + " W/(m^2 K) above " + fmt(kMaxK2_W_m2K, 0) +
+                           " (more than forced air cools a screw: the model needs a heat sink it does not contain, e.g. "
+                           "heat that leaves by another path such as a coolant)"});
+    else if (atBound(p.k2, o.k2Lower, o.k2Upper))
+        out.push_back({"k2", p.k2, 26.0, "k2 at its bound"});
+    if (p.k3 <= 1e-9)
+        out.push_back({"k3", p.k3, 0.9e-3, "no bearing heat identified (k3 = 0, at its lower bound)"});
+    if (p.k4 <= 1e-9)
+        out.push_back({"k4", p.k4, 0.9e-3, "no nut heat identified (k4 = 0, at its lower bound)"});
+    return out;
+}
+
+std::vector<PlausibilityFlag> ParameterPlausibility::poorlyIdentified(const IdentificationResult &r)
+{
+    std::vector<PlausibilityFlag> out;
+    for (const IdentifiedParameter &e : r.all) {
+        if (!e.fitted || !std::isfinite(e.standardError) || std::fabs(e.value) <= 1e-9)
+            continue;
+        const double rel = e.standardError / std::fabs(e.value);
+        if (!(rel > kMaxRelativeStandardError))
+            continue;
+        out.push_back({e.name, e.value, e.value,
+                       e.name + " poorly identified: standard error " + fmt(100.0 * rel, 0) + " % of the value (limit " +
+                           fmt(100.0 * kMaxRelativeStandardError, 0) +
+                           " %): the data do not pin it down (correlated with another parameter, or too little excitation)"});
+    }
+    return out;
+}
+
+} // namespace driftlab
