@@ -30,7 +30,7 @@ QString CliSupport::databasePath(const QString &option, const QString &fallback,
     if (QFileInfo(path).isDir())
         throw UsageError(QStringLiteral("database %1 is a folder, not a file").arg(path));
     if (!mustExist && !named.isEmpty())
-        checkOutput(path, QStringLiteral("db"), false);
+        checkOutput(path, QStringLiteral("--db"), false);
     return path;
 }
 
@@ -40,9 +40,9 @@ void CliSupport::checkOutput(const QString &path, const QString &option, bool mu
         return;
     const QFileInfo info(path);
     if (!QFileInfo(info.absolutePath()).isDir())
-        throw UsageError(QStringLiteral("--%1 %2: folder %3 does not exist").arg(option, path, info.absolutePath()));
+        throw UsageError(QStringLiteral("%1 %2: folder %3 does not exist").arg(option, path, info.absolutePath()));
     if (mustNotExist && info.exists())
-        throw UsageError(QStringLiteral("--%1 %2 already exists (choose a new name)").arg(option, path));
+        throw UsageError(QStringLiteral("%1 %2 already exists (choose a new name)").arg(option, path));
 }
 
 void CliSupport::writeJson(const QJsonDocument &doc, const QString &target)

@@ -17,7 +17,7 @@ public:
     // With mustExist, a missing file is a UsageError naming it. Without, the file may be
     // new but a named file's folder must exist (only the default data folder is created).
     static QString databasePath(const QString &option, const QString &fallback, bool mustExist);
-    // Checks an output named by `option` before any work starts: its folder must exist and,
+    // Checks an output (`option`: "--export", "DIR", ...) before any work starts: its folder must exist and,
     // with mustNotExist, the path itself must not (else UsageError). "-" (stdout) passes.
     static void checkOutput(const QString &path, const QString &option, bool mustNotExist);
     // Writes JSON to a file or, for "-", to standard output. Throws std::runtime_error.

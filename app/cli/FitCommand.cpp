@@ -170,7 +170,7 @@ int FitCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("fit: --holdout %1 is also a fitted session: a held-out session must not be fitted")
                              .arg(holdoutId));
     if (p.isSet(json))
-        CliSupport::checkOutput(p.value(json), QStringLiteral("json"), false);
+        CliSupport::checkOutput(p.value(json), QStringLiteral("--json"), false);
 
     std::vector<ScrewRecording> recs;
     bool anyInterferometer = false;

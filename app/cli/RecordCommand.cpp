@@ -88,9 +88,9 @@ int RecordCommand::run(const QStringList &args)
     // Every output is checked before the recording starts.
     const QString path = CliSupport::databasePath(p.value(out), QString(), false);
     if (p.isSet(exportOpt))
-        CliSupport::checkOutput(p.value(exportOpt), QStringLiteral("export"), true);
+        CliSupport::checkOutput(p.value(exportOpt), QStringLiteral("--export"), true);
     if (p.isSet(json))
-        CliSupport::checkOutput(p.value(json), QStringLiteral("json"), false);
+        CliSupport::checkOutput(p.value(json), QStringLiteral("--json"), false);
 
     RigConfig config;
     if (p.isSet(rig)) {

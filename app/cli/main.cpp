@@ -7,6 +7,7 @@
 #include "ImportCommand.h"
 #include "InfoCommand.h"
 #include "ListCommand.h"
+#include "NewBundleCommand.h"
 #include "PlotCommand.h"
 #include "RecordCommand.h"
 #include "SimulateCommand.h"
@@ -36,6 +37,7 @@ std::vector<std::unique_ptr<CliCommand>> commands()
     list.push_back(std::make_unique<FitCommand>());
     list.push_back(std::make_unique<SimulateCommand>());
     list.push_back(std::make_unique<DiagnoseCommand>());
+    list.push_back(std::make_unique<NewBundleCommand>());
     return list;
 }
 

@@ -3,9 +3,14 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QDir>
+#include <QElapsedTimer>
 #include <QProcess>
+#include <QSet>
 #include <QTemporaryDir>
 #include <QtTest>
+
+#include <cmath>
 
 class TestCli : public QObject {
     Q_OBJECT
@@ -16,8 +21,16 @@ private slots:
     void badUsageExitsTwo_data();
     void badUsageExitsTwo();
     void recordInfoAnalyse();
+    // Issue 14 items 2-5 and 11.
+    void outputsCheckedBeforeWork();
+    void heldOutMustNotBeFitted();
+    void fitFlagsImplausibleAndPoorlyIdentified();
+    void analyseSaysWhichParameters();
+    void duplicateImportRefused();
+    void newBundleAndExampleImport();
 
 private:
+    QString recordShort(const QString &db, const QString &bundle = QString());
     struct Result {
         int code = -1;
         QByteArray out, err;
@@ -47,7 +60,7 @@ void TestCli::initTestCase()
 void TestCli::helpOnEveryCommand_data()
 {
     QTest::addColumn<QString>("command");
-    for (const char *c : {"record", "info", "analyse"})
+    for (const char *c : {"record", "info", "analyse", "import", "fit", "new-bundle"})
         QTest::newRow(c) << QString::fromLatin1(c);
 }
 
@@ -71,6 +84,12 @@ void TestCli::badUsageExitsTwo_data()
     QTest::newRow("bad duration") << QStringList{"record", "--sim", "--duration", "ten"} << "'ten' is not a duration";
     QTest::newRow("negative feed") << QStringList{"record", "--sim", "--duration", "10", "--feed", "-5"} << "--feed";
     QTest::newRow("missing db") << QStringList{"info", "/nonexistent/x.sqlite"} << "/nonexistent/x.sqlite does not exist";
+    QTest::newRow("minutes past 59") << QStringList{"record", "--sim", "--duration", "1:99:00"} << "minutes must be below 60";
+    QTest::newRow("seconds past 59") << QStringList{"record", "--sim", "--duration", "5:75"} << "seconds must be below 60";
+    QTest::newRow("db folder missing") << QStringList{"record", "--sim", "--duration", "10", "--out", "/nonexistent/x.sqlite"}
+                                       << "folder /nonexistent does not exist";
+    QTest::newRow("new-bundle twice") << QStringList{"new-bundle", "/"} << "already exists";
+    QTest::newRow("analyse parameters") << QStringList{"analyse", "--parameters", "best"} << "auto, fitted or default";
 }
 
 void TestCli::badUsageExitsTwo()
@@ -128,6 +147,188 @@ void TestCli::recordInfoAnalyse()
     r = run({QStringLiteral("analyse"), QStringLiteral("--db"), db, QStringLiteral("--session"), QStringLiteral("99")});
     QCOMPARE(r.code, 2);
     QVERIFY(r.err.contains("no session 99"));
+}
+
+QString TestCli::recordShort(const QString &db, const QString &bundle)
+{
+    QStringList args{QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("0:40:00"),
+                     QStringLiteral("--out"), db};
+    if (!bundle.isEmpty())
+        args << QStringLiteral("--export") << bundle;
+    const Result r = run(args);
+    if (r.code != 0)
+        return QString();
+    return QString::fromUtf8(r.out).section(QLatin1Char(' '), 1, 1);
+}
+
+void TestCli::outputsCheckedBeforeWork()
+{
+    // An export target that exists is refused before two hours are recorded, and nothing is written.
+    const QString db = m_dir.filePath(QStringLiteral("checked.sqlite"));
+    QVERIFY(QDir(m_dir.path()).mkpath(QStringLiteral("taken.bundle")));
+    Result r = run({QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("2:00:00"),
+                    QStringLiteral("--out"), db, QStringLiteral("--export"), m_dir.filePath(QStringLiteral("taken.bundle"))});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("taken.bundle already exists"), r.err.constData());
+    QVERIFY(!r.err.contains("recording"));
+    QVERIFY(!QFileInfo::exists(db));
+    // A --db / --out in a folder that does not exist is refused, and the folder is not made.
+    r = run({QStringLiteral("import"), m_dir.filePath(QStringLiteral("x.bundle")), QStringLiteral("--db"),
+             m_dir.filePath(QStringLiteral("no/such/folder/x.sqlite"))});
+    QCOMPARE(r.code, 2);
+    QVERIFY(!QFileInfo::exists(m_dir.filePath(QStringLiteral("no"))));
+    r = run({QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("10"),
+             QStringLiteral("--json"), m_dir.filePath(QStringLiteral("no/r.json"))});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("does not exist"), r.err.constData());
+}
+
+void TestCli::heldOutMustNotBeFitted()
+{
+    const QString db = m_dir.filePath(QStringLiteral("heldout.sqlite"));
+    const QString bundle = m_dir.filePath(QStringLiteral("heldout.bundle"));
+    const QString a = recordShort(db, bundle);
+    const QString b = recordShort(db);
+    QVERIFY(!a.isEmpty() && !b.isEmpty() && a != b);
+    Result r = run({QStringLiteral("fit"), a, b, QStringLiteral("--holdout"), b, QStringLiteral("--db"), db});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--holdout " + b.toUtf8() + " is also a fitted session"), r.err.constData());
+    QVERIFY(r.out.isEmpty()); // no "held-out" numbers
+    const QString json = m_dir.filePath(QStringLiteral("d.json"));
+    for (const QStringList &pair : {QStringList{a, a}, QStringList{bundle, bundle}, QStringList{bundle, a}}) {
+        r = run({QStringLiteral("diagnose"), QStringLiteral("--train"), pair[0], QStringLiteral("--validate"), pair[1],
+                 QStringLiteral("--db"), db, QStringLiteral("--json"), json});
+        QCOMPARE(r.code, 2);
+        QVERIFY2(r.err.contains("are the same recording"), r.err.constData());
+        QVERIFY(!QFileInfo::exists(json));
+    }
+}
+
+void TestCli::fitFlagsImplausibleAndPoorlyIdentified()
+{
+    // The example bundle's 1.5 h give the seed-000 fit a conductivity far from steel with a
+    // large standard error (the issue's "lambda 3529 +/- 1660" case). Every flag must agree
+    // with the numbers printed beside it, checked here from the JSON's values and errors.
+    const QString db = m_dir.filePath(QStringLiteral("flags.sqlite"));
+    Result r = run({QStringLiteral("import"), QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/bundles/example.bundle"),
+                    QStringLiteral("--db"), db});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const QString json = m_dir.filePath(QStringLiteral("model.json"));
+    r = run({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), db, QStringLiteral("--json"), json});
+    QVERIFY2(r.code == 0, r.err.constData());
+    QFile f(json);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QJsonObject model = QJsonDocument::fromJson(f.readAll()).object();
+    const QJsonObject values = model.value(QStringLiteral("parameters")).toObject();
+    const QJsonObject errors = model.value(QStringLiteral("standard_errors")).toObject();
+    const QJsonObject plausibility = model.value(QStringLiteral("plausibility")).toObject();
+    QSet<QString> implausible, poorly;
+    for (const QJsonValue &v : plausibility.value(QStringLiteral("implausible")).toArray())
+        implausible << v.toObject().value(QStringLiteral("parameter")).toString();
+    for (const QJsonValue &v : plausibility.value(QStringLiteral("poorly_identified")).toArray())
+        poorly << v.toObject().value(QStringLiteral("parameter")).toString();
+    const double lambda = values.value(QStringLiteral("lambda_W_mK")).toDouble();
+    QCOMPARE(implausible.contains(QStringLiteral("lambda")), lambda < 22.5 || lambda > 90.0);
+    QVERIFY2(lambda > 90.0, qPrintable(QString::number(lambda))); // what this bundle gives: must be flagged
+    const QString text = QString::fromUtf8(r.out);
+    for (const QString &name : {QStringLiteral("k1"), QStringLiteral("k2"), QStringLiteral("k3"), QStringLiteral("k4"),
+                                QStringLiteral("lambda")}) {
+        const double value = values.value(name == QLatin1String("lambda") ? QStringLiteral("lambda_W_mK") : name).toDouble();
+        const double se = errors.value(name).toDouble();
+        QCOMPARE(poorly.contains(name), std::fabs(value) > 1e-9 && se > std::fabs(value) / 3.0);
+        if (name == QLatin1String("k3") || name == QLatin1String("k4"))
+            QCOMPARE(implausible.contains(name), value <= 1e-9); // no heat at all: at the lower bound
+        QString line;
+        for (const QString &l : text.split(QLatin1Char('\n')))
+            if (l.trimmed().startsWith(name + QLatin1Char(' ')))
+                line = l;
+        QVERIFY2(!line.isEmpty(), qPrintable(text));
+        QCOMPARE(line.contains(QStringLiteral("IMPLAUSIBLE")), implausible.contains(name));
+        QCOMPARE(line.contains(QStringLiteral("POORLY IDENTIFIED")), poorly.contains(name));
+    }
+    QVERIFY(text.contains(QStringLiteral("warning: conductivity")));
+}
+
+void TestCli::analyseSaysWhichParameters()
+{
+    const QString db = m_dir.filePath(QStringLiteral("analyse.sqlite"));
+    const QString id = recordShort(db);
+    QVERIFY(!id.isEmpty());
+    Result r = run({QStringLiteral("analyse"), QStringLiteral("--db"), db, QStringLiteral("--parameters"), QStringLiteral("fitted")});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("no fitted fdm-seed000 model"), r.err.constData());
+    r = run({QStringLiteral("analyse"), QStringLiteral("--db"), db});
+    QVERIFY2(r.code == 0, r.err.constData());
+    QVERIFY2(r.out.contains("model: seed-000 with the default parameters"), r.out.constData());
+    QVERIFY(r.out.contains("not fitted to this session"));
+    r = run({QStringLiteral("analyse"), QStringLiteral("--db"), db, QStringLiteral("--json"), QStringLiteral("-")});
+    const QJsonObject before = QJsonDocument::fromJson(r.out).object();
+    QCOMPARE(before.value(QStringLiteral("parameters_source")).toObject().value(QStringLiteral("kind")).toString(),
+             QStringLiteral("default"));
+    QCOMPARE(before.value(QStringLiteral("parameters")).toObject().value(QStringLiteral("lambda_W_mK")).toDouble(), 566.3);
+
+    r = run({QStringLiteral("fit"), id, QStringLiteral("--db"), db, QStringLiteral("--json"), QStringLiteral("-")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const QJsonObject fitted = QJsonDocument::fromJson(r.out).object().value(QStringLiteral("parameters")).toObject();
+    r = run({QStringLiteral("analyse"), QStringLiteral("--db"), db, QStringLiteral("--json"), QStringLiteral("-")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const QJsonObject after = QJsonDocument::fromJson(r.out).object();
+    QCOMPARE(after.value(QStringLiteral("parameters_source")).toObject().value(QStringLiteral("kind")).toString(),
+             QStringLiteral("fitted"));
+    QCOMPARE(after.value(QStringLiteral("parameters")).toObject(), fitted); // the numbers it says it used
+    // The fit is made to match this probe: the model with the fitted parameters is closer.
+    QVERIFY(after.value(QStringLiteral("elongation_rms_error_um")).toDouble() <
+            before.value(QStringLiteral("elongation_rms_error_um")).toDouble());
+    r = run({QStringLiteral("analyse"), QStringLiteral("--db"), db});
+    QVERIFY2(r.out.contains("model: seed-000 with the parameters fitted"), r.out.constData());
+}
+
+void TestCli::duplicateImportRefused()
+{
+    const QString recorded = m_dir.filePath(QStringLiteral("dup-rec.sqlite"));
+    const QString bundle = m_dir.filePath(QStringLiteral("dup.zip"));
+    QVERIFY(!recordShort(recorded, bundle).isEmpty());
+    const QString db = m_dir.filePath(QStringLiteral("dup.sqlite"));
+    Result r = run({QStringLiteral("import"), bundle, QStringLiteral("--db"), db});
+    QVERIFY2(r.code == 0, r.err.constData());
+    r = run({QStringLiteral("import"), bundle, QStringLiteral("--db"), db});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("already in") && r.err.contains("as session 1") && r.err.contains("--allow-duplicate"),
+             r.err.constData());
+    // Into the database it was recorded in: the same session UUID.
+    r = run({QStringLiteral("import"), bundle, QStringLiteral("--db"), recorded});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("same session UUID"), r.err.constData());
+    r = run({QStringLiteral("import"), bundle, QStringLiteral("--db"), db, QStringLiteral("--allow-duplicate"),
+             QStringLiteral("--json"), QStringLiteral("-")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    r = run({QStringLiteral("list"), QStringLiteral("--db"), db, QStringLiteral("--json"), QStringLiteral("-")});
+    const QJsonArray sessions = QJsonDocument::fromJson(r.out).object().value(QStringLiteral("sessions")).toArray();
+    QCOMPARE(sessions.size(), 2);
+    QVERIFY(sessions[0].toObject().value(QStringLiteral("uuid")).toString() !=
+            sessions[1].toObject().value(QStringLiteral("uuid")).toString());
+}
+
+void TestCli::newBundleAndExampleImport()
+{
+    const QString dir = m_dir.filePath(QStringLiteral("lab.bundle"));
+    Result r = run({QStringLiteral("new-bundle"), dir});
+    QVERIFY2(r.code == 0, r.err.constData());
+    for (const char *file : {"manifest.json", "channels.csv", "interferometer.csv", "events.csv", "ir/index.csv", "README.txt"})
+        QVERIFY2(QFileInfo::exists(dir + QLatin1Char('/') + QLatin1String(file)), file);
+    QCOMPARE(run({QStringLiteral("new-bundle"), dir}).code, 2); // never overwrites
+    // The template, and the shipped example, import with every part of the format.
+    const QString db = m_dir.filePath(QStringLiteral("template.sqlite"));
+    for (const QString &b : {dir, QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/bundles/example.bundle")}) {
+        r = run({QStringLiteral("import"), b, QStringLiteral("--db"), db, QStringLiteral("--allow-duplicate"),
+                 QStringLiteral("--json"), QStringLiteral("-")});
+        QVERIFY2(r.code == 0, r.err.constData());
+        const QJsonObject o = QJsonDocument::fromJson(r.out).object();
+        QCOMPARE(o.value(QStringLiteral("channels")).toInt(), 9);
+        QCOMPARE(o.value(QStringLiteral("interferometer_points")).toInt(), 37);
+        QCOMPARE(o.value(QStringLiteral("ir_frames")).toInt(), 4);
+        QCOMPARE(o.value(QStringLiteral("events")).toInt(), 2);
+    }
 }
 
 QTEST_GUILESS_MAIN(TestCli)
