@@ -10,6 +10,8 @@
 #include "TimeSeriesPlot.h"
 
 #include <QComboBox>
+#include <QDir>
+#include <QFileInfo>
 #include <QDateTime>
 #include <QDoubleSpinBox>
 #include <QFileDialog>
@@ -19,6 +21,8 @@
 #include <QInputDialog>
 #include <QLabel>
 #include <QLineEdit>
+#include <QPlainTextEdit>
+#include <QSpinBox>
 #include <QPushButton>
 #include <QStandardPaths>
 #include <QTableWidget>
@@ -48,8 +52,24 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     m_rig = new QComboBox(this);
     m_rig->addItems(RigConfigLoader::presetNames());
     m_rig->addItem(QString::fromLatin1(kBrowse));
-    m_db = new QLineEdit(this);
-    m_db->setText(QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + QStringLiteral("/driftlab.sqlite"));
+    m_db = new QLabel(this);
+    m_db->setWordWrap(true);
+    m_db->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    m_name = new QLineEdit(this);
+    m_name->setPlaceholderText(tr("automatic: rig and start time"));
+    m_operator = new QLineEdit(this);
+    m_duration = new QSpinBox(this);
+    m_duration->setRange(0, 7 * 24 * 60);
+    m_duration->setSuffix(tr(" min"));
+    m_duration->setSpecialValueText(tr("until Stop"));
+    m_duration->setToolTip(tr("Simulated duration of the run; it stops by itself when reached"));
+    m_notes = new QPlainTextEdit(this);
+    m_notes->setPlaceholderText(tr("what is tested, set-up, anything unusual"));
+    m_notes->setMaximumHeight(3 * fontMetrics().lineSpacing() + 12);
+    m_message = new QLabel(this);
+    m_message->setWordWrap(true);
+    m_message->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    setDatabasePath(QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + QStringLiteral("/driftlab.sqlite"));
     m_speed = new QDoubleSpinBox(this);
     m_speed->setRange(1.0, 100000.0);
     m_speed->setDecimals(0);
@@ -67,11 +87,17 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     m_devices->verticalHeader()->hide();
     m_devices->setEditTriggers(QAbstractItemView::NoEditTriggers);
     m_plot = new TimeSeriesPlot(this);
-    m_plot->setAxisTitles(tr("Temperature (degC)"), tr("Elongation (um)"));
+    m_plot->setAxisTitles(tr("temperature (°C)"), tr("elongation (µm)"));
+    m_plot->setMinimumHeight(180);
+    m_devices->setMinimumHeight(120);
 
     auto *form = new QFormLayout;
     form->addRow(tr("Rig"), m_rig);
-    form->addRow(tr("Database"), m_db);
+    form->addRow(tr("Records into"), m_db);
+    form->addRow(tr("Name"), m_name);
+    form->addRow(tr("Operator"), m_operator);
+    form->addRow(tr("Duration"), m_duration);
+    form->addRow(tr("Notes"), m_notes);
     form->addRow(tr("Simulation speed"), m_speed);
     auto *buttons = new QHBoxLayout;
     for (QWidget *w : {static_cast<QWidget *>(m_start), static_cast<QWidget *>(m_pause), static_cast<QWidget *>(m_marker),
@@ -82,6 +108,7 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     auto *layout = new QVBoxLayout(this);
     layout->addLayout(form);
     layout->addLayout(buttons);
+    layout->addWidget(m_message);
     layout->addWidget(m_devices, 1);
     layout->addWidget(m_plot, 3);
 
@@ -100,7 +127,7 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
         }
     });
     connect(m_start, &QPushButton::clicked, this, [this] {
-        startRecording(m_rig->currentText(), m_db->text(), m_speed->value());
+        startRecording(m_rig->currentText(), m_target, m_speed->value());
     });
     connect(m_stop, &QPushButton::clicked, this, &AcquisitionPanel::stopRecording);
     connect(m_pause, &QPushButton::toggled, this, &AcquisitionPanel::setPaused);
@@ -118,17 +145,40 @@ AcquisitionPanel::~AcquisitionPanel()
     stopRecording();
 }
 
+void AcquisitionPanel::setDatabasePath(const QString &path)
+{
+    m_target = path;
+    m_db->setText(path);
+    m_db->setToolTip(tr("Sessions are recorded into the database open in the window (File > New / Open database)"));
+}
+
+void AcquisitionPanel::setRunDetails(const QString &name, const QString &operatorName, double duration_s, const QString &notes)
+{
+    m_name->setText(name);
+    m_operator->setText(operatorName);
+    m_duration->setValue(static_cast<int>(std::lround(duration_s / 60.0)));
+    m_notes->setPlainText(notes);
+}
+
 bool AcquisitionPanel::startRecording(const QString &rigNameOrPath, const QString &dbPath, double speed)
 {
     if (m_engine)
         return false;
+    m_message->clear();
     try {
+        // A fresh install has no data folder yet.
+        const QString folder = QFileInfo(dbPath).absolutePath();
+        if (!QDir().mkpath(folder))
+            throw std::runtime_error(tr("cannot create the folder %1 for %2").arg(folder, dbPath).toStdString());
         const RigConfig config = RigConfigLoader::load(rigNameOrPath);
         auto hub = std::make_shared<SimulatedRigHub>(config);
         DeviceRegistry registry;
         SimulatedDevice::registerTypes(registry, hub);
         AcquisitionEngine::Options options;
         options.speed = speed;
+        m_end_s = 60.0 * m_duration->value();
+        if (m_end_s > 0)
+            options.end_s = m_end_s;
         auto engine = std::make_unique<AcquisitionEngine>(options);
         const SimulatedRigHub::Group groups[] = {SimulatedRigHub::Group::Pt100, SimulatedRigHub::Group::Probe,
                                                  SimulatedRigHub::Group::Cnc, SimulatedRigHub::Group::Interferometer,
@@ -139,15 +189,22 @@ bool AcquisitionPanel::startRecording(const QString &rigNameOrPath, const QStrin
                 engine->addDevice(registry.create(types[i], types[i].mid(4)));
         SessionInfo info;
         hub->withRig([&](const SimulatedRig &rig) {
-            info = RigRecorder::sessionInfo(rig, tr("Simulated rig '%1', %2").arg(config.name, QDateTime::currentDateTime().toString(Qt::ISODate)));
+            info = RigRecorder::sessionInfo(rig, m_name->text().trimmed().isEmpty()
+                                                     ? tr("Simulated rig '%1', %2")
+                                                           .arg(config.name, QDateTime::currentDateTime().toString(
+                                                                                 QStringLiteral("yyyy-MM-dd HH:mm")))
+                                                     : m_name->text().trimmed());
         });
+        info.operatorName = m_operator->text().trimmed();
+        if (!m_notes->toPlainText().trimmed().isEmpty())
+            info.notes = m_notes->toPlainText().trimmed() + (info.notes.isEmpty() ? QString() : QStringLiteral("\n") + info.notes);
         m_session = engine->start(dbPath, info);
         m_engine = std::move(engine);
         m_dbPath = dbPath;
         m_reader = std::make_unique<SessionStore>(dbPath);
     } catch (const std::exception &e) {
         m_lastError = QString::fromUtf8(e.what());
-        m_elapsed->setText(tr("error: %1").arg(m_lastError));
+        m_message->setText(tr("<span style='color:#b00020'>Cannot record: %1</span>").arg(m_lastError.toHtmlEscaped()));
         return false;
     }
     m_devices->setRowCount(m_engine->deviceCount());
@@ -181,7 +238,8 @@ void AcquisitionPanel::stopRecording()
     m_reader.reset();
     m_pause->setChecked(false);
     updateButtons();
-    m_elapsed->setText(tr("stopped: session %1").arg(m_session));
+    m_elapsed->setText(tr("stopped"));
+    m_message->setText(tr("Session %1 recorded into %2").arg(m_session).arg(m_dbPath));
     emit recordingStopped(m_session);
 }
 
@@ -222,8 +280,9 @@ void AcquisitionPanel::updateButtons()
     const bool rec = static_cast<bool>(m_engine);
     m_start->setEnabled(!rec);
     m_rig->setEnabled(!rec);
-    m_db->setEnabled(!rec);
-    m_speed->setEnabled(!rec);
+    for (QWidget *w : {static_cast<QWidget *>(m_name), static_cast<QWidget *>(m_operator), static_cast<QWidget *>(m_duration),
+                       static_cast<QWidget *>(m_notes), static_cast<QWidget *>(m_speed)})
+        w->setEnabled(!rec);
     m_pause->setEnabled(rec);
     m_marker->setEnabled(rec);
     m_stop->setEnabled(rec);
@@ -233,7 +292,13 @@ void AcquisitionPanel::onTick()
 {
     if (!m_engine)
         return;
-    m_elapsed->setText(tr("%1 elapsed%2").arg(hms(m_engine->now_s()), m_engine->paused() ? tr(" (paused)") : QString()));
+    if (m_end_s > 0 && m_engine->now_s() >= m_end_s) {
+        stopRecording(); // the run's duration is reached
+        return;
+    }
+    m_elapsed->setText(tr("%1%2 elapsed%3")
+                           .arg(hms(m_engine->now_s()), m_end_s > 0 ? tr(" of %1").arg(hms(m_end_s)) : QString(),
+                                m_engine->paused() ? tr(" (paused)") : QString()));
     const QVector<DeviceHealth> health = m_engine->health();
     for (int i = 0; i < health.size() && i < m_devices->rowCount(); ++i) {
         const DeviceHealth &h = health[i];

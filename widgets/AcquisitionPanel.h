@@ -1,6 +1,6 @@
 #pragma once
-// Acquisition panel: pick a rig (built-in preset or rig file), start / pause / marker /
-// stop, elapsed session time, per-device state, sample rate, samples and gaps, and live
+// Acquisition panel: pick a rig (built-in preset or rig file), name the run (name, operator,
+// duration, notes), start / pause / marker / stop into the open database, elapsed session time, per-device state, sample rate, samples and gaps, and live
 // plots of the probe and the temperatures. Recording runs on the AcquisitionEngine's
 // threads; the panel only polls it (health) and reads decimated data back from the
 // database through its own connection, at most 25 times a second, so a slow GUI never
@@ -15,6 +15,8 @@ class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
 class QLineEdit;
+class QPlainTextEdit;
+class QSpinBox;
 class QPushButton;
 class QTableWidget;
 class QTimer;
@@ -32,6 +34,12 @@ public:
     explicit AcquisitionPanel(QWidget *parent = nullptr);
     ~AcquisitionPanel() override;
 
+    // The database the Start button records into (MainWindow: the open one). Its folder is
+    // created when the recording starts.
+    void setDatabasePath(const QString &path);
+    QString targetDatabase() const { return m_target; }
+    // Name, operator, duration (0 = until Stop) and notes of the next run (also in the form).
+    void setRunDetails(const QString &name, const QString &operatorName, double duration_s, const QString &notes);
     // Programmatic control (also used by the buttons). Return false with lastError() set.
     bool startRecording(const QString &rigNameOrPath, const QString &dbPath, double speed);
     void stopRecording();
@@ -58,8 +66,13 @@ private:
     void updateButtons();
 
     QComboBox *m_rig;
-    QLineEdit *m_db;
+    QLabel *m_db;
+    QLineEdit *m_name;
+    QLineEdit *m_operator;
+    QSpinBox *m_duration;     // minutes, 0 = until Stop
+    QPlainTextEdit *m_notes;
     QDoubleSpinBox *m_speed;
+    QLabel *m_message;        // errors and results, word-wrapped
     QPushButton *m_start, *m_pause, *m_marker, *m_stop;
     QLabel *m_elapsed;
     QTableWidget *m_devices;
@@ -68,7 +81,9 @@ private:
     std::unique_ptr<AcquisitionEngine> m_engine;
     std::unique_ptr<SessionStore> m_reader;
     qint64 m_session = 0;
-    QString m_dbPath;
+    QString m_dbPath;         // of the running (or last) recording
+    QString m_target;         // where the next recording goes
+    double m_end_s = 0.0;     // duration of the running recording (0 = until Stop)
     QString m_lastError;
     qint64 m_lastPlot_ms = 0;
     int m_plotRefreshes = 0;

@@ -72,6 +72,13 @@ void ErrorSurface3D::fillProxy(QSurfaceDataProxy &proxy, const ThermalErrorTable
     proxy.resetArray(rows);
 }
 
+QImage ErrorSurface3D::renderImage() const
+{
+    if (!m_graph->isExposed() && !m_graph->isVisible())
+        return {};
+    return m_graph->renderToImage(0, size() * devicePixelRatioF());
+}
+
 void ErrorSurface3D::setTable(const ThermalErrorTable &table)
 {
     fillProxy(*m_proxy, table);

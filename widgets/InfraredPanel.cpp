@@ -40,6 +40,7 @@ InfraredPanel::InfraredPanel(QWidget *parent)
     topLayout->addWidget(m_view, 1);
     topLayout->addWidget(m_slider);
     topLayout->addWidget(m_label);
+    m_label->setWordWrap(true);
     auto *bottom = new QSplitter(Qt::Horizontal, split);
     bottom->addWidget(m_profile);
     bottom->addWidget(m_surface);

@@ -1,7 +1,10 @@
 #include "SessionBrowser.h"
 
+#include "UnitLabels.h"
+
 #include <QLabel>
 #include <QListWidget>
+#include <QSplitter>
 #include <QVBoxLayout>
 
 namespace driftlab {
@@ -15,9 +18,26 @@ SessionBrowser::SessionBrowser(QWidget *parent)
 {
     auto *layout = new QVBoxLayout(this);
     layout->setContentsMargins(4, 4, 4, 4);
-    layout->addWidget(m_sessions, 1);
-    layout->addWidget(new QLabel(tr("Channels"), this));
-    layout->addWidget(m_channels, 2);
+    auto *split = new QSplitter(Qt::Vertical, this);
+    auto *top = new QWidget(split);
+    auto *topLayout = new QVBoxLayout(top);
+    topLayout->setContentsMargins(0, 0, 0, 0);
+    topLayout->addWidget(new QLabel(tr("Sessions (right-click: rename, notes, delete)"), top));
+    topLayout->addWidget(m_sessions);
+    auto *bottom = new QWidget(split);
+    auto *bottomLayout = new QVBoxLayout(bottom);
+    bottomLayout->setContentsMargins(0, 0, 0, 0);
+    bottomLayout->addWidget(new QLabel(tr("Channels"), bottom));
+    bottomLayout->addWidget(m_channels);
+    split->addWidget(top);
+    split->addWidget(bottom);
+    split->setChildrenCollapsible(false);
+    split->setStretchFactor(0, 1);
+    split->setStretchFactor(1, 2);
+    m_sessions->setMinimumHeight(110);
+    m_channels->setMinimumHeight(110);
+    setMinimumWidth(220);
+    layout->addWidget(split);
     connect(m_sessions, &QListWidget::currentItemChanged, this, [this](QListWidgetItem *item) {
         if (!m_updating && item)
             emit sessionSelected(item->data(kIdRole).toLongLong());
@@ -36,7 +56,12 @@ void SessionBrowser::setSessions(const QVector<SessionInfo> &sessions)
         const QString label = QStringLiteral("#%1  %2%3").arg(s.id).arg(s.name, s.complete ? QString() : tr("  (incomplete)"));
         auto *item = new QListWidgetItem(label, m_sessions);
         item->setData(kIdRole, s.id);
-        item->setToolTip(tr("started %1").arg(s.started));
+        QString tip = tr("session %1, started %2\nUUID %3").arg(s.id).arg(s.started, s.uuid);
+        if (!s.operatorName.isEmpty())
+            tip += tr("\noperator: %1").arg(s.operatorName);
+        if (!s.notes.isEmpty())
+            tip += tr("\nnotes: %1").arg(s.notes);
+        item->setToolTip(tip);
     }
     m_updating = false;
 }
@@ -46,7 +71,10 @@ void SessionBrowser::setChannels(const QVector<ChannelInfo> &channels, const QVe
     m_updating = true;
     m_channels->clear();
     for (const ChannelInfo &c : channels) {
-        auto *item = new QListWidgetItem(QStringLiteral("%1 [%2]  %3").arg(c.key, c.unit, c.location), m_channels);
+        auto *item = new QListWidgetItem(QStringLiteral("%1 [%2]  %3").arg(c.key, UnitLabels::display(c.unit), c.location),
+                                         m_channels);
+        item->setToolTip(tr("%1: %2, %3, role %4").arg(c.key, c.kind, c.sensor.isEmpty() ? tr("sensor unknown") : c.sensor,
+                                                        c.role.isEmpty() ? tr("none") : c.role));
         item->setData(kIdRole, c.id);
         item->setFlags(item->flags() | Qt::ItemIsUserCheckable);
         item->setCheckState(checked.contains(c.id) ? Qt::Checked : Qt::Unchecked);

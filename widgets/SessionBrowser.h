@@ -1,5 +1,6 @@
 #pragma once
-// Lists the sessions of a store and the channels of the chosen session (checkable).
+// Lists the sessions of a store and the channels of the chosen session (checkable), one
+// above the other in a splitter that never squeezes either list away.
 
 #include "StorageTypes.h"
 
@@ -20,6 +21,8 @@ public:
     qint64 currentSession() const;
     QVector<qint64> checkedChannels() const;
     void selectSession(qint64 sessionId);
+    // The session list (MainWindow adds rename / notes / delete to its context menu).
+    QListWidget *sessionList() const { return m_sessions; }
 
 signals:
     void sessionSelected(qint64 sessionId);

@@ -1,33 +1,73 @@
 // driftlab: the DriftLab desktop application.
+// Exit codes as driftlab-cli's: 0 done, 1 failed, 2 bad usage or bad input (an unknown
+// option, a session id the database does not hold, a held-out session that is also trained on).
 
 #include "DiagnosisPanel.h"
 #include "MainWindow.h"
 #include "ModelsPanel.h"
-
-#include <QDockWidget>
 #include "ReviewWorkspace.h"
+#include "SessionStore.h"
 
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QDir>
+#include <QDockWidget>
 #include <QFileInfo>
-#include <QPixmap>
+#include <QImage>
+#include <QScreen>
 #include <QStandardPaths>
 #include <QTextStream>
 #include <QTimer>
 
+#include <functional>
+
 using namespace driftlab;
+
+namespace {
+
+QTextStream &err()
+{
+    static QTextStream stream(stderr);
+    return stream;
+}
+
+int usageError(const QString &message)
+{
+    err() << "driftlab: " << message << " (see 'driftlab --help')\n";
+    err().flush();
+    return 2;
+}
+
+// A session id the open database holds, else 0.
+qint64 sessionArg(const MainWindow &window, const QString &text)
+{
+    bool ok = false;
+    const qint64 id = text.trimmed().toLongLong(&ok);
+    if (!ok || !window.store())
+        return 0;
+    for (const SessionInfo &s : window.store()->sessions())
+        if (s.id == id)
+            return id;
+    return 0;
+}
+
+} // namespace
 
 int main(int argc, char **argv)
 {
+    // Without a display Qt aborts; run offscreen instead, and refuse anything but a screenshot.
+    const bool headless = qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY") &&
+                          qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM");
+    if (headless)
+        qputenv("QT_QPA_PLATFORM", "offscreen");
     QApplication app(argc, argv);
     QApplication::setApplicationName(QStringLiteral("DriftLab"));
     QApplication::setApplicationVersion(QStringLiteral(DRIFTLAB_VERSION));
 
     QCommandLineParser p;
     p.setApplicationDescription(QStringLiteral("DriftLab: record, review and model machine-tool thermal errors."));
-    p.addHelpOption();
-    p.addVersionOption();
+    const QCommandLineOption help = p.addHelpOption();
+    const QCommandLineOption version = p.addVersionOption();
     const QCommandLineOption db(QStringLiteral("db"),
                                 QStringLiteral("Session database to open (default: driftlab.sqlite in the user's data directory)."),
                                 QStringLiteral("file"));
@@ -35,8 +75,8 @@ int main(int argc, char **argv)
                                    QStringLiteral("Session id to show (QApplication reserves --session for X11 session management)."),
                                    QStringLiteral("id"));
     const QCommandLineOption screenshot(QStringLiteral("screenshot"),
-                                        QStringLiteral("Render the main window to a PNG and exit (works headless with "
-                                                       "QT_QPA_PLATFORM=offscreen)."),
+                                        QStringLiteral("Render the main window (at the screen's size, the 3-D view included) to "
+                                                       "a PNG and exit; works headless with QT_QPA_PLATFORM=offscreen."),
                                         QStringLiteral("png"));
     const QCommandLineOption view(QStringLiteral("view"),
                                   QStringLiteral("Review view to show: error-3d, %1.").arg(ReviewWorkspace::viewNames().join(QStringLiteral(", "))),
@@ -50,100 +90,115 @@ int main(int argc, char **argv)
     const QCommandLineOption diagnose(QStringLiteral("diagnose"),
                                       QStringLiteral("Open the Diagnosis dock and diagnose: TRAIN:VALIDATE session ids."),
                                       QStringLiteral("ids"));
-    p.addOptions({db, session, screenshot, view, compare, fit, diagnose});
-    p.process(app);
+    const QCommandLineOption dock(QStringLiteral("dock"),
+                                  QStringLiteral("Show a dock: sessions, acquisition, models or diagnosis (repeatable)."),
+                                  QStringLiteral("name"));
+    p.addOptions({db, session, screenshot, view, compare, fit, diagnose, dock});
+    if (!p.parse(QApplication::arguments()))
+        return usageError(p.errorText());
+    if (p.isSet(help))
+        p.showHelp(0);
+    if (p.isSet(version))
+        p.showVersion();
+    if (!p.positionalArguments().isEmpty())
+        return usageError(QStringLiteral("unexpected argument '%1'").arg(p.positionalArguments().first()));
+    if (p.isSet(view) && !ReviewWorkspace::viewNames().contains(p.value(view)) && p.value(view) != QLatin1String("error-3d"))
+        return usageError(QStringLiteral("--view must be error-3d or one of %1").arg(ReviewWorkspace::viewNames().join(QStringLiteral(", "))));
 
-    QTextStream err(stderr);
+    if (headless && !p.isSet(screenshot)) {
+        err() << "driftlab: no display (DISPLAY is not set): run it in a desktop session, or give --screenshot PNG\n";
+        return 1;
+    }
+
     QString path = p.value(db);
     if (path.isEmpty())
         path = QDir(QStandardPaths::writableLocation(QStandardPaths::AppDataLocation)).filePath(QStringLiteral("driftlab.sqlite"));
 
     MainWindow window;
+    window.setDocumentationDirectory(QStringLiteral(DRIFTLAB_DOCS_DIR));
     if (QFileInfo::exists(path)) {
-        if (!window.openDatabase(path)) {
-            err << "driftlab: " << window.lastError() << '\n';
-            if (p.isSet(screenshot))
-                return 2;
-        }
+        if (!window.openDatabase(path))
+            return usageError(window.lastError());
     } else if (p.isSet(db)) {
-        err << "driftlab: database " << path << " does not exist\n";
-        return 2;
+        return usageError(QStringLiteral("database %1 does not exist").arg(path));
     }
+    const bool needStore = p.isSet(session) || p.isSet(compare) || p.isSet(fit) || p.isSet(diagnose);
+    if (needStore && !window.store())
+        return usageError(QStringLiteral("no database open (%1 does not exist): give --db FILE").arg(path));
     if (p.isSet(session)) {
-        bool ok = false;
-        const qint64 id = p.value(session).toLongLong(&ok);
-        if (!ok) {
-            err << "driftlab: --show-session must be a session id, got '" << p.value(session) << "'\n";
-            return 2;
-        }
+        const qint64 id = sessionArg(window, p.value(session));
+        if (!id)
+            return usageError(QStringLiteral("--show-session: %1 has no session '%2'").arg(path, p.value(session)));
         window.showSession(id);
     }
-    if (p.isSet(compare))
-        window.compareWith(p.value(compare).toLongLong());
-    if (p.isSet(view)) {
-        if (!ReviewWorkspace::viewNames().contains(p.value(view)) && p.value(view) != QLatin1String("error-3d")) {
-            err << "driftlab: --view must be error-3d or one of " << ReviewWorkspace::viewNames().join(QStringLiteral(", "))
-                << '\n';
-            return 2;
-        }
-        if (!window.workspace()->selectView(p.value(view)))
-            err << "driftlab: this session has no data for the view " << p.value(view) << '\n';
+    if (p.isSet(compare)) {
+        const qint64 id = sessionArg(window, p.value(compare));
+        if (!id)
+            return usageError(QStringLiteral("--compare: %1 has no session '%2'").arg(path, p.value(compare)));
+        window.compareWith(id);
+    }
+    for (const QString &name : p.values(dock)) {
+        const QString object = name.left(1).toUpper() + name.mid(1).toLower() + QStringLiteral("Dock");
+        QDockWidget *d = window.dock(object);
+        if (!d)
+            return usageError(QStringLiteral("--dock: unknown dock '%1' (sessions, acquisition, models, diagnosis)").arg(name));
+        d->show();
+    }
+    if (p.isSet(view) && !window.workspace()->selectView(p.value(view)))
+        err() << "driftlab: this session has no data for the view " << p.value(view) << '\n';
+    if (p.isSet(screenshot)) {
+        // The picture shows the window as it would fill this screen (a fresh layout, not the
+        // one saved last time, so that screenshots are comparable).
+        if (const QScreen *screen = QGuiApplication::primaryScreen())
+            window.setGeometry(screen->availableGeometry());
     }
     window.show();
-    bool fitting = false;
+
+    std::function<void()> takeScreenshot = [&window, png = p.value(screenshot)] {
+        QTimer::singleShot(400, &window, [&window, png] {
+            const bool ok = window.snapshot().save(png, "PNG");
+            err() << "driftlab: screenshot " << (ok ? "written to " : "FAILED: ") << QFileInfo(png).absoluteFilePath() << '\n';
+            err().flush();
+            QApplication::exit(ok ? 0 : 1);
+        });
+    };
+    bool waiting = false;
     if (p.isSet(fit)) {
         const QStringList parts = p.value(fit).split(QLatin1Char(':'));
         QVector<qint64> training;
-        for (const QString &id : parts.first().split(QLatin1Char(','), Qt::SkipEmptyParts))
-            training.push_back(id.toLongLong());
-        const qint64 heldOut = parts.size() > 1 ? parts.at(1).toLongLong() : 0;
-        if (QDockWidget *dock = window.findChild<QDockWidget *>(QStringLiteral("ModelsDock")))
-            dock->show();
-        window.resize(1500, 1150);
-        fitting = window.models()->startFit(training, heldOut);
-        if (!fitting)
-            err << "driftlab: cannot fit: " << window.models()->lastError() << '\n';
+        for (const QString &text : parts.first().split(QLatin1Char(','), Qt::SkipEmptyParts)) {
+            const qint64 id = sessionArg(window, text);
+            if (!id)
+                return usageError(QStringLiteral("--fit: %1 has no session '%2'").arg(path, text));
+            training.push_back(id);
+        }
+        qint64 heldOut = 0;
+        if (parts.size() > 2 || (parts.size() == 2 && !(heldOut = sessionArg(window, parts.at(1)))))
+            return usageError(QStringLiteral("--fit: expected IDS[:HELDOUT] with session ids of %1, got '%2'").arg(path, p.value(fit)));
+        if (QDockWidget *d = window.dock(QStringLiteral("ModelsDock")))
+            d->show();
+        if (!window.models()->startFit(training, heldOut))
+            return usageError(QStringLiteral("cannot fit: %1").arg(window.models()->lastError()));
+        waiting = p.isSet(screenshot);
+        if (waiting)
+            QObject::connect(window.models(), &ModelsPanel::fitFinished, &window, takeScreenshot);
     }
-
-    bool diagnosing = false;
     if (p.isSet(diagnose)) {
         const QStringList ids = p.value(diagnose).split(QLatin1Char(':'));
-        if (QDockWidget *dock = window.findChild<QDockWidget *>(QStringLiteral("DiagnosisDock")))
-            dock->show();
-        window.resize(1500, 1150);
-        diagnosing = ids.size() == 2 && window.diagnosis()->start(ids.at(0).toLongLong(), ids.at(1).toLongLong());
-        if (!diagnosing)
-            err << "driftlab: cannot diagnose: " << window.diagnosis()->lastError() << '\n';
+        const qint64 train = ids.size() == 2 ? sessionArg(window, ids.at(0)) : 0;
+        const qint64 validate = ids.size() == 2 ? sessionArg(window, ids.at(1)) : 0;
+        if (!train || !validate)
+            return usageError(QStringLiteral("--diagnose: expected TRAIN:VALIDATE session ids of %1, got '%2'").arg(path, p.value(diagnose)));
+        if (QDockWidget *d = window.dock(QStringLiteral("DiagnosisDock")))
+            d->show();
+        if (!window.diagnosis()->start(train, validate))
+            return usageError(QStringLiteral("cannot diagnose: %1").arg(window.diagnosis()->lastError()));
+        if (p.isSet(screenshot) && !waiting) {
+            waiting = true;
+            QObject::connect(window.diagnosis(), &DiagnosisPanel::finished, &window, takeScreenshot);
+        }
     }
-    if (p.isSet(screenshot) && diagnosing) {
-        QObject::connect(window.diagnosis(), &DiagnosisPanel::finished, &window, [&window, &err, png = p.value(screenshot)] {
-            QTimer::singleShot(300, &window, [&window, &err, png] {
-                const bool ok = window.grab().save(png, "PNG");
-                err << "driftlab: screenshot " << (ok ? "written to " : "FAILED: ") << png << '\n';
-                QApplication::exit(ok ? 0 : 1);
-            });
-        });
-    } else if (p.isSet(screenshot) && fitting) {
-        // Wait for the fit, then take the picture.
-        QObject::connect(window.models(), &ModelsPanel::fitFinished, &window, [&window, &err, png = p.value(screenshot)] {
-            QTimer::singleShot(300, &window, [&window, &err, png] {
-                const bool ok = window.grab().save(png, "PNG");
-                err << "driftlab: screenshot " << (ok ? "written to " : "FAILED: ") << png << '\n';
-                QApplication::exit(ok ? 0 : 1);
-            });
-        });
-    } else if (p.isSet(screenshot)) {
-        const QString png = p.value(screenshot);
-        QTimer::singleShot(200, &window, [&window, png, &err] {
-            const QPixmap pixmap = window.grab();
-            if (!pixmap.save(png, "PNG")) {
-                err << "driftlab: cannot write screenshot " << png << '\n';
-                QApplication::exit(1);
-                return;
-            }
-            err << "driftlab: screenshot written to " << QFileInfo(png).absoluteFilePath() << '\n';
-            QApplication::exit(0);
-        });
-    }
+    if (p.isSet(screenshot) && !waiting)
+        takeScreenshot();
     return app.exec();
 }

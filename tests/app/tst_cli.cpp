@@ -28,6 +28,7 @@ private slots:
     void analyseSaysWhichParameters();
     void duplicateImportRefused();
     void newBundleAndExampleImport();
+    void guiExitCodesMatchCli();
 
 private:
     QString recordShort(const QString &db, const QString &bundle = QString());
@@ -329,6 +330,31 @@ void TestCli::newBundleAndExampleImport()
         QCOMPARE(o.value(QStringLiteral("ir_frames")).toInt(), 4);
         QCOMPARE(o.value(QStringLiteral("events")).toInt(), 2);
     }
+}
+
+void TestCli::guiExitCodesMatchCli()
+{
+    // The same mistakes give the GUI's exit code 2, as they give the CLI's.
+    const QString db = m_dir.filePath(QStringLiteral("gui.sqlite"));
+    QVERIFY(!recordShort(db).isEmpty());
+    QString png = m_dir.filePath(QStringLiteral("gui.png"));
+    for (const QStringList &args : {QStringList{QStringLiteral("--bogus")},
+                                    QStringList{QStringLiteral("--db"), db, QStringLiteral("--show-session"), QStringLiteral("99")},
+                                    QStringList{QStringLiteral("--db"), db, QStringLiteral("--fit"), QStringLiteral("1:1")},
+                                    QStringList{QStringLiteral("--db"), m_dir.filePath(QStringLiteral("none.sqlite"))}}) {
+        QProcess p;
+        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+        env.insert(QStringLiteral("QT_QPA_PLATFORM"), QStringLiteral("offscreen"));
+        env.insert(QStringLiteral("XDG_CONFIG_HOME"), m_dir.filePath(QStringLiteral("config")));
+        p.setProcessEnvironment(env);
+        p.start(QStringLiteral(DRIFTLAB_GUI), args + QStringList{QStringLiteral("--screenshot"), png});
+        QVERIFY(p.waitForFinished(60000));
+        QCOMPARE(p.exitCode(), 2);
+        QVERIFY(p.readAllStandardError().contains("driftlab: "));
+        QVERIFY(!QFileInfo::exists(png));
+    }
+    QCOMPARE(run({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--holdout"), QStringLiteral("1"),
+                  QStringLiteral("--db"), db}).code, 2);
 }
 
 QTEST_GUILESS_MAIN(TestCli)

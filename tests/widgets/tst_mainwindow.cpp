@@ -9,7 +9,14 @@
 #include "SimulatedRig.h"
 #include "TimeSeriesPlot.h"
 
+#include <QAction>
+#include <QApplication>
+#include <QDockWidget>
+#include <QListWidget>
+#include <QMessageBox>
+#include <QPushButton>
 #include <QSettings>
+#include <QUndoStack>
 #include <QTemporaryDir>
 #include <QtTest>
 
@@ -28,6 +35,10 @@ private slots:
     void importsBundlesAndRefusesBrokenOnes();
     void comparesTwoSessions();
     void remembersRecentDatabases();
+    // Issue 14 items 5, 8, 9.
+    void fitsA1366x768Screen();
+    void duplicateImportAsks();
+    void renameNotesUndoAndDelete();
 
 private:
     QTemporaryDir m_dir;
@@ -164,6 +175,125 @@ void TestMainWindow::remembersRecentDatabases()
     MainWindow window;
     QVERIFY(window.openDatabase(m_db));
     QCOMPARE(window.recentDatabases().first(), QFileInfo(m_db).absoluteFilePath());
+}
+
+namespace {
+// Answers the next modal message box with `button` (the window's real dialog, clicked).
+void answerNextMessageBox(QMessageBox::StandardButton button, QString *text)
+{
+    QTimer::singleShot(0, [button, text] {
+        auto *box = qobject_cast<QMessageBox *>(QApplication::activeModalWidget());
+        if (!box) {
+            answerNextMessageBox(button, text); // not up yet
+            return;
+        }
+        *text = box->text();
+        box->button(button)->click();
+    });
+}
+} // namespace
+
+void TestMainWindow::fitsA1366x768Screen()
+{
+    // Every dock open on the recorded session: the window still fits 1366 x 768 and no
+    // panel is squeezed below a usable size.
+    MainWindow window;
+    QVERIFY(window.openDatabase(m_db));
+    for (const char *name : {"SessionsDock", "AcquisitionDock", "ModelsDock", "DiagnosisDock"})
+        window.dock(QLatin1String(name))->show();
+    window.compareWith(m_session);
+    window.resize(1366, 768);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QTest::qWait(50);
+    if (qEnvironmentVariableIsSet("DRIFTLAB_DEBUG_SIZES")) {
+        for (QWidget *w : window.findChildren<QWidget *>()) {
+            const QSize m = w->minimumSizeHint().expandedTo(w->minimumSize());
+            if (m.width() > 500 || m.height() > 350)
+                qWarning() << w->metaObject()->className() << w->objectName() << m << w->parentWidget()->metaObject()->className();
+        }
+    }
+    QVERIFY2(window.minimumSizeHint().width() <= 1366 && window.minimumSizeHint().height() <= 768,
+             qPrintable(QStringLiteral("minimum %1 x %2").arg(window.minimumSizeHint().width()).arg(window.minimumSizeHint().height())));
+    QCOMPARE(window.size(), QSize(1366, 768));
+    QVERIFY2(window.browser()->sessionList()->height() >= 100,
+             qPrintable(QString::number(window.browser()->sessionList()->height())));
+    QVERIFY(window.workspace()->width() >= 300);
+}
+
+void TestMainWindow::duplicateImportAsks()
+{
+    const QString db = m_dir.filePath(QStringLiteral("dup.sqlite"));
+    const QString bundle = m_dir.filePath(QStringLiteral("dup.zip"));
+    {
+        SessionStore source(m_db);
+        BundleTransfer::exportBundle(source, m_session, bundle);
+    }
+    MainWindow window;
+    QVERIFY(window.openDatabase(db));
+    QVERIFY(window.importBundle(bundle));
+    QString question;
+    answerNextMessageBox(QMessageBox::No, &question);
+    QVERIFY(!window.importBundle(bundle));
+    QVERIFY2(question.contains(QStringLiteral("already in")) && question.contains(QStringLiteral("as session 1")),
+             qPrintable(question));
+    QCOMPARE(window.store()->sessions().size(), 1);
+    answerNextMessageBox(QMessageBox::Yes, &question);
+    QVERIFY(window.importBundle(bundle));
+    const QVector<SessionInfo> sessions = window.store()->sessions();
+    QCOMPARE(sessions.size(), 2);
+    QVERIFY(sessions[0].uuid != sessions[1].uuid);
+    QCOMPARE(window.currentSession(), sessions[1].id);
+}
+
+void TestMainWindow::renameNotesUndoAndDelete()
+{
+    const QString db = m_dir.filePath(QStringLiteral("manage.sqlite"));
+    QFile::copy(m_db, db);
+    qint64 second = 0;
+    {
+        SessionStore store(db);
+        RigConfig config;
+        SimulatedRig rig(config);
+        second = RigRecorder(store, rig).record(QStringLiteral("second"), 300.0);
+    }
+    MainWindow window;
+    QVERIFY(window.openDatabase(db));
+    QVERIFY(window.renameSession(m_session, QStringLiteral("X axis, cold start")));
+    const QString notes = window.store()->session(m_session).notes;
+    QVERIFY(window.setSessionNotes(m_session, QStringLiteral("door closed")));
+    QCOMPARE(window.store()->session(m_session).name, QStringLiteral("X axis, cold start"));
+    QVERIFY(window.browser()->sessionList()->item(0)->text().contains(QStringLiteral("X axis, cold start")));
+    window.undoStack()->undo(); // notes
+    QCOMPARE(window.store()->session(m_session).notes, notes);
+    window.undoStack()->undo(); // name
+    QCOMPARE(window.store()->session(m_session).name, QStringLiteral("gui test"));
+    window.undoStack()->redo();
+    QCOMPARE(window.store()->session(m_session).name, QStringLiteral("X axis, cold start"));
+    QVERIFY(!window.renameSession(m_session, QStringLiteral("  "))); // refused, nothing on the stack
+    QCOMPARE(window.undoStack()->count(), 2);
+
+    // Delete asks; Cancel keeps the session.
+    window.showSession(second);
+    QString question;
+    answerNextMessageBox(QMessageBox::Cancel, &question);
+    QAction *remove = nullptr;
+    for (QAction *a : window.browser()->sessionList()->actions())
+        if (a->text().contains(QStringLiteral("Delete")))
+            remove = a;
+    QVERIFY(remove);
+    remove->trigger();
+    QVERIFY2(question.contains(QStringLiteral("cannot be undone")), qPrintable(question));
+    QCOMPARE(window.store()->sessions().size(), 2);
+    answerNextMessageBox(QMessageBox::Yes, &question);
+    remove->trigger();
+    QCOMPARE(window.store()->sessions().size(), 1);
+    QCOMPARE(window.currentSession(), m_session);
+    QCOMPARE(window.undoStack()->count(), 0);
+    SessionStore check(db);
+    QVERIFY(check.channels(second).isEmpty());
+    QVERIFY(check.irFrames(second).isEmpty());
+    QCOMPARE(check.sessions().size(), 1);
 }
 
 QTEST_MAIN(TestMainWindow)

@@ -1,0 +1,21 @@
+#include "UnitLabels.h"
+
+namespace driftlab {
+
+QString UnitLabels::display(const QString &unit)
+{
+    QString u = unit;
+    if (u.compare(QLatin1String("degC"), Qt::CaseInsensitive) == 0 || u == QLatin1String("C") ||
+        u.compare(QLatin1String("deg C"), Qt::CaseInsensitive) == 0)
+        return QStringLiteral("°C");
+    if (u == QLatin1String("um") || u == QLatin1String("micron"))
+        return QStringLiteral("µm");
+    u.replace(QStringLiteral("^2"), QStringLiteral("²"));
+    u.replace(QStringLiteral("^3"), QStringLiteral("³"));
+    u.replace(QStringLiteral("degC"), QStringLiteral("°C"));
+    if (u.startsWith(QLatin1String("um/")) || u.startsWith(QLatin1String("um ")))
+        u.replace(0, 2, QStringLiteral("µm"));
+    return u;
+}
+
+} // namespace driftlab
