@@ -11,9 +11,12 @@ say() { echo "demo: $*" >&2; }
 say "configuring $build (the first run takes a minute)"
 cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 say "building driftlab and driftlab-cli only (the first build takes several minutes on 2 cores; tests and benchmarks are built by scripts/test.sh)"
+set +o pipefail
 cmake --build "$build" --target driftlab driftlab-cli -j"$(nproc)" 2>&1 |
-  grep --line-buffered -E '^\[ *[0-9]+%\] (Linking|Built target)|error|warning' >&2 || true
-[ -x "$build/app/driftlab-cli" ] && [ -x "$build/app/driftlab" ] || { say "build failed (run cmake --build $build for details)"; exit 1; }
+  grep --line-buffered -E '^\[ *[0-9]+%\] (Linking|Built target)|error|warning' >&2
+status=${PIPESTATUS[0]}
+set -o pipefail
+[ "$status" -eq 0 ] || { say "build failed (run cmake --build $build for the details)"; exit 1; }
 
 data="${XDG_DATA_HOME:-$HOME/.local/share}/DriftLab"
 mkdir -p "$data"
