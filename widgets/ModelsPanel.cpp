@@ -6,7 +6,6 @@
 #include "SessionStore.h"
 
 #include <QComboBox>
-#include <QGridLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
@@ -73,13 +72,14 @@ ModelsPanel::ModelsPanel(QWidget *parent)
     m_measured->setTitle(tr("Measured thermal error"));
     m_predicted->setTitle(tr("Predicted thermal error"));
     m_residual->setTitle(tr("Residual (measured − predicted)"));
-    auto *plots = new QGridLayout();
-    plots->addWidget(m_measured, 0, 0);
-    plots->addWidget(m_predicted, 0, 1);
-    plots->addWidget(m_residual, 1, 0, 1, 2);
+    // One row: the panel stays usable in a bottom dock of a 768-pixel-high screen.
+    auto *plots = new QHBoxLayout();
+    plots->addWidget(m_measured);
+    plots->addWidget(m_predicted);
+    plots->addWidget(m_residual);
     auto *layout = new QHBoxLayout(this);
     layout->addLayout(left, 1);
-    layout->addLayout(plots, 3);
+    layout->addLayout(plots, 4);
 
     m_progress->setRange(0, 1);
     m_progress->setValue(0);

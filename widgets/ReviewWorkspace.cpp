@@ -7,6 +7,7 @@
 #include "SessionStore.h"
 #include "ThermalErrorViews.h"
 #include "TimeSeriesPlot.h"
+#include "UnitLabels.h"
 
 #include <QComboBox>
 #include <QHBoxLayout>
@@ -91,8 +92,12 @@ void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
     m_timeSeries->setEvents(store->events(sessionId));
 
     m_hasErrors = data->hasInterferometer();
-    for (int t = SurfaceTab; t <= ThreeDTab; ++t)
+    for (int t = SurfaceTab; t <= ThreeDTab; ++t) {
         m_tabs->setTabEnabled(t, m_hasErrors);
+        m_tabs->setTabToolTip(t, m_hasErrors ? QString()
+                                             : tr("This session has no interferometer runs besides the reference run: "
+                                                  "no thermal errors to show"));
+    }
     if (m_hasErrors) {
         const ThermalErrorTable table = data->thermalErrors();
         m_surface->setTable(table);
@@ -102,7 +107,7 @@ void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
         m_temperatureChannel->blockSignals(true);
         m_target->clear();
         for (double x : table.targets_mm())
-            m_target->addItem(tr("%1 mm").arg(x));
+            m_target->addItem(ThermalErrorViews::targetLabel(x));
         m_target->setCurrentIndex(m_target->count() - 1);
         m_temperatureChannel->clear();
         for (const ChannelInfo &c : data->channels()) {
@@ -130,6 +135,9 @@ void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
             m_3d->setTable(table);
     }
     m_tabs->setTabEnabled(InfraredTab, !data->infraredFrames().isEmpty());
+    m_tabs->setTabToolTip(InfraredTab, data->infraredFrames().isEmpty() ? tr("This session has no infrared frames") : QString());
+    if (!m_tabs->isTabEnabled(m_tabs->currentIndex()))
+        m_tabs->setCurrentIndex(TimeSeriesTab);
     m_infrared->setSession(data);
     showChannels(defaultChannels());
 }
@@ -173,8 +181,9 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
         if (right && !rightKinds.contains(c.kind))
             rightKinds += (rightKinds.isEmpty() ? QString() : QStringLiteral(", ")) + c.kind;
         QString &units = right ? rightUnits : leftUnits;
-        if (!units.contains(c.unit))
-            units += (units.isEmpty() ? QString() : QStringLiteral(", ")) + c.unit;
+        const QString unit = UnitLabels::display(c.unit);
+        if (!units.contains(unit))
+            units += (units.isEmpty() ? QString() : QStringLiteral(", ")) + unit;
     }
     m_timeSeries->enableAxis(QwtPlot::yRight, !rightUnits.isEmpty());
     m_timeSeries->setAxisTitles(leftUnits.isEmpty() ? QString() : tr("temperature (%1)").arg(leftUnits),

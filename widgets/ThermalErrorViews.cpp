@@ -13,16 +13,29 @@
 namespace driftlab {
 
 namespace {
+QString hoursMinutes(double t_s)
+{
+    const qint64 m = static_cast<qint64>(std::llround(t_s / 60.0));
+    return QStringLiteral("%1:%2").arg(m / 60).arg(m % 60, 2, 10, QLatin1Char('0'));
+}
+
 void markPoints(QwtPlotCurve *curve)
 {
     curve->setSymbol(new QwtSymbol(QwtSymbol::Ellipse, QBrush(curve->pen().color()), QPen(Qt::NoPen), QSize(5, 5)));
 }
 } // namespace
 
+QString ThermalErrorViews::targetLabel(double position_mm)
+{
+    const double r = std::round(position_mm * 10.0) / 10.0;
+    return QObject::tr("%1 mm").arg(r, 0, 'f', std::fabs(r - std::round(r)) < 1e-9 ? 0 : 1);
+}
+
 void ThermalErrorViews::showProfiles(TimeSeriesPlot &plot, const ThermalErrorTable &table)
 {
     plot.clearCurves();
     plot.setTitle(QObject::tr("Thermal error against position, per run"));
+    plot.setTimeAxis(false);
     plot.setAxisTitle(QwtPlot::xBottom, QObject::tr("axis position (mm)"));
     plot.setAxisTitles(QObject::tr("thermal error (µm)"), QString());
     plot.enableAxis(QwtPlot::yRight, false);
@@ -35,7 +48,7 @@ void ThermalErrorViews::showProfiles(TimeSeriesPlot &plot, const ThermalErrorTab
             x.push_back(table.targets_mm()[k]);
             y.push_back(e);
         }
-        const QString title = QObject::tr("run %1 (%2 min)").arg(table.runs()[r]).arg(table.runTimes_s()[r] / 60.0, 0, 'f', 0);
+        const QString title = QObject::tr("run %1 (%2)").arg(table.runs()[r]).arg(hoursMinutes(table.runTimes_s()[r]));
         markPoints(plot.addCurve(title, x, y, false));
     }
     plot.zoomToData();
@@ -45,7 +58,7 @@ void ThermalErrorViews::showHistories(TimeSeriesPlot &plot, const ThermalErrorTa
 {
     plot.clearCurves();
     plot.setTitle(QObject::tr("Thermal error against time, per target"));
-    plot.setAxisTitle(QwtPlot::xBottom, QObject::tr("time (s)"));
+    plot.setTimeAxis(true);
     plot.setAxisTitles(QObject::tr("thermal error (µm)"), QString());
     plot.enableAxis(QwtPlot::yRight, false);
     for (std::size_t k = 0; k < table.targetCount(); ++k) {
@@ -57,7 +70,7 @@ void ThermalErrorViews::showHistories(TimeSeriesPlot &plot, const ThermalErrorTa
             t.push_back(table.runTimes_s()[r]);
             y.push_back(e);
         }
-        markPoints(plot.addCurve(QObject::tr("%1 mm").arg(table.targets_mm()[k]), t, y, false));
+        markPoints(plot.addCurve(targetLabel(table.targets_mm()[k]), t, y, false));
     }
     plot.zoomToData();
 }
@@ -66,7 +79,8 @@ LineFit ThermalErrorViews::showAgainstTemperature(TimeSeriesPlot &plot, const Th
                                                   const TimeSeries &temperature, const QString &channelName)
 {
     plot.clearCurves();
-    plot.setTitle(QObject::tr("Thermal error at %1 mm against %2").arg(table.targets_mm().at(target)).arg(channelName));
+    plot.setTitle(QObject::tr("Thermal error at %1 against %2").arg(targetLabel(table.targets_mm().at(target))).arg(channelName));
+    plot.setTimeAxis(false);
     plot.setAxisTitle(QwtPlot::xBottom, QObject::tr("%1 (°C)").arg(channelName));
     plot.setAxisTitles(QObject::tr("thermal error (µm)"), QString());
     plot.enableAxis(QwtPlot::yRight, false);

@@ -29,6 +29,8 @@ public:
     // measurement's time), with its least-squares line. Returns the fit.
     static LineFit showAgainstTemperature(TimeSeriesPlot &plot, const ThermalErrorTable &table, std::size_t target,
                                           const TimeSeries &temperature, const QString &channelName);
+    // An interferometer target rounded for people: "47.3 mm" (whole mm when it is one).
+    static QString targetLabel(double position_mm);
 };
 
 } // namespace driftlab

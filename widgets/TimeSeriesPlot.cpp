@@ -13,20 +13,43 @@
 #include <QTimer>
 
 #include <qwt_scale_div.h>
+#include <qwt_scale_draw.h>
 #include <qwt_scale_widget.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 
 namespace driftlab {
 
 namespace {
+// Twelve distinguishable colours (ColorBrewer "Paired" reordered dark first, the light yellow
+// darkened), so that up to 12 interferometer targets or channels never share one.
 const QVector<QColor> &curveColours()
 {
-    static const QVector<QColor> colours = {QColor(31, 119, 180), QColor(214, 39, 40), QColor(44, 160, 44),
-                                            QColor(255, 127, 14), QColor(148, 103, 189), QColor(140, 86, 75),
-                                            QColor(227, 119, 194), QColor(127, 127, 127)};
+    static const QVector<QColor> colours = {QColor(31, 120, 180), QColor(227, 26, 28),  QColor(51, 160, 44),
+                                            QColor(255, 127, 0),  QColor(106, 61, 154), QColor(177, 89, 40),
+                                            QColor(166, 206, 227), QColor(251, 154, 153), QColor(178, 223, 138),
+                                            QColor(253, 191, 111), QColor(202, 178, 214), QColor(200, 180, 40)};
     return colours;
 }
+
+// Time labels in h:mm once the visible span passes two hours, else in seconds.
+class ElapsedScaleDraw : public QwtScaleDraw {
+public:
+    explicit ElapsedScaleDraw(const bool *hours) : m_hours(hours) {}
+    QwtText label(double v) const override
+    {
+        if (!*m_hours)
+            return QwtScaleDraw::label(v);
+        const qint64 m = static_cast<qint64>(std::llround(v / 60.0));
+        return QwtText(QStringLiteral("%1%2:%3").arg(m < 0 ? QStringLiteral("-") : QString()).arg(std::abs(m) / 60)
+                           .arg(std::abs(m) % 60, 2, 10, QLatin1Char('0')));
+    }
+
+private:
+    const bool *m_hours;
+};
 } // namespace
 
 TimeSeriesPlot::TimeSeriesPlot(QWidget *parent) : QwtPlot(parent), m_refresh(new QTimer(this))
@@ -45,6 +68,7 @@ TimeSeriesPlot::TimeSeriesPlot(QWidget *parent) : QwtPlot(parent), m_refresh(new
     setAxisTitle(QwtPlot::xBottom, tr("time (s)"));
     enableAxis(QwtPlot::yRight, true);
     insertLegend(new QwtLegend(), QwtPlot::BottomLegend);
+    setAxisScaleDraw(QwtPlot::xBottom, new ElapsedScaleDraw(&m_hoursAxis));
     auto *grid = new QwtPlotGrid();
     grid->setMajorPen(QColor(225, 225, 225), 0.0, Qt::SolidLine); // dotted lines are slow to raster
     grid->attach(this);
@@ -72,6 +96,8 @@ QwtPlotCurve *TimeSeriesPlot::addCurve(const QString &title, const QVector<doubl
 {
     auto *c = new QwtPlotCurve(title);
     c->setPen(curveColours().at(m_curves.size() % curveColours().size()), 1.5);
+    c->setLegendAttribute(QwtPlotCurve::LegendShowLine, true);
+    c->setLegendAttribute(QwtPlotCurve::LegendShowSymbol, true); // the legend shows the points' marker too
     c->setRenderHint(QwtPlotItem::RenderAntialiased, true);
     c->setSamples(t, v);
     c->setYAxis(rightAxis ? QwtPlot::yRight : QwtPlot::yLeft);
@@ -166,9 +192,41 @@ void TimeSeriesPlot::setEvents(const QVector<EventRecord> &events)
     replot();
 }
 
+void TimeSeriesPlot::setTimeAxis(bool time)
+{
+    m_timeAxis = time;
+    if (!time)
+        m_hoursAxis = false;
+}
+
 void TimeSeriesPlot::zoomToData()
 {
-    setAxisAutoScale(QwtPlot::xBottom);
+    // Long tests read in h:mm on ticks of whole quarter, half or full hours.
+    double t0 = 1e300, t1 = -1e300;
+    for (const QwtPlotCurve *c : m_curves) {
+        if (c->dataSize() == 0)
+            continue;
+        t0 = std::min(t0, c->minXValue());
+        t1 = std::max(t1, c->maxXValue());
+    }
+    for (const DecimatedCurve &d : m_decimated) {
+        t0 = std::min(t0, d.tFirst);
+        t1 = std::max(t1, d.tLast);
+    }
+    m_hoursAxis = m_timeAxis && t1 - t0 > 2.0 * 3600.0;
+    if (m_timeAxis)
+        setAxisTitle(QwtPlot::xBottom, m_hoursAxis ? tr("time (h:mm)") : tr("time (s)"));
+    if (m_hoursAxis) {
+        double step = 900.0;
+        for (double s : {900.0, 1800.0, 3600.0, 7200.0, 10800.0, 21600.0, 43200.0, 86400.0}) {
+            step = s;
+            if ((t1 - t0) / s <= 10.0)
+                break;
+        }
+        setAxisScale(QwtPlot::xBottom, std::floor(t0 / step) * step, std::ceil(t1 / step) * step, step);
+    } else {
+        setAxisAutoScale(QwtPlot::xBottom);
+    }
     setAxisAutoScale(QwtPlot::yLeft);
     setAxisAutoScale(QwtPlot::yRight);
     replot();

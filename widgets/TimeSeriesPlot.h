@@ -39,6 +39,9 @@ public:
     // Vertical markers with labels at operator/program events (replaces earlier ones).
     void setEvents(const QVector<EventRecord> &events);
     int eventMarkerCount() const { return m_events.size(); }
+    // Whether x is a time axis (default): then labels turn to h:mm past two hours.
+    void setTimeAxis(bool time);
+    bool hoursAxis() const { return m_hoursAxis; }
     void zoomToData();
 
 private:
@@ -53,6 +56,8 @@ private:
     QVector<QwtPlotMarker *> m_events;
     QTimer *m_refresh;
     QwtPlotZoomer *m_zoomer = nullptr;
+    bool m_timeAxis = true;
+    bool m_hoursAxis = false;
 };
 
 } // namespace driftlab

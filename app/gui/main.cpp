@@ -175,8 +175,10 @@ int main(int argc, char **argv)
         qint64 heldOut = 0;
         if (parts.size() > 2 || (parts.size() == 2 && !(heldOut = sessionArg(window, parts.at(1)))))
             return usageError(QStringLiteral("--fit: expected IDS[:HELDOUT] with session ids of %1, got '%2'").arg(path, p.value(fit)));
-        if (QDockWidget *d = window.dock(QStringLiteral("ModelsDock")))
+        if (QDockWidget *d = window.dock(QStringLiteral("ModelsDock"))) {
             d->show();
+            window.resizeDocks({d}, {window.height() * 11 / 20}, Qt::Vertical);
+        }
         if (!window.models()->startFit(training, heldOut))
             return usageError(QStringLiteral("cannot fit: %1").arg(window.models()->lastError()));
         waiting = p.isSet(screenshot);
@@ -189,8 +191,11 @@ int main(int argc, char **argv)
         const qint64 validate = ids.size() == 2 ? sessionArg(window, ids.at(1)) : 0;
         if (!train || !validate)
             return usageError(QStringLiteral("--diagnose: expected TRAIN:VALIDATE session ids of %1, got '%2'").arg(path, p.value(diagnose)));
-        if (QDockWidget *d = window.dock(QStringLiteral("DiagnosisDock")))
+        if (QDockWidget *d = window.dock(QStringLiteral("DiagnosisDock"))) {
             d->show();
+            d->raise();
+            window.resizeDocks({d}, {window.height() * 11 / 20}, Qt::Vertical);
+        }
         if (!window.diagnosis()->start(train, validate))
             return usageError(QStringLiteral("cannot diagnose: %1").arg(window.diagnosis()->lastError()));
         if (p.isSet(screenshot) && !waiting) {

@@ -56,6 +56,27 @@ void TestModelsPanel::fitsInBackgroundAndShowsResiduals()
     QCOMPARE(panel.parameterTable()->rowCount(), int(r.all.size()));
     QCOMPARE(panel.parameterTable()->item(0, 0)->text(), QString::fromStdString(r.all[0].name));
     QVERIFY(panel.validation().interferometerPoints > 0);
+    // Issue 14 item 2: the check column flags what `fit` and the diagnosis flag, judged here
+    // from the table's own value and standard-error columns.
+    QTableWidget *t = panel.parameterTable();
+    int flagged = 0;
+    for (int row = 0; row < t->rowCount(); ++row) {
+        const QString name = t->item(row, 0)->text();
+        const double value = t->item(row, 1)->text().toDouble();
+        bool fitted = false;
+        const double se = t->item(row, 2)->text().toDouble(&fitted);
+        const QString check = t->item(row, 4)->text();
+        QCOMPARE(check.contains(QStringLiteral("poorly identified")), fitted && std::fabs(value) > 1e-9 && se > std::fabs(value) / 3.0 * 1.001);
+        if (name == QLatin1String("lambda"))
+            QCOMPARE(check.contains(QStringLiteral("implausible")), value < 22.5 || value > 90.0);
+        if (name == QLatin1String("k3") || name == QLatin1String("k4"))
+            QCOMPARE(check.contains(QStringLiteral("implausible")), value <= 1e-9);
+        QCOMPARE(check == QLatin1String("ok"), !check.contains(QStringLiteral("implausible")) && !check.contains(QStringLiteral("poorly")));
+        flagged += check != QLatin1String("ok");
+        if (check != QLatin1String("ok"))
+            QVERIFY(!t->item(row, 4)->toolTip().isEmpty()); // the reason, in words
+    }
+    qInfo("%d of %d parameters flagged", flagged, t->rowCount());
     // The residual grid of the first training session, recomputed independently from the
     // fit's points, has the RMS the identifier reports for that session's interferometer data.
     std::vector<double> x, y, z;
