@@ -182,6 +182,22 @@ void SessionStore::rollback()
     m_samples->reset(); // the pending samples and open mipmap rows may hold rolled-back data
 }
 
+void SessionStore::inTransaction(const std::function<void()> &work)
+{
+    const bool own = !m_inTransaction;
+    if (own)
+        begin();
+    try {
+        work();
+    } catch (...) {
+        if (own)
+            rollback();
+        throw;
+    }
+    if (own)
+        commit();
+}
+
 QSqlQuery &SessionStore::cached(const char *sql)
 {
     auto it = m_queries.find(sql);
@@ -239,10 +255,7 @@ void SessionStore::setSessionNotes(qint64 sessionId, const QString &notes)
 
 void SessionStore::deleteSession(qint64 sessionId)
 {
-    const bool own = !m_inTransaction;
-    if (own)
-        begin();
-    try {
+    inTransaction([&] {
         // Blocks and mipmap rows go with their channels, everything else with the session
         // (ON DELETE CASCADE); the legacy narrow table is emptied by the version-2 migration.
         QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("DELETE FROM sessions WHERE id = ?"));
@@ -250,13 +263,7 @@ void SessionStore::deleteSession(qint64 sessionId)
         SqlSupport::run(q, m_path, QStringLiteral("cannot delete session %1").arg(sessionId));
         if (q.numRowsAffected() != 1)
             throw StorageError(QStringLiteral("%1: no session with id %2").arg(m_path).arg(sessionId).toStdString());
-    } catch (...) {
-        if (own)
-            rollback();
-        throw;
-    }
-    if (own)
-        commit();
+    });
     m_samples->reset(); // channel ids of the deleted session may be given out again
 }
 
@@ -321,10 +328,7 @@ qint64 SessionStore::addCompressedIrFrame(qint64 sessionId, const IrFrame &frame
 
 void SessionStore::addInterferometerPoints(qint64 sessionId, const QVector<InterferometerPoint> &points)
 {
-    const bool own = !m_inTransaction;
-    if (own)
-        begin();
-    try {
+    inTransaction([&] {
         QSqlQuery &q = cached("INSERT INTO interferometer_points(session_id, t, run, position_mm, error_um, direction) "
                               "VALUES(?, ?, ?, ?, ?, ?)");
         for (const InterferometerPoint &p : points) {
@@ -336,13 +340,7 @@ void SessionStore::addInterferometerPoints(qint64 sessionId, const QVector<Inter
             q.bindValue(5, text(p.direction));
             SqlSupport::run(q, m_path, QStringLiteral("cannot store interferometer point"));
         }
-    } catch (...) {
-        if (own)
-            rollback();
-        throw;
-    }
-    if (own)
-        commit();
+    });
 }
 
 qint64 SessionStore::addFittedModel(qint64 sessionId, const FittedModel &model)
@@ -362,18 +360,9 @@ qint64 SessionStore::addFittedModel(qint64 sessionId, const FittedModel &model)
 
 void SessionStore::appendSamples(qint64 channelId, const QVector<double> &t, const QVector<double> &v)
 {
-    const bool own = !m_inTransaction;
-    if (own)
-        begin();
-    try {
+    inTransaction([&] {
         m_samples->append(channelId, t, v);
-    } catch (...) {
-        if (own)
-            rollback();
-        throw;
-    }
-    if (own)
-        commit();
+    });
 }
 
 void SessionStore::addEvent(qint64 sessionId, const EventRecord &event)

@@ -11,6 +11,7 @@
 #include <QString>
 #include <QVector>
 
+#include <functional>
 #include <memory>
 
 namespace driftlab {
@@ -85,6 +86,8 @@ public:
 
 private:
     QSqlQuery &cached(const char *sql);
+    // Runs work in the open transaction, or in one of its own (rolled back if work throws).
+    void inTransaction(const std::function<void()> &work);
     void convertLegacySamples();
     void assignMissingUuids();
     void updateSessionText(qint64 sessionId, const char *column, const QString &value);

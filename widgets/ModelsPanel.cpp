@@ -4,6 +4,7 @@
 #include "ParameterPlausibility.h"
 #include "SessionAnalysis.h"
 #include "SessionStore.h"
+#include "UnitLabels.h"
 
 #include <QComboBox>
 #include <QHBoxLayout>
@@ -25,15 +26,6 @@ namespace driftlab {
 
 namespace {
 constexpr int kIdRole = Qt::UserRole + 1;
-
-// Analysis units are ASCII ("W/(m^2 K)"); the GUI shows the typeset form.
-QString unitText(const std::string &unit)
-{
-    QString u = QString::fromStdString(unit);
-    u.replace(QStringLiteral("^2"), QStringLiteral("²"));
-    u.replace(QStringLiteral("um"), QStringLiteral("µm"));
-    return u;
-}
 } // namespace
 
 ModelsPanel::ModelsPanel(QWidget *parent)
@@ -263,7 +255,7 @@ void ModelsPanel::finish(bool ok, const QString &error)
         m_parameters->setItem(r, 0, new QTableWidgetItem(QString::fromStdString(p.name)));
         m_parameters->setItem(r, 1, new QTableWidgetItem(QString::number(p.value, 'g', 5)));
         m_parameters->setItem(r, 2, new QTableWidgetItem(p.fitted ? QString::number(p.standardError, 'g', 3) : tr("fixed")));
-        m_parameters->setItem(r, 3, new QTableWidgetItem(unitText(p.unit)));
+        m_parameters->setItem(r, 3, new QTableWidgetItem(UnitLabels::display(QString::fromStdString(p.unit))));
         QStringList checks, messages;
         for (const PlausibilityFlag &f : implausible)
             if (f.parameter == p.name) {
