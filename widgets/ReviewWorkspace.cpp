@@ -15,6 +15,8 @@
 #include <QTabWidget>
 #include <QVBoxLayout>
 
+#include <cmath>
+
 namespace driftlab {
 
 namespace {
@@ -199,6 +201,20 @@ void ReviewWorkspace::updateTemperatureView()
     ThermalErrorViews::showAgainstTemperature(*m_againstTemperature, m_data->thermalErrors(),
                                               static_cast<std::size_t>(m_target->currentIndex()), m_data->series(id),
                                               m_temperatureChannel->currentText().section(QLatin1Char(' '), 0, 0));
+}
+
+bool ReviewWorkspace::selectTarget(double position_mm)
+{
+    if (!m_data || !m_hasErrors)
+        return false;
+    const std::vector<double> targets = m_data->thermalErrors().targets_mm();
+    int best = 0;
+    for (int i = 1; i < static_cast<int>(targets.size()); ++i)
+        if (std::fabs(targets[static_cast<size_t>(i)] - position_mm) < std::fabs(targets[static_cast<size_t>(best)] - position_mm))
+            best = i;
+    m_target->setCurrentIndex(best);
+    updateTemperatureView();
+    return true;
 }
 
 void ReviewWorkspace::ensure3D()

@@ -45,6 +45,9 @@ public:
     QString currentViewName() const;
     // Shows a view's tab: any export name, or "error-3d" for the 3-D surface.
     bool selectView(const QString &name);
+    // Target of the error-against-temperature view: the one nearest position_mm (false if
+    // the session has no thermal errors).
+    bool selectTarget(double position_mm);
     TimeSeriesPlot *timeSeriesPlot() const { return m_timeSeries; }
     ErrorSurfacePlot *errorSurface() const { return m_surface; }
     InfraredPanel *infraredPanel() const { return m_infrared; }

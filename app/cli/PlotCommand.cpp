@@ -1,6 +1,7 @@
 #include "PlotCommand.h"
 
 #include "CliSupport.h"
+#include "InfraredPanel.h"
 #include "PlotExporter.h"
 #include "ReviewWorkspace.h"
 #include "SessionStore.h"
@@ -8,12 +9,18 @@
 #include <QCommandLineParser>
 #include <QFileInfo>
 
+#include <qwt_interval.h>
+#include <qwt_plot.h>
+
 namespace driftlab {
 
 QString PlotCommand::summary() const
 {
     return QStringLiteral("Render a review view of a session to PNG, SVG or PDF (no display needed).\n"
-                          "Views: %1.")
+                          "Views: %1.\n"
+                          "--channels picks the channels of the timeseries view, --from/--to its time window (also\n"
+                          "error-time), --target the interferometer target of error-temperature, --frame the\n"
+                          "infrared frame of ir-profile.")
         .arg(ReviewWorkspace::viewNames().join(QStringLiteral(", ")));
 }
 
@@ -31,7 +38,17 @@ int PlotCommand::run(const QStringList &args)
                                     QStringLiteral("mm"), QStringLiteral("150"));
     const QCommandLineOption dpi(QStringLiteral("dpi"), QStringLiteral("Resolution (default 120)."), QStringLiteral("dpi"),
                                  QStringLiteral("120"));
-    p.addOptions({db, view, out, width, height, dpi});
+    const QCommandLineOption channels(QStringLiteral("channels"), QStringLiteral("timeseries: channel ids, comma-separated."),
+                                      QStringLiteral("ids"));
+    const QCommandLineOption from(QStringLiteral("from"), QStringLiteral("Time window start: SECONDS or H:MM:SS."),
+                                  QStringLiteral("time"));
+    const QCommandLineOption to(QStringLiteral("to"), QStringLiteral("Time window end: SECONDS or H:MM:SS."), QStringLiteral("time"));
+    const QCommandLineOption target(QStringLiteral("target"),
+                                    QStringLiteral("error-temperature: interferometer target (mm; the nearest is used)."),
+                                    QStringLiteral("mm"));
+    const QCommandLineOption frame(QStringLiteral("frame"), QStringLiteral("ir-profile: infrared frame number (1 = first)."),
+                                   QStringLiteral("n"));
+    p.addOptions({db, view, out, width, height, dpi, channels, from, to, target, frame});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
     if (!parse(p, args))
         return 0;
@@ -63,6 +80,18 @@ int PlotCommand::run(const QStringList &args)
     };
     const QSizeF size(number(width, 20, 2000), number(height, 20, 2000));
     const int resolution = static_cast<int>(number(dpi, 30, 1200));
+    const double t0 = p.isSet(from) ? CliSupport::parseDuration(p.value(from), QStringLiteral("from")) : -1.0;
+    const double t1 = p.isSet(to) ? CliSupport::parseDuration(p.value(to), QStringLiteral("to")) : -1.0;
+    if (t0 >= 0 && t1 >= 0 && t1 <= t0)
+        throw UsageError(QStringLiteral("plot: --to must be after --from"));
+    if ((p.isSet(from) || p.isSet(to)) && name != QLatin1String("timeseries") && name != QLatin1String("error-time"))
+        throw UsageError(QStringLiteral("plot: --from/--to apply to the timeseries and error-time views"));
+    if (p.isSet(channels) && name != QLatin1String("timeseries"))
+        throw UsageError(QStringLiteral("plot: --channels applies to the timeseries view"));
+    if (p.isSet(target) && name != QLatin1String("error-temperature"))
+        throw UsageError(QStringLiteral("plot: --target applies to the error-temperature view"));
+    if (p.isSet(frame) && name != QLatin1String("ir-profile"))
+        throw UsageError(QStringLiteral("plot: --frame applies to the ir-profile view"));
 
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
@@ -74,9 +103,45 @@ int PlotCommand::run(const QStringList &args)
     ReviewWorkspace workspace;
     workspace.resize(1600, 1000);
     workspace.setSession(&store, session);
+    if (p.isSet(channels)) {
+        QVector<qint64> ids;
+        QStringList known;
+        const QVector<ChannelInfo> all = store.channels(session);
+        for (const ChannelInfo &c : all)
+            known << c.key;
+        for (const QString &key : p.value(channels).split(QLatin1Char(','), Qt::SkipEmptyParts)) {
+            const int i = known.indexOf(key.trimmed());
+            if (i < 0)
+                throw UsageError(QStringLiteral("plot: --channels: session %1 has no channel '%2' (it has %3)")
+                                     .arg(session)
+                                     .arg(key, known.join(QStringLiteral(", "))));
+            ids.push_back(all[i].id);
+        }
+        workspace.showChannels(ids);
+    }
+    if (p.isSet(target)) {
+        bool good = false;
+        const double mm = p.value(target).toDouble(&good);
+        if (!good)
+            throw UsageError(QStringLiteral("plot: --target must be a position in mm, got '%1'").arg(p.value(target)));
+        workspace.selectTarget(mm);
+    }
     QwtPlot *plot = workspace.plotForView(name);
     if (!plot)
         throw UsageError(QStringLiteral("plot: session %1 has no data for the view '%2'").arg(session).arg(name));
+    if (p.isSet(frame)) {
+        const int n = p.value(frame).toInt(&ok);
+        if (!ok || n < 1 || n > workspace.infraredPanel()->frameCount())
+            throw UsageError(QStringLiteral("plot: --frame must be 1..%1, got '%2'")
+                                 .arg(workspace.infraredPanel()->frameCount())
+                                 .arg(p.value(frame)));
+        workspace.infraredPanel()->showFrame(n - 1);
+    }
+    if (t0 >= 0 || t1 >= 0) {
+        const QwtInterval shown = plot->axisInterval(QwtPlot::xBottom);
+        plot->setAxisScale(QwtPlot::xBottom, t0 >= 0 ? t0 : shown.minValue(), t1 >= 0 ? t1 : shown.maxValue());
+        plot->replot();
+    }
     PlotExporter::exportPlot(*plot, file, size, resolution);
     CliSupport::progress(QStringLiteral("wrote %1 (%2 of session %3)").arg(QFileInfo(file).absoluteFilePath(), name).arg(session));
     return 0;

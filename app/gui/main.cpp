@@ -177,7 +177,7 @@ int main(int argc, char **argv)
             return usageError(QStringLiteral("--fit: expected IDS[:HELDOUT] with session ids of %1, got '%2'").arg(path, p.value(fit)));
         if (QDockWidget *d = window.dock(QStringLiteral("ModelsDock"))) {
             d->show();
-            window.resizeDocks({d}, {window.height() * 11 / 20}, Qt::Vertical);
+            QTimer::singleShot(0, &window, [&window, d] { window.resizeDocks({d}, {window.height() * 11 / 20}, Qt::Vertical); });
         }
         if (!window.models()->startFit(training, heldOut))
             return usageError(QStringLiteral("cannot fit: %1").arg(window.models()->lastError()));
@@ -194,7 +194,7 @@ int main(int argc, char **argv)
         if (QDockWidget *d = window.dock(QStringLiteral("DiagnosisDock"))) {
             d->show();
             d->raise();
-            window.resizeDocks({d}, {window.height() * 11 / 20}, Qt::Vertical);
+            QTimer::singleShot(0, &window, [&window, d] { window.resizeDocks({d}, {window.height() * 11 / 20}, Qt::Vertical); });
         }
         if (!window.diagnosis()->start(train, validate))
             return usageError(QStringLiteral("cannot diagnose: %1").arg(window.diagnosis()->lastError()));

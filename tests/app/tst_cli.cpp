@@ -330,6 +330,21 @@ void TestCli::newBundleAndExampleImport()
         QCOMPARE(o.value(QStringLiteral("ir_frames")).toInt(), 4);
         QCOMPARE(o.value(QStringLiteral("events")).toInt(), 2);
     }
+    // plot picks channels, time window, target and infrared frame; a wrong pick is bad input.
+    const QString png = m_dir.filePath(QStringLiteral("pick.png"));
+    const QStringList base{QStringLiteral("plot"), QStringLiteral("2"), QStringLiteral("--db"), db, QStringLiteral("--out"), png};
+    QCOMPARE(run(base + QStringList{QStringLiteral("--channels"), QStringLiteral("T_nut,S1"), QStringLiteral("--from"),
+                                    QStringLiteral("0:30:00"), QStringLiteral("--to"), QStringLiteral("1:00:00")}).code, 0);
+    QVERIFY(QFileInfo(png).size() > 1000);
+    QCOMPARE(run(base + QStringList{QStringLiteral("--view"), QStringLiteral("ir-profile"), QStringLiteral("--frame"), QStringLiteral("4")}).code, 0);
+    QCOMPARE(run(base + QStringList{QStringLiteral("--view"), QStringLiteral("error-temperature"), QStringLiteral("--target"),
+                                    QStringLiteral("250")}).code, 0);
+    r = run(base + QStringList{QStringLiteral("--view"), QStringLiteral("ir-profile"), QStringLiteral("--frame"), QStringLiteral("5")});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--frame must be 1..4"), r.err.constData());
+    r = run(base + QStringList{QStringLiteral("--channels"), QStringLiteral("T_spindle")});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("no channel 'T_spindle'"), r.err.constData());
 }
 
 void TestCli::guiExitCodesMatchCli()
