@@ -292,8 +292,8 @@ void AcquisitionPanel::onTick()
 {
     if (!m_engine)
         return;
-    if (m_end_s > 0 && m_engine->now_s() >= m_end_s) {
-        stopRecording(); // the run's duration is reached
+    if (m_timer->isActive() && m_end_s > 0 && m_engine->now_s() >= m_end_s) {
+        stopRecording(); // the run's duration is reached (stopRecording's own last tick skips this)
         return;
     }
     m_elapsed->setText(tr("%1%2 elapsed%3")

@@ -6,6 +6,7 @@
 #include "TimeSeriesPlot.h"
 
 #include <QElapsedTimer>
+#include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QtTest>
 
@@ -20,6 +21,7 @@ class TestAcquisitionPanel : public QObject {
 private slots:
     void recordsAndShowsHealth();
     void badRigIsReported();
+    void namedRunIntoANewFolderStopsByItself();
 };
 
 void TestAcquisitionPanel::recordsAndShowsHealth()
@@ -79,6 +81,31 @@ void TestAcquisitionPanel::badRigIsReported()
     QVERIFY(!panel.startRecording(QStringLiteral("no-such-rig"), dir.filePath(QStringLiteral("x.sqlite")), 10.0));
     QVERIFY(panel.lastError().contains(QLatin1String("no-such-rig")));
     QVERIFY(!panel.recording());
+}
+
+void TestAcquisitionPanel::namedRunIntoANewFolderStopsByItself()
+{
+    // Issue 14 item 7: a fresh install has no data folder; the run carries its name,
+    // operator and notes and ends at its duration.
+    QTemporaryDir dir;
+    const QString db = dir.filePath(QStringLiteral("fresh/install/DriftLab/driftlab.sqlite"));
+    AcquisitionPanel panel;
+    panel.setDatabasePath(db);
+    panel.setRunDetails(QStringLiteral("X axis warm-up"), QStringLiteral("A. Technician"), 120.0, QStringLiteral("door closed"));
+    QSignalSpy stopped(&panel, &AcquisitionPanel::recordingStopped);
+    QVERIFY2(panel.startRecording(QStringLiteral("baseline"), panel.targetDatabase(), 600.0), qPrintable(panel.lastError()));
+    QVERIFY(stopped.wait(20000)); // 2 simulated minutes at 600x: about 0.2 s
+    QVERIFY(!panel.recording());
+    SessionStore store(db);
+    const SessionInfo info = store.session(stopped.first().at(0).toLongLong());
+    QCOMPARE(info.name, QStringLiteral("X axis warm-up"));
+    QCOMPARE(info.operatorName, QStringLiteral("A. Technician"));
+    QVERIFY(info.notes.startsWith(QStringLiteral("door closed")));
+    for (const ChannelInfo &c : store.channels(info.id)) {
+        const DecimatedSeries all = store.decimated(c.id, -1e300, 1e300, 1);
+        if (!all.tLast.isEmpty())
+            QVERIFY2(all.tLast.back() <= 120.0 + 1e-6, qPrintable(c.key)); // nothing past the duration
+    }
 }
 
 QTEST_MAIN(TestAcquisitionPanel)
