@@ -97,7 +97,7 @@ QwtLinearColorMap *errorColourMap()
 ErrorSurfacePlot::ErrorSurfacePlot(QWidget *parent) : QwtPlot(parent), m_spectrogram(new QwtPlotSpectrogram())
 {
     setTitle(tr("Thermal error over position and time"));
-    setMinimumSize(260, 180); // not the plot's size hint: windows must fit 1366 x 768
+    setMinimumSize(260, 140); // not the plot's size hint: windows must fit 1366 x 768
     setAxisTitle(QwtPlot::xBottom, tr("axis position (mm)"));
     setAxisTitle(QwtPlot::yLeft, tr("time (s)"));
     setAxisTitle(QwtPlot::yRight, tr("thermal error (µm)"));

@@ -29,7 +29,7 @@ QColor mapColour(double f)
 InfraredView::InfraredView(QWidget *parent) : QWidget(parent)
 {
     setMouseTracking(true);
-    setMinimumSize(320, 200);
+    setMinimumSize(240, 140);
 }
 
 void InfraredView::setFrame(const cv::Mat &temperature, const InfraredCalibration &calibration)

@@ -55,7 +55,7 @@ private:
 TimeSeriesPlot::TimeSeriesPlot(QWidget *parent) : QwtPlot(parent), m_refresh(new QTimer(this))
 {
     // Not Qwt's size hint (which grows with the legend): windows must fit 1366 x 768.
-    setMinimumSize(260, 180);
+    setMinimumSize(260, 140);
     // Zooming and panning change the x scale; refetch at most 25 times a second.
     m_refresh->setSingleShot(true);
     m_refresh->setInterval(40);
