@@ -2,6 +2,7 @@
 
 #include "AcquisitionPanel.h"
 #include "BundleTransfer.h"
+#include "CsvImportDialog.h"
 #include "DiagnosisPanel.h"
 #include "ModelsPanel.h"
 #include "PlotExporter.h"
@@ -109,6 +110,7 @@ void MainWindow::buildMenus()
     refreshRecentMenu();
     file->addSeparator();
     file->addAction(tr("&Import recording bundle..."), this, &MainWindow::chooseBundle);
+    file->addAction(tr("Import &CSV table..."), this, &MainWindow::importCsv)->setObjectName(QStringLiteral("ImportCsvAction"));
     file->addAction(tr("&Export session as bundle..."), this, &MainWindow::exportSession);
     file->addAction(tr("Export current &view (PNG, SVG, PDF)..."), this, &MainWindow::exportView);
     file->addSeparator();
@@ -299,6 +301,23 @@ void MainWindow::chooseBundle()
     if (path.isEmpty())
         return;
     importBundle(QFileInfo(path).fileName() == QLatin1String("manifest.json") ? QFileInfo(path).absolutePath() : path);
+}
+
+void MainWindow::importCsv()
+{
+    if (!m_store) {
+        reportError(tr("Open a database first (File > Open database): the table is imported into it"));
+        return;
+    }
+    const QString path = QFileDialog::getOpenFileName(this, tr("Import CSV table"), QString(),
+                                                      tr("Tables (*.csv *.txt *.tsv *.dat);;All files (*)"));
+    if (path.isEmpty())
+        return;
+    auto *dialog = new CsvImportDialog(m_store->path(), this);
+    dialog->setAttribute(Qt::WA_DeleteOnClose);
+    connect(dialog, &CsvImportDialog::imported, this, [this](qint64 id) { refreshSessions(id); });
+    dialog->openFile(path);
+    dialog->open();
 }
 
 void MainWindow::exportSession()

@@ -57,6 +57,7 @@ private:
     void buildMenus();
     void chooseDatabase();
     void chooseBundle();
+    void importCsv();
     void exportSession();
     void exportView();
     void chooseComparison();
