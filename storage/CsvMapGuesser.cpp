@@ -146,7 +146,8 @@ CsvColumnSpec CsvMapGuesser::guessColumn(const QString &header, int column)
     } else {
         s.kind = QStringLiteral("other");
         s.unit = unit;
-        name = s.column; // keep e.g. "spindle_rpm" whole
+        if (!s.column.contains(QLatin1Char('[')) && !s.column.contains(QLatin1Char('(')))
+            name = s.column; // keep e.g. "spindle_rpm" whole; "Power [W]" becomes "Power"
     }
     if (lower.contains(QLatin1String("spindle")) || unit == QLatin1String("rpm") || unit == QLatin1String("1/min"))
         s.role = QStringLiteral("spindle");
