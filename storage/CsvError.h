@@ -15,14 +15,13 @@ class CsvError : public StorageError {
 public:
     CsvError(const QString &file, qint64 line, int column, const QString &field, const QString &what)
         : StorageError(format(file, line, column, field, what).toStdString()),
-          m_file(file), m_line(line), m_column(column), m_field(field), m_what(what)
+          m_file(file), m_line(line), m_column(column), m_field(field)
     {
     }
     QString file() const { return m_file; }
     qint64 line() const { return m_line; }
     int column() const { return m_column; }
     QString field() const { return m_field; }
-    QString what_() const { return m_what; } // the problem without the location
 
     static QString format(const QString &file, qint64 line, int column, const QString &field, const QString &what)
     {
@@ -44,7 +43,6 @@ private:
     qint64 m_line;
     int m_column;
     QString m_field;
-    QString m_what;
 };
 
 } // namespace driftlab

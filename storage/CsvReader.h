@@ -38,7 +38,6 @@ public:
     static QVector<CsvRecord> parse(const QByteArray &data, const QString &fileName, char separator = ',');
 
     qint64 bytesConsumed() const { return m_consumed; }
-    const QString &fileName() const { return m_fileName; }
 
 private:
     enum class State { FieldStart, Unquoted, Quoted, QuoteInQuoted };

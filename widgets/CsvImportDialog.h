@@ -77,7 +77,6 @@ private:
     QString m_path;
     QByteArray m_head;               // the file's first bytes (preview)
     QStringList m_header;            // header texts (or "column N")
-    qint64 m_firstDataLine = 0;      // file line of the first preview row
     bool m_updating = false;
 
     QLineEdit *m_file = nullptr;
