@@ -35,6 +35,7 @@ private:
     QTemporaryDir m_dir;
     QString m_db;
     QJsonObject m_report;
+    QByteArray m_text;
 };
 
 TestIso230Cli::Result TestIso230Cli::run(const QStringList &args)
@@ -60,6 +61,9 @@ void TestIso230Cli::initTestCase()
                                        QJsonObject{{QStringLiteral("name"), QStringLiteral("warm-up")},
                                                    {QStringLiteral("duration_s"), 6000},
                                                    {QStringLiteral("feed_mm_min"), 6000}}}}});
+    QJsonObject sensors = rig.value(QStringLiteral("sensors")).toObject();
+    sensors.insert(QStringLiteral("infrared"), QJsonObject{{QStringLiteral("enabled"), false}}); // not needed here: saves time
+    rig.insert(QStringLiteral("sensors"), sensors);
     const QString rigFile = m_dir.filePath(QStringLiteral("rig.json"));
     QFile out(rigFile);
     QVERIFY(out.open(QIODevice::WriteOnly));
@@ -70,10 +74,15 @@ void TestIso230Cli::initTestCase()
                             QStringLiteral("1:45:00"), QStringLiteral("--out"), m_db, QStringLiteral("--export"),
                             m_dir.filePath(QStringLiteral("rig.bundle"))});
     QVERIFY2(rec.code == 0, rec.err.constData());
+    // --json FILE writes the JSON and still prints the text summary.
+    const QString json = m_dir.filePath(QStringLiteral("iso.json"));
     const Result r = run({QStringLiteral("iso230"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--temperature"),
-                          QStringLiteral("T4"), QStringLiteral("--json"), QStringLiteral("-")});
+                          QStringLiteral("T4"), QStringLiteral("--json"), json});
     QVERIFY2(r.code == 0, r.err.constData());
-    m_report = QJsonDocument::fromJson(r.out).object();
+    m_text = r.out;
+    QFile f(json);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    m_report = QJsonDocument::fromJson(f.readAll()).object();
     QVERIFY(!m_report.isEmpty());
 }
 
@@ -179,10 +188,9 @@ void TestIso230Cli::driftFollowsTheNut()
         QVERIFY(s.value(QStringLiteral("correlation")).toDouble() > 0.85); // the drift lags the nut: 0.93 here
     }
     // The plain text summary.
-    const Result text = run({QStringLiteral("iso230"), QStringLiteral("1"), QStringLiteral("--db"), m_db});
-    QCOMPARE(text.code, 0);
-    QVERIFY2(text.out.startsWith("session 1 '"), text.out.constData());
-    QVERIFY(text.out.contains("largest drift from the reference"));
+    QVERIFY2(m_text.startsWith("session 1 '"), m_text.constData());
+    QVERIFY(m_text.contains("largest drift from the reference: "));
+    QVERIFY(m_text.contains("against T4"));
 }
 
 void TestIso230Cli::badInputExitsTwo()
@@ -193,7 +201,6 @@ void TestIso230Cli::badInputExitsTwo()
     QVERIFY2(r.err.contains("no channel 'nosuch' (temperature channels: T1, T2"), r.err.constData());
     QCOMPARE(run({QStringLiteral("iso230"), QStringLiteral("9"), QStringLiteral("--db"), m_db}).code, 2);
     QCOMPARE(run({QStringLiteral("iso230"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--runs-per-test"), QStringLiteral("0")}).code, 2);
-    QCOMPARE(run({QStringLiteral("iso230"), QStringLiteral("1"), QStringLiteral("--db"), m_dir.filePath(QStringLiteral("none.sqlite"))}).code, 2);
     // A session without laser runs: a tiny CSV import.
     const QString csv = m_dir.filePath(QStringLiteral("t.csv")), map = m_dir.filePath(QStringLiteral("t.json"));
     QFile c(csv), m(map);
