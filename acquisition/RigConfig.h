@@ -120,6 +120,11 @@ struct InterferometerConfig {
     double dwell_s = 4.0;       // time per target within a run
     double noise_um = 0.25;
     double pitchErrorAmplitude_um = 3.0; // fixed geometric pitch error (seeded shape)
+    // ISO 230-2 style runs: each run repeats `cycles` passes over the targets; bidirectional
+    // passes go up (direction "+") then down ("-"), and a "-" approach reads reversal_um less.
+    int cycles = 1;
+    bool bidirectional = false;
+    double reversal_um = 0.0;
 };
 
 struct InfraredConfig {

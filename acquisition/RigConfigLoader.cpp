@@ -328,6 +328,9 @@ void bindSensors(Binder &b, RigConfig &c)
             b.nonNegative("dwell_s", li.dwell_s);
             b.nonNegative("noise_um", li.noise_um);
             b.nonNegative("pitch_error_amplitude_um", li.pitchErrorAmplitude_um);
+            b.integer("cycles", li.cycles, 1, 100);
+            b.boolean("bidirectional", li.bidirectional);
+            b.num("reversal_um", li.reversal_um, -1000.0, 1000.0);
         });
         b.object("infrared", [&] {
             InfraredConfig &ir = c.infrared;

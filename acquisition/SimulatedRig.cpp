@@ -103,6 +103,16 @@ SimulatedRig::SimulatedRig(const RigConfig &config)
                                             .arg(L)
                                             .toStdString());
     }
+    const InterferometerConfig &li = c.interferometer;
+    const double runLength_s = m_targets.size() * (li.bidirectional ? 2 : 1) * li.cycles * li.dwell_s;
+    if (li.enabled && runLength_s >= li.interval_s)
+        throw std::invalid_argument(QStringLiteral("rig: sensors.interferometer: a run (%1 approaches x dwell_s %2 s = %3 s) does not "
+                                                   "fit in interval_s %4 s")
+                                        .arg(m_targets.size() * (li.bidirectional ? 2 : 1) * li.cycles)
+                                        .arg(li.dwell_s)
+                                        .arg(runLength_s)
+                                        .arg(li.interval_s)
+                                        .toStdString());
     m_nextRun = 0;
     m_nextIr = 0.0;
     // Geometric pitch error: a slope plus three waves, fixed by the seed.
@@ -293,18 +303,26 @@ void SimulatedRig::sampleDue(double t, QVector<SampleBlock> &blocks)
         }
     }
     const InterferometerConfig &li = c.interferometer;
+    // m_nextTarget counts the approaches of the current run: cycles x (up [+ down]) passes.
+    const int legs = li.bidirectional ? 2 : 1;
+    const int perRun = static_cast<int>(m_targets.size()) * legs * li.cycles;
     while (li.enabled && !m_targets.isEmpty()) {
         const double ts = li.firstRun_s + m_nextRun * li.interval_s + m_nextTarget * li.dwell_s;
         if (ts > t + kEps)
             break;
-        const double x = m_targets[m_nextTarget];
+        const int n = static_cast<int>(m_targets.size());
+        const int inCycle = m_nextTarget % (n * legs);
+        const bool down = inCycle >= n;
+        const double x = m_targets[down ? 2 * n - 1 - inCycle : inCycle];
         InterferometerPoint pt;
         pt.t = ts;
         pt.run = m_nextRun;
         pt.position_mm = x;
-        pt.error_um = pitchError_um(x) + trueThermalError_um(x) + li.noise_um * m_unit(m_rngLaser);
+        pt.error_um = pitchError_um(x) + trueThermalError_um(x) + li.noise_um * m_unit(m_rngLaser) - (down ? li.reversal_um : 0.0);
+        if (li.bidirectional)
+            pt.direction = down ? QStringLiteral("-") : QStringLiteral("+");
         m_laser.push_back(pt);
-        if (++m_nextTarget == m_targets.size()) {
+        if (++m_nextTarget == perRun) {
             m_nextTarget = 0;
             ++m_nextRun;
         }

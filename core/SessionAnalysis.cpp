@@ -1,5 +1,6 @@
 #include "SessionAnalysis.h"
 
+#include "InterferometerReadings.h"
 #include "ScrewTemperatureReader.h"
 #include "SessionStore.h"
 #include "ThermalErrorTable.h"
@@ -147,20 +148,8 @@ ScrewRecording SessionAnalysis::recording(QString *note) const
     }
     const QVector<InterferometerPoint> raw = store.interferometerPoints(sessionId);
     if (!raw.isEmpty()) {
-        std::vector<InterferometerReading> readings;
-        for (const InterferometerPoint &p : raw)
-            readings.push_back({p.t, p.run, p.position_mm, p.error_um,
-                                p.direction == QLatin1String("+") ? 1 : (p.direction == QLatin1String("-") ? -1 : 0)});
-        int referenceRun = readings.front().run;
-        double earliest = readings.front().time_s;
-        for (const InterferometerReading &r : readings)
-            if (r.time_s < earliest) {
-                earliest = r.time_s;
-                referenceRun = r.run;
-            }
-        const QJsonValue ref = info.manifest.value(QStringLiteral("interferometer")).toObject().value(QStringLiteral("reference_run"));
-        if (ref.isDouble())
-            referenceRun = ref.toInt();
+        const std::vector<InterferometerReading> readings = InterferometerReadings::fromPoints(raw);
+        const int referenceRun = InterferometerReadings::referenceRun(info, readings);
         const ThermalErrorTable table = ThermalErrorTable::build(readings, referenceRun);
         for (const ThermalErrorTable::Cell &c : table.measurements()) {
             if (!c.valid)

@@ -2,6 +2,7 @@
 
 #include "AcquisitionPanel.h"
 #include "BundleTransfer.h"
+#include "CsvImportDialog.h"
 #include "DiagnosisPanel.h"
 #include "DuplicateSessionError.h"
 #include "ErrorSurface3D.h"
@@ -170,6 +171,7 @@ void MainWindow::buildMenus()
     refreshRecentMenu();
     file->addSeparator();
     file->addAction(tr("&Import recording bundle..."), this, &MainWindow::chooseBundle, QKeySequence(Qt::CTRL + Qt::Key_I));
+    file->addAction(tr("Import &CSV table..."), this, &MainWindow::importCsv)->setObjectName(QStringLiteral("ImportCsvAction"));
     file->addAction(tr("&Export session as bundle..."), this, &MainWindow::exportSession, QKeySequence(Qt::CTRL + Qt::Key_E));
     file->addAction(tr("Export current &view (PNG, SVG, PDF)..."), this, &MainWindow::exportView,
                     QKeySequence(Qt::CTRL + Qt::SHIFT + Qt::Key_E));
@@ -549,6 +551,23 @@ void MainWindow::askDelete()
         QMessageBox::Yes | QMessageBox::Cancel, QMessageBox::Cancel);
     if (answer == QMessageBox::Yes)
         deleteSession(id);
+}
+
+void MainWindow::importCsv()
+{
+    if (!m_store) {
+        reportError(tr("Open a database first (File > Open database): the table is imported into it"));
+        return;
+    }
+    const QString path = QFileDialog::getOpenFileName(this, tr("Import CSV table"), QString(),
+                                                      tr("Tables (*.csv *.txt *.tsv *.dat);;All files (*)"));
+    if (path.isEmpty())
+        return;
+    auto *dialog = new CsvImportDialog(m_store->path(), this);
+    dialog->setAttribute(Qt::WA_DeleteOnClose);
+    connect(dialog, &CsvImportDialog::imported, this, [this](qint64 id) { refreshSessions(id); });
+    dialog->openFile(path);
+    dialog->open();
 }
 
 void MainWindow::exportSession()

@@ -84,6 +84,7 @@ private:
     void chooseDatabase();
     void chooseNewDatabase();
     void chooseBundle();
+    void importCsv();
     void exportSession();
     void exportView();
     void chooseComparison();

@@ -1,5 +1,6 @@
 #include "SessionReviewData.h"
 
+#include "InterferometerReadings.h"
 #include "ScrewTemperatureReader.h"
 #include "SessionStore.h"
 
@@ -22,23 +23,15 @@ SessionReviewData::SessionReviewData(const SessionStore &store, qint64 sessionId
 
 int SessionReviewData::referenceRun() const
 {
-    const QJsonValue ref = m_info.manifest.value(QStringLiteral("interferometer")).toObject().value(QStringLiteral("reference_run"));
-    if (ref.isDouble())
-        return ref.toInt();
-    return m_points.isEmpty() ? 0 : m_points.front().run; // the first run, taken cold
+    return m_points.isEmpty() ? 0 : InterferometerReadings::referenceRun(m_info, InterferometerReadings::fromPoints(m_points));
 }
 
 ThermalErrorTable SessionReviewData::thermalErrors() const
 {
     if (m_points.isEmpty())
         throw std::runtime_error(QStringLiteral("session %1 has no interferometer runs").arg(m_sessionId).toStdString());
-    std::vector<InterferometerReading> readings;
-    readings.reserve(static_cast<size_t>(m_points.size()));
-    for (const InterferometerPoint &p : m_points) {
-        const int dir = p.direction == QLatin1String("+") ? 1 : (p.direction == QLatin1String("-") ? -1 : 0);
-        readings.push_back({p.t, p.run, p.position_mm, p.error_um, dir});
-    }
-    return ThermalErrorTable::build(readings, referenceRun());
+    const std::vector<InterferometerReading> readings = InterferometerReadings::fromPoints(m_points);
+    return ThermalErrorTable::build(readings, InterferometerReadings::referenceRun(m_info, readings));
 }
 
 InfraredCalibration SessionReviewData::infraredCalibration() const

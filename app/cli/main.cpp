@@ -5,6 +5,8 @@
 #include "ExportCommand.h"
 #include "FitCommand.h"
 #include "ImportCommand.h"
+#include "ImportCsvCommand.h"
+#include "Iso230Command.h"
 #include "InfoCommand.h"
 #include "ListCommand.h"
 #include "NewBundleCommand.h"
@@ -31,6 +33,8 @@ std::vector<std::unique_ptr<CliCommand>> commands()
     list.push_back(std::make_unique<InfoCommand>());
     list.push_back(std::make_unique<AnalyseCommand>());
     list.push_back(std::make_unique<ImportCommand>());
+    list.push_back(std::make_unique<ImportCsvCommand>());
+    list.push_back(std::make_unique<Iso230Command>());
     list.push_back(std::make_unique<ExportCommand>());
     list.push_back(std::make_unique<ListCommand>());
     list.push_back(std::make_unique<PlotCommand>());

@@ -58,6 +58,7 @@ private slots:
     void pt100QuantisedWithDropouts();
     void interferometerReferenceRunIsGeometryOnly();
     void interferometerThermalErrorMatchesTruth();
+    void interferometerBidirectionalCycles();
     void fixedEndAboveTravelFlipsTheSign();
     void infraredFrameShowsScrewAndNut();
     void phaseEvents();
@@ -170,6 +171,40 @@ void TestSimulatedRig::interferometerThermalErrorMatchesTruth()
     QCOMPARE(all.first().position_mm, 0.0);
     QCOMPARE(all[11].position_mm, 520.0);
     QVERIFY(rig.trueThermalError_um(520.0) > rig.trueThermalError_um(0.0) + 5.0);
+}
+
+void TestSimulatedRig::interferometerBidirectionalCycles()
+{
+    // ISO 230-2 style runs: 2 cycles of up (+) then down (-) over 3 targets, a - approach
+    // reading reversal_um less. No noise and a standstill (the thermal error stays put), so
+    // up minus down at a target is the reversal.
+    RigConfig c = quiet();
+    c.program = FeedProgram({FeedPhase{QStringLiteral("standstill"), 3600.0, 0.0, 0.0, 520.0}});
+    c.interferometer.targets_mm = {0.0, 260.0, 520.0};
+    c.interferometer.cycles = 2;
+    c.interferometer.bidirectional = true;
+    c.interferometer.reversal_um = 1.5;
+    c.interferometer.noise_um = 0.0;
+    c.interferometer.dwell_s = 1.0;
+    SimulatedRig rig(c);
+    QVector<SampleBlock> b;
+    rig.advance(20.0, b);
+    const QVector<InterferometerPoint> pts = rig.takeInterferometerPoints();
+    QCOMPARE(pts.size(), 12);
+    const double order[] = {0, 260, 520, 520, 260, 0};
+    for (int k = 0; k < 12; ++k) {
+        QCOMPARE(pts[k].run, 0);
+        QCOMPARE(pts[k].t, double(k));
+        QCOMPARE(pts[k].position_mm, order[k % 6]);
+        QCOMPARE(pts[k].direction, k % 6 < 3 ? QStringLiteral("+") : QStringLiteral("-"));
+    }
+    for (int k = 0; k < 3; ++k) {
+        QVERIFY(std::fabs((pts[k].error_um - pts[5 - k].error_um) - 1.5) < 1e-3);
+        QVERIFY(std::fabs(pts[k].error_um - pts[k + 6].error_um) < 1e-3); // the second cycle repeats the first
+    }
+    // A run that does not fit in the interval is refused.
+    c.interferometer.interval_s = 10.0;
+    QVERIFY_EXCEPTION_THROWN(SimulatedRig{c}, std::invalid_argument);
 }
 
 void TestSimulatedRig::fixedEndAboveTravelFlipsTheSign()

@@ -1,0 +1,76 @@
+#include "Iso230Command.h"
+
+#include "CliSupport.h"
+#include "Iso230Report.h"
+#include "SessionStore.h"
+
+#include <QCommandLineParser>
+#include <QTextStream>
+
+#include <stdexcept>
+
+namespace driftlab {
+
+QString Iso230Command::summary() const
+{
+    return QStringLiteral("Evaluate a session's laser-interferometer runs per ISO 230-2 (mean deviations, reversal B,\n"
+                          "repeatability R, systematic deviation E, mean deviation M, accuracy A; uni- and bidirectional)\n"
+                          "and summarise the thermal drift ISO 230-3 style (largest drift per target and direction, drift\n"
+                          "against a temperature channel). Definitions: docs/iso230.md.");
+}
+
+int Iso230Command::run(const QStringList &args)
+{
+    QCommandLineParser p;
+    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
+    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
+                                  QStringLiteral("file"));
+    const QCommandLineOption temperature(QStringLiteral("temperature"),
+                                         QStringLiteral("Channel id to regress the drift on (um/K), e.g. the nut or bearing PT100."),
+                                         QStringLiteral("channel"));
+    const QCommandLineOption perTest(QStringLiteral("runs-per-test"),
+                                     QStringLiteral("Consecutive runs that form one ISO 230-2 test (default 1: each run is a test and\n"
+                                                    "its repeated approaches are the cycles; use 5 when each cycle is stored as a run)."),
+                                     QStringLiteral("n"), QStringLiteral("1"));
+    const QCommandLineOption tolerance(QStringLiteral("target-tolerance"),
+                                       QStringLiteral("Positions closer than this (mm) are one target (default 0.05)."),
+                                       QStringLiteral("mm"), QStringLiteral("0.05"));
+    p.addOptions({db, json, temperature, perTest, tolerance});
+    p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
+    if (!parse(p, args))
+        return 0;
+    if (p.positionalArguments().size() != 1)
+        throw UsageError(QStringLiteral("iso230: give exactly one session id"));
+    bool ok = false;
+    const qint64 session = p.positionalArguments().first().toLongLong(&ok);
+    if (!ok)
+        throw UsageError(QStringLiteral("iso230: '%1' is not a session id").arg(p.positionalArguments().first()));
+    Iso230Options options;
+    options.temperatureChannel = p.value(temperature);
+    options.runsPerTest = p.value(perTest).toInt(&ok);
+    if (!ok || options.runsPerTest < 1)
+        throw UsageError(QStringLiteral("iso230: --runs-per-test must be a positive integer, got '%1'").arg(p.value(perTest)));
+    options.targetTolerance_mm = p.value(tolerance).toDouble(&ok);
+    if (!ok || !(options.targetTolerance_mm > 0))
+        throw UsageError(QStringLiteral("iso230: --target-tolerance must be a positive number of mm, got '%1'").arg(p.value(tolerance)));
+    const QString path = CliSupport::databasePath(p.value(db), QString(), true);
+    const SessionStore store(path);
+    bool found = false;
+    for (const SessionInfo &s : store.sessions())
+        found = found || s.id == session;
+    if (!found)
+        throw UsageError(QStringLiteral("iso230: %1 has no session %2").arg(path).arg(session));
+    CliSupport::progress(QStringLiteral("evaluating the interferometer runs of session %1").arg(session));
+    try {
+        const Iso230Report report(store, session, options);
+        if (p.isSet(json))
+            CliSupport::writeJson(QJsonDocument(report.toJson()), p.value(json));
+        if (!p.isSet(json) || p.value(json) != QLatin1String("-"))
+            QTextStream(stdout) << report.text();
+    } catch (const std::invalid_argument &e) {
+        throw UsageError(QStringLiteral("iso230: %1").arg(QString::fromUtf8(e.what())));
+    }
+    return 0;
+}
+
+} // namespace driftlab

@@ -1,0 +1,214 @@
+#include "CsvMapGuesser.h"
+
+#include <QDateTime>
+#include <QRegularExpression>
+#include <QSet>
+#include <QTextCodec>
+
+namespace driftlab {
+
+namespace {
+
+// The unit a header names: "(K)", "[mm]", "in um", or a "_C" / " um" suffix.
+QString unitOf(const QString &header, QString &rest)
+{
+    static const QRegularExpression bracket(QStringLiteral("^(.*?)\\s*[\\(\\[]\\s*([^\\)\\]]+?)\\s*[\\)\\]]\\s*$"));
+    static const QRegularExpression suffix(QStringLiteral("^(.+?)[_ ]+(degC|\u00b0C|C|K|degF|um|\u00b5m|\u03bcm|nm|mm|m|rpm|1/min|"
+                                                          "mm/min|m/min|mm/s|s|ms|min|h|%|V|mV|A|W|bar|Hz)$"));
+    auto m = bracket.match(header);
+    if (m.hasMatch()) {
+        rest = m.captured(1);
+        return m.captured(2);
+    }
+    m = suffix.match(header);
+    if (m.hasMatch()) {
+        rest = m.captured(1);
+        return m.captured(2);
+    }
+    rest = header;
+    return QString();
+}
+
+QString channelId(QString name, int column)
+{
+    name = name.trimmed();
+    name.replace(QRegularExpression(QStringLiteral("[\\s]+")), QStringLiteral("_"));
+    name.remove(QLatin1Char(','));
+    name.remove(QLatin1Char('"'));
+    if (name.isEmpty() || name == QLatin1String("time_s"))
+        name = QStringLiteral("col%1").arg(column);
+    return name;
+}
+
+bool isNumber(const QString &s, char decimal)
+{
+    QString t = s.trimmed();
+    if (decimal == ',')
+        t.replace(QLatin1Char(','), QLatin1Char('.'));
+    bool ok = false;
+    t.toDouble(&ok);
+    return ok;
+}
+
+} // namespace
+
+void CsvMapGuesser::guessDialect(const QByteArray &head, CsvColumnMap &map)
+{
+    QByteArray text = head.startsWith("\xEF\xBB\xBF") ? head.mid(3) : head;
+    // The separator: the candidate found most often, and as often on every one of the first
+    // lines (ties: ';' before tab before ',' before '|', since ';' files often hold commas).
+    const QList<QByteArray> lines = text.left(64 * 1024).split('\n');
+    int best = 0;
+    char separator = ',';
+    for (const char c : {';', '\t', ',', '|'}) {
+        int consistent = -1;
+        int checked = 0;
+        for (const QByteArray &l : lines) {
+            if (l.trimmed().isEmpty() || l.startsWith('#'))
+                continue;
+            const int n = l.count(c);
+            consistent = consistent < 0 ? n : (n == consistent ? n : 0);
+            if (++checked == 20)
+                break;
+        }
+        if (consistent > best) {
+            best = consistent;
+            separator = c;
+        }
+    }
+    map.separator = separator;
+    // A decimal comma: cells like 12,5 where ',' is not the separator.
+    map.decimal = '.';
+    if (separator != ',') {
+        static const QRegularExpression comma(QStringLiteral("(^|[;\\t|])\\s*[+-]?\\d+,\\d+\\s*($|[;\\t|])"));
+        int commas = 0, points = 0;
+        for (const QByteArray &l : lines) {
+            commas += QString::fromLatin1(l).contains(comma) ? 1 : 0;
+            points += QString::fromLatin1(l).contains(QRegularExpression(QStringLiteral("\\d\\.\\d"))) ? 1 : 0;
+        }
+        if (commas > points)
+            map.decimal = ',';
+    }
+    QTextCodec::ConverterState state;
+    QTextCodec::codecForName("UTF-8")->toUnicode(text.constData(), text.size(), &state);
+    // A cut multi-byte sequence at the end of the sample is not an error.
+    map.encoding = state.invalidChars > 0 && text.size() >= 4 ? QStringLiteral("windows-1252") : QStringLiteral("utf-8");
+}
+
+QString CsvMapGuesser::guessDateTimeFormat(const QString &text)
+{
+    const QString t = text.trimmed();
+    if (t.size() < 8)
+        return QString();
+    if (QDateTime::fromString(t, Qt::ISODateWithMs).isValid() && t.contains(QLatin1Char('T')))
+        return QStringLiteral("iso8601");
+    for (const char *date : {"yyyy-MM-dd", "dd.MM.yyyy", "yyyy/MM/dd", "MM/dd/yyyy", "dd/MM/yyyy", "dd-MM-yyyy"}) {
+        for (const char *time : {" HH:mm:ss.zzz", " HH:mm:ss", " HH:mm", ""}) {
+            const QString f = QLatin1String(date) + QLatin1String(time);
+            if (QDateTime::fromString(t, f).isValid())
+                return f;
+        }
+    }
+    return QString();
+}
+
+CsvColumnSpec CsvMapGuesser::guessColumn(const QString &header, int column)
+{
+    CsvColumnSpec s;
+    s.column = header.trimmed();
+    QString name;
+    const QString unit = unitOf(s.column, name);
+    const QString lower = name.toLower();
+    static const QStringList temperatureUnits{QStringLiteral("degC"), QStringLiteral("\u00b0C"), QStringLiteral("C"), QStringLiteral("K"),
+                                              QStringLiteral("degF")};
+    static const QStringList smallLengths{QStringLiteral("um"), QStringLiteral("\u00b5m"), QStringLiteral("\u03bcm"), QStringLiteral("nm")};
+    static const QRegularExpression positionName(QStringLiteral("^(pos|position|axis|achse|[xyz]|[xyz][_ -]?(pos|position|axis))$"));
+    static const QRegularExpression temperatureName(QStringLiteral("(temp|pt100|^t\\d+$|^t_)"));
+    if (temperatureUnits.contains(unit) || (unit.isEmpty() && temperatureName.match(lower).hasMatch())) {
+        s.kind = QStringLiteral("temperature");
+        s.unit = unit.isEmpty() || unit == QLatin1String("C") ? QStringLiteral("degC") : unit;
+    } else if (unit.endsWith(QLatin1String("/min")) && unit != QLatin1String("1/min") ) {
+        s.kind = QStringLiteral("feed");
+        s.unit = unit;
+        s.role = QStringLiteral("feed_rate");
+    } else if (unit == QLatin1String("mm/s") || lower.contains(QLatin1String("feed"))) {
+        s.kind = QStringLiteral("feed");
+        s.unit = unit.isEmpty() ? QStringLiteral("mm/min") : unit;
+        s.role = QStringLiteral("feed_rate");
+    } else if ((unit == QLatin1String("mm") || unit == QLatin1String("m")) && positionName.match(lower).hasMatch()) {
+        s.kind = QStringLiteral("position");
+        s.unit = unit;
+        s.role = QStringLiteral("axis_position");
+    } else if (smallLengths.contains(unit) || unit == QLatin1String("mm") || unit == QLatin1String("m")) {
+        s.kind = QStringLiteral("displacement");
+        s.unit = unit;
+        s.target = true;
+    } else {
+        s.kind = QStringLiteral("other");
+        s.unit = unit;
+        if (!s.column.contains(QLatin1Char('[')) && !s.column.contains(QLatin1Char('(')))
+            name = s.column; // keep e.g. "spindle_rpm" whole; "Power [W]" becomes "Power"
+    }
+    if (lower.contains(QLatin1String("spindle")) || unit == QLatin1String("rpm") || unit == QLatin1String("1/min"))
+        s.role = QStringLiteral("spindle");
+    else if (lower.contains(QLatin1String("amb")) || lower.contains(QLatin1String("umgebung")))
+        s.role = QStringLiteral("ambient");
+    else if (lower.contains(QLatin1String("coolant")))
+        s.role = QStringLiteral("coolant");
+    else if (lower.contains(QLatin1String("nut")) || lower.contains(QLatin1String("mutter")))
+        s.role = QStringLiteral("nut");
+    else if (lower.contains(QLatin1String("motor")))
+        s.role = QStringLiteral("motor");
+    s.id = channelId(name, column);
+    return s;
+}
+
+void CsvMapGuesser::guessColumns(const QStringList &header, const QVector<QStringList> &rows, CsvColumnMap &map)
+{
+    static const QRegularExpression timeName(
+        QStringLiteral("^(time|zeit|t|timestamp|date|datum|datetime|date_time|elapsed|\u6642\u9593)(\\s*[\\[\\(].*|_(s|ms|min|h))?$"),
+        QRegularExpression::CaseInsensitiveOption);
+    int timeCol = 0;
+    for (int c = 0; c < header.size(); ++c) {
+        if (timeName.match(header[c].trimmed()).hasMatch()) {
+            timeCol = c;
+            break;
+        }
+    }
+    map.time = CsvTimeSpec();
+    if (map.header)
+        map.time.column = header.value(timeCol).trimmed();
+    else
+        map.time.index = timeCol + 1;
+    const QString first = rows.isEmpty() ? QString() : rows.front().value(timeCol);
+    QString rest;
+    const QString unit = unitOf(header.value(timeCol).trimmed(), rest);
+    if (!first.isEmpty() && !isNumber(first, map.decimal) && !guessDateTimeFormat(first).isEmpty()) {
+        map.time.format = guessDateTimeFormat(first);
+        map.time.unit.clear();
+    } else if (QStringList{QStringLiteral("s"), QStringLiteral("ms"), QStringLiteral("min"), QStringLiteral("h")}.contains(unit)) {
+        map.time.unit = unit;
+    } else if (isNumber(first, map.decimal)) {
+        const double v = QString(first).replace(QLatin1Char(','), QLatin1Char('.')).toDouble();
+        map.time.unit = v > 1e11 ? QStringLiteral("unix_ms") : v > 1e8 ? QStringLiteral("unix_s") : QStringLiteral("s");
+    }
+    map.columns.clear();
+    QSet<QString> ids;
+    for (int c = 0; c < header.size(); ++c) {
+        if (c == timeCol)
+            continue;
+        CsvColumnSpec s = guessColumn(header[c], c + 1);
+        if (!map.header) {
+            s.column.clear();
+            s.index = c + 1;
+        }
+        QString id = s.id;
+        for (int k = 2; ids.contains(id); ++k)
+            id = s.id + QStringLiteral("_%1").arg(k);
+        s.id = id;
+        ids.insert(id);
+        map.columns.push_back(s);
+    }
+}
+
+} // namespace driftlab

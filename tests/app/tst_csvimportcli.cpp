@@ -1,0 +1,223 @@
+// `driftlab-cli import-csv` as a user runs it: the real 46-hour FL_THERMAL spindle test
+// (../shared/extdata/fl_thermal, MIT licence; skipped without ../shared) through the shipped
+// map resources/maps/fl_thermal.json, and the awkward files a lab's loggers write (BOM, CRLF,
+// ';' with decimal commas), and bad input refused with exit code 2, file, line and column,
+// and nothing imported.
+
+#include "SessionStore.h"
+
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QProcess>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include <cmath>
+
+using namespace driftlab;
+
+class TestCsvImportCli : public QObject {
+    Q_OBJECT
+private slots:
+    void initTestCase();
+    void flThermalThroughTheShippedMap();
+    void loggerQuirks();
+    void badInputExitsTwoAndImportsNothing_data();
+    void badInputExitsTwoAndImportsNothing();
+    void usageErrorsExitTwo();
+
+private:
+    struct Result {
+        int code = -1;
+        QByteArray out, err;
+    };
+    Result run(const QStringList &args);
+    QString write(const QString &name, const QByteArray &bytes);
+    QTemporaryDir m_dir;
+    const QString m_map = QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/maps/fl_thermal.json");
+};
+
+TestCsvImportCli::Result TestCsvImportCli::run(const QStringList &args)
+{
+    QProcess p;
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    env.insert(QStringLiteral("XDG_DATA_HOME"), m_dir.filePath(QStringLiteral("data")));
+    p.setProcessEnvironment(env);
+    p.start(QStringLiteral(DRIFTLAB_CLI), args);
+    if (!p.waitForFinished(120000))
+        return {};
+    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(), p.readAllStandardError()};
+}
+
+QString TestCsvImportCli::write(const QString &name, const QByteArray &bytes)
+{
+    const QString path = m_dir.filePath(name);
+    QFile f(path);
+    if (!f.open(QIODevice::WriteOnly) || f.write(bytes) != bytes.size())
+        qFatal("cannot write %s", qPrintable(path));
+    return path;
+}
+
+void TestCsvImportCli::initTestCase()
+{
+    QVERIFY(m_dir.isValid());
+    const Result help = run({QStringLiteral("import-csv"), QStringLiteral("--help")});
+    QCOMPARE(help.code, 0);
+    QVERIFY(help.out.contains("driftlab-cli import-csv"));
+    QVERIFY(help.out.contains("--map"));
+}
+
+void TestCsvImportCli::flThermalThroughTheShippedMap()
+{
+    const QString source = QStringLiteral(DRIFTLAB_SHARED_DIR "/extdata/fl_thermal/fl_thermal_data.csv");
+    if (!QFileInfo::exists(source))
+        QSKIP("../shared/extdata is not beside this checkout");
+    // The source read independently: header, first and last rows.
+    QFile in(source);
+    QVERIFY(in.open(QIODevice::ReadOnly | QIODevice::Text));
+    const QList<QByteArray> header = in.readLine().trimmed().split(',');
+    QList<QByteArray> first, last;
+    int rows = 0;
+    while (!in.atEnd()) {
+        const QByteArray line = in.readLine().trimmed();
+        if (line.isEmpty())
+            continue;
+        (rows++ == 0 ? first : last) = line.split(',');
+    }
+    QCOMPARE(rows, 11115);
+
+    const QString db = m_dir.filePath(QStringLiteral("fl.sqlite"));
+    const Result r = run({QStringLiteral("import-csv"), source, QStringLiteral("--map"), m_map, QStringLiteral("--db"), db,
+                          QStringLiteral("--json"), QStringLiteral("-")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const QJsonObject j = QJsonDocument::fromJson(r.out).object();
+    QCOMPARE(j.value(QStringLiteral("rows")).toInt(), 11115);
+    QCOMPARE(j.value(QStringLiteral("channels")).toInt(), 22);
+    QCOMPARE(j.value(QStringLiteral("samples")).toDouble(), 22.0 * 11115);
+    QCOMPARE(j.value(QStringLiteral("duration_s")).toDouble(), 166710.0);
+    QCOMPARE(j.value(QStringLiteral("started")).toString(), QStringLiteral("2024-05-23T00:00:00Z"));
+    QCOMPARE(j.value(QStringLiteral("ignored_columns")).toArray().size(), 0);
+    QCOMPARE(j.value(QStringLiteral("targets")).toArray(),
+             (QJsonArray{QStringLiteral("ch1"), QStringLiteral("ch2"), QStringLiteral("ch3"), QStringLiteral("ch4"), QStringLiteral("ch5")}));
+
+    // The agreed channel ids, kinds, units and roles, and values equal to the source's.
+    SessionStore store(db);
+    const qint64 id = j.value(QStringLiteral("session")).toInt();
+    const QVector<ChannelInfo> channels = store.channels(id);
+    QCOMPARE(channels.size(), 22);
+    int temperatures = 0, displacements = 0;
+    for (const ChannelInfo &c : channels) {
+        QString column;
+        if (c.key == QLatin1String("spindle_rpm")) {
+            QCOMPARE(c.kind, QStringLiteral("other"));
+            QCOMPARE(c.role, QStringLiteral("spindle"));
+            QCOMPARE(c.unit, QStringLiteral("rpm"));
+            column = c.key;
+        } else if (c.key.startsWith(QLatin1Char('t'))) {
+            QCOMPARE(c.kind, QStringLiteral("temperature"));
+            QCOMPARE(c.unit, QStringLiteral("degC"));
+            const int n = c.key.midRef(1).toInt();
+            QVERIFY(n >= 1 && n <= 16);
+            column = c.key + QStringLiteral("_C");
+            ++temperatures;
+        } else {
+            QVERIFY2(c.key.startsWith(QLatin1String("ch")), qPrintable(c.key));
+            QCOMPARE(c.kind, QStringLiteral("displacement"));
+            QCOMPARE(c.unit, QStringLiteral("um"));
+            column = c.key + QStringLiteral("_um");
+            ++displacements;
+        }
+        const int col = header.indexOf(column.toUtf8());
+        QVERIFY2(col > 0, qPrintable(column));
+        const SampleBlock s = store.samples(c.id);
+        QCOMPARE(s.t.size(), 11115);
+        QCOMPARE(s.t.front(), 0.0);
+        QCOMPARE(s.t.back(), 166710.0);
+        QCOMPARE(s.v.front(), first[col].toDouble());
+        QCOMPARE(s.v.back(), last[col].toDouble());
+    }
+    QCOMPARE(temperatures, 16);
+    QCOMPARE(displacements, 5);
+    const QJsonObject manifest = store.session(id).manifest;
+    QCOMPARE(manifest.value(QStringLiteral("targets")).toArray().size(), 5);
+    QCOMPARE(manifest.value(QStringLiteral("imported_from")).toObject().value(QStringLiteral("file")).toString(),
+             QStringLiteral("fl_thermal_data.csv"));
+}
+
+void TestCsvImportCli::loggerQuirks()
+{
+    const QString db = m_dir.filePath(QStringLiteral("quirks.sqlite"));
+    // BOM + CRLF with the shipped map's dialect (the map's columns subset).
+    const QString crlf = write(QStringLiteral("crlf.csv"), "\xEF\xBB\xBFtime_s,T\r\n0,20.5\r\n15,20.75\r\n");
+    const QString map1 = write(QStringLiteral("crlf.json"), R"({"format":"driftlab-csv-map","version":1,"time":{"column":"time_s"},
+        "session":{"started":"2025-01-01T00:00:00Z"},"columns":[{"column":"T","id":"T1","kind":"temperature"}]})");
+    Result r = run({QStringLiteral("import-csv"), crlf, QStringLiteral("--map"), map1, QStringLiteral("--db"), db, QStringLiteral("--name"),
+                    QStringLiteral("crlf test")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    QVERIFY2(r.out.startsWith("session 1 in "), r.out.constData()); // like `record`
+    QVERIFY(r.out.contains("2 rows"));
+    QCOMPARE(SessionStore(db).session(1).name, QStringLiteral("crlf test"));
+    // ';' and decimal commas, minutes, a displacement in mm marked as the target.
+    const QString semi = write(QStringLiteral("semi.csv"), "t [min];X-Sonde [mm]\n0;0,001\n1,5;0,0035\n");
+    const QString map2 = write(QStringLiteral("semi.json"), R"({"format":"driftlab-csv-map","version":1,
+        "csv":{"separator":";","decimal":","},"time":{"column":"t [min]","unit":"min"},
+        "columns":[{"column":"X-Sonde [mm]","id":"S1","kind":"displacement","unit":"mm","target":true}]})");
+    r = run({QStringLiteral("import-csv"), semi, QStringLiteral("--map"), map2, QStringLiteral("--db"), db, QStringLiteral("--started"),
+             QStringLiteral("2025-02-03T10:00:00Z"), QStringLiteral("--json"), QStringLiteral("-")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const QJsonObject j = QJsonDocument::fromJson(r.out).object();
+    QCOMPARE(j.value(QStringLiteral("targets")).toArray(), QJsonArray{QStringLiteral("S1")});
+    QCOMPARE(j.value(QStringLiteral("started_from")).toString(), QStringLiteral("option"));
+    SessionStore store(db);
+    const SampleBlock s = store.samples(store.channels(2).front().id);
+    QCOMPARE(s.t, (QVector<double>{0.0, 90.0}));
+    QVERIFY(std::fabs(s.v[0] - 1.0) < 1e-9 && std::fabs(s.v[1] - 3.5) < 1e-9);
+    QCOMPARE(store.session(2).started, QStringLiteral("2025-02-03T10:00:00Z"));
+}
+
+void TestCsvImportCli::badInputExitsTwoAndImportsNothing_data()
+{
+    QTest::addColumn<QByteArray>("csv");
+    QTest::addColumn<QByteArray>("map");
+    QTest::addColumn<QString>("message");
+    const QByteArray map = R"({"format":"driftlab-csv-map","version":1,"time":{"column":"time_s"},
+        "columns":[{"column":"T1","id":"T1","kind":"temperature"},{"column":"S1","id":"S1","kind":"displacement","target":true}]})";
+    QTest::newRow("bad cell") << QByteArray("time_s,T1,S1\r\n0,20,0\r\n15,2O.1,0.5\r\n") << map
+                              << QStringLiteral("bad.csv: line 3, column 2 (T1): non-numeric value '2O.1' (nothing imported)");
+    QTest::newRow("semicolon without the map saying so") << QByteArray("time_s;T1;S1\n0;20,5;0\n") << map
+                                                         << QStringLiteral("bad.csv: field 'time': no column 'time_s' in the header (columns: time_s;T1;S1; the header is one column "
+                                                                            "holding ';': set csv.separator)");
+    QTest::newRow("map error") << QByteArray("time_s,T1,S1\n0,20,0\n")
+                               << QByteArray(R"({"format":"driftlab-csv-map","version":1,"time":{"column":"time_s"},"columns":[{"column":"T1","id":"T1","kind":"heat"}]})")
+                               << QStringLiteral("map.json: field 'columns[0].kind': unknown kind 'heat'");
+}
+
+void TestCsvImportCli::badInputExitsTwoAndImportsNothing()
+{
+    QFETCH(QByteArray, csv);
+    QFETCH(QByteArray, map);
+    QFETCH(QString, message);
+    const QString db = m_dir.filePath(QStringLiteral("bad.sqlite"));
+    const QString file = write(QStringLiteral("bad.csv"), csv);
+    const QString mapFile = write(QStringLiteral("map.json"), map);
+    const Result r = run({QStringLiteral("import-csv"), file, QStringLiteral("--map"), mapFile, QStringLiteral("--db"), db});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(QString::fromUtf8(r.err).replace(m_dir.path() + QLatin1Char('/'), QString()).contains(message), r.err.constData());
+    QVERIFY(r.out.isEmpty());
+    if (QFileInfo::exists(db))
+        QCOMPARE(SessionStore(db).sessions().size(), 0);
+}
+
+void TestCsvImportCli::usageErrorsExitTwo()
+{
+    const QString file = write(QStringLiteral("ok.csv"), "time_s,T1\n0,20\n");
+    QCOMPARE(run({QStringLiteral("import-csv"), file}).code, 2); // no --map
+    QCOMPARE(run({QStringLiteral("import-csv"), QStringLiteral("/nonexistent.csv"), QStringLiteral("--map"), m_map}).code, 2);
+    const Result r = run({QStringLiteral("import-csv"), file, QStringLiteral("--map"), m_dir.filePath(QStringLiteral("missing.json"))});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("missing.json: cannot open the column map"), r.err.constData());
+}
+
+QTEST_GUILESS_MAIN(TestCsvImportCli)
+#include "tst_csvimportcli.moc"
