@@ -61,6 +61,7 @@ private:
     QLineEdit *m_db;
     QDoubleSpinBox *m_speed;
     QPushButton *m_start, *m_pause, *m_marker, *m_stop;
+    QPushButton *m_setup, *m_run; // rig setup dialog, technician's measurement run dialog
     QLabel *m_elapsed;
     QTableWidget *m_devices;
     TimeSeriesPlot *m_plot;
