@@ -16,6 +16,7 @@
 namespace driftlab {
 
 namespace {
+constexpr int kOffsetSamples = 5; // answers used to estimate the agent's clock offset
 const QStringList kKinds{QStringLiteral("temperature"), QStringLiteral("displacement"), QStringLiteral("position"),
                          QStringLiteral("feed"), QStringLiteral("other")};
 }
@@ -164,8 +165,13 @@ void MtconnectDevice::resync(DeviceBlock &b, const QString &why)
 
 void MtconnectDevice::take(const MtconnectDocument &doc, double received_s, DeviceBlock &b)
 {
-    if (doc.creationTime_ms > 0)
+    // Agent clock -> session clock: the smallest receipt-minus-creation-time of the first
+    // answers (network delay filtered out), then kept, so that the agent's own spacing of
+    // observations is preserved exactly (a later, lower estimate would shift stamps).
+    if (doc.creationTime_ms > 0 && m_offsetSamples < kOffsetSamples) {
         m_offset_s = std::min(m_offset_s, received_s - doc.creationTime_ms / 1000.0);
+        ++m_offsetSamples;
+    }
     qint64 newest_ms = 0;
     for (const MtconnectObservation &o : doc.observations)
         newest_ms = std::max(newest_ms, o.timestamp_ms);

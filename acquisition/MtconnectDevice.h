@@ -5,7 +5,7 @@
 // to bundle channels with scale/offset (MTConnect feedrates are mm/s: scale 60 gives the
 // bundle's mm/min); event items (execution, program, ...) become session events. Stamps:
 // "agent" maps the agent's observation timestamps onto the session clock with the smallest
-// receipt-minus-creationTime seen (network delay filtered out), "receipt" stamps the newest
+// receipt-minus-creationTime of the first five answers, then kept, "receipt" stamps the newest
 // observation of a poll at its arrival. UNAVAILABLE values leave a gap; an agent restart
 // (new instanceId) or a buffer overrun (OUT_OF_RANGE) resynchronises through /current with
 // an event; no answer within timeout_s throws DeviceError (gap, reconnect with backoff).
@@ -75,7 +75,8 @@ private:
     qint64 m_next = 0;
     MtconnectDocument m_current;   // the /current answer of open(), recorded at the first read
     bool m_currentPending = false;
-    double m_offset_s = 1e300;     // session time minus agent time (min filter)
+    double m_offset_s = 1e300;     // session time minus agent time (min over the first answers)
+    int m_offsetSamples = 0;
     double m_nextPoll_s = 0.0;
     QVector<double> m_last;
     QVector<double> m_lastT;

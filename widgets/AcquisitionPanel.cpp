@@ -150,7 +150,9 @@ bool AcquisitionPanel::startRecording(const QString &rigNameOrPath, const QStrin
         return false;
     try {
         const RigConfig config = RigConfigLoader::load(rigNameOrPath);
-        RigDeviceSet set = RigDeviceSet::build(config, tr("Rig '%1', %2").arg(config.name, QDateTime::currentDateTime().toString(Qt::ISODate)));
+        RigDeviceSet set = RigDeviceSet::build(config, QString());
+        set.session.name = (set.realDevices ? tr("Rig '%1', %2") : tr("Simulated rig '%1', %2"))
+                               .arg(config.name, QDateTime::currentDateTime().toString(Qt::ISODate));
         AcquisitionEngine::Options options;
         options.speed = set.realDevices ? 1.0 : speed; // real instruments record in real time
         auto engine = std::make_unique<AcquisitionEngine>(options);

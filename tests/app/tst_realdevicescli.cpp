@@ -6,6 +6,7 @@
 
 #include "../support/TestPeers.h"
 
+#include <QElapsedTimer>
 #include <QFile>
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -86,16 +87,25 @@ void TestRealDevicesCli::recordRealRigThenImportRtl()
     env.insert(QStringLiteral("XDG_DATA_HOME"), m_dir.filePath(QStringLiteral("data")));
     rec.setProcessEnvironment(env);
     rec.start(QStringLiteral(DRIFTLAB_CLI), {QStringLiteral("record"), QStringLiteral("--rig"), rigPath, QStringLiteral("--duration"),
-                                             QStringLiteral("3"), QStringLiteral("--db"), db, QStringLiteral("--json"), QStringLiteral("-")});
+                                             QStringLiteral("4"), QStringLiteral("--db"), db, QStringLiteral("--json"), QStringLiteral("-")});
     QVERIFY(rec.waitForStarted());
-    QTest::qWait(1200);
+    // Export the frame once the camera device watches the folder (files already there are old frames).
+    QByteArray progress;
+    QElapsedTimer started;
+    started.start();
+    while (!progress.contains("camera: running") && started.elapsed() < 20000 && rec.state() == QProcess::Running) {
+        rec.waitForReadyRead(100);
+        progress += rec.readAllStandardError();
+    }
+    QVERIFY2(progress.contains("camera: running"), progress.constData());
+    QTest::qWait(300);
     QFile frame(QDir(folder).filePath(QStringLiteral("f1.csv")));
     QVERIFY(frame.open(QIODevice::WriteOnly));
     frame.write("20,21\n22,23\n");
     frame.close();
     QVERIFY(rec.waitForFinished(30000));
     QCOMPARE(rec.exitCode(), 0);
-    const QByteArray err = rec.readAllStandardError();
+    const QByteArray err = progress + rec.readAllStandardError();
     const QJsonObject result = QJsonDocument::fromJson(rec.readAllStandardOutput()).object();
     QVERIFY2(result.value(QStringLiteral("samples")).toDouble() >= 10, err.constData());
     QCOMPARE(result.value(QStringLiteral("ir_frames")).toInt(), 1);

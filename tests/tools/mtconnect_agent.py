@@ -13,7 +13,7 @@ path_feedrate, mm/s) and a Controller (Execution)), over Python's http.server:
 The axis moves X(t) = 260 + 250 sin(2 pi t / period) mm; path_feedrate = |dX/dt| in mm/s;
 observations are produced at --rate Hz into a ring buffer of --buffer entries.
 
-Usage: mtconnect_agent.py [--port 0] [--rate 10] [--buffer 2000] [--period 20]
+Usage: mtconnect_agent.py [--port 0] [--rate 10] [--buffer 2000] [--period 20] [--instance N]
 Prints "ready PORT" when serving. Standard input commands (acknowledged "ok CMD"):
   stall / resume      stop answering requests / answer again
   unavailable / available   X reads UNAVAILABLE / moves again
@@ -104,8 +104,9 @@ def main():
     ap.add_argument("--rate", type=float, default=10.0)
     ap.add_argument("--buffer", type=int, default=2000)
     ap.add_argument("--period", type=float, default=20.0)
+    ap.add_argument("--instance", type=int, default=0, help="instanceId (default: the start time in seconds)")
     args = ap.parse_args()
-    buf = Buffer(args.buffer, int(time.time()))
+    buf = Buffer(args.buffer, args.instance or int(time.time()))
     t0 = time.time()
 
     def axis(t):
