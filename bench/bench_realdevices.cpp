@@ -52,10 +52,12 @@ public:
             auto next = Clock::now();
             for (int n = 0; !m_stop; ++n) {
                 frame.setTo(cv::Scalar(29315 + n % 1000));
-                const QString tmp = QDir(m_folder).filePath(QStringLiteral("frame_%1.tmp").arg(n));
+                // Written beside the watched folder, then moved in (same file system): a
+                // reader never sees half a frame.
+                const QString tmp = QDir(m_folder).filePath(QStringLiteral("../writing.tif"));
                 const QString name = QDir(m_folder).filePath(QStringLiteral("frame_%1.tif").arg(n, 6, 10, QLatin1Char('0')));
-                cv::imwrite(tmp.toStdString() + ".tif", frame, {cv::IMWRITE_TIFF_COMPRESSION, 1});
-                QFile::rename(tmp + QStringLiteral(".tif"), name);
+                cv::imwrite(tmp.toStdString(), frame, {cv::IMWRITE_TIFF_COMPRESSION, 1});
+                QFile::rename(tmp, name);
                 ++m_written;
                 next += std::chrono::seconds(1);
                 while (!m_stop && Clock::now() < next)
@@ -229,6 +231,8 @@ int main(int argc, char **argv)
                 continue;
             seen.insert(name);
             const cv::Mat m = cv::imread(QDir(folder2).filePath(name).toStdString(), cv::IMREAD_ANYDEPTH);
+            if (m.empty() || m.type() != CV_16UC1)
+                continue;
             IrFrame f;
             f.t = t;
             f.width = m.cols;
