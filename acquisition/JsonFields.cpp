@@ -165,6 +165,32 @@ JsonFields JsonFields::element(const QJsonArray &array, const QString &key, int 
     return JsonFields(array.at(index).toObject(), pathOf(name));
 }
 
+const QStringList &JsonFields::kinds()
+{
+    static const QStringList k{QStringLiteral("temperature"), QStringLiteral("displacement"), QStringLiteral("position"),
+                               QStringLiteral("feed"), QStringLiteral("other")};
+    return k;
+}
+
+void JsonFields::channel(ChannelInfo &info, QSet<QString> &ids)
+{
+    info.key = requiredString(QStringLiteral("id"));
+    if (ids.contains(info.key))
+        fail(QStringLiteral("id"), QStringLiteral("duplicate channel id \"%1\"").arg(info.key));
+    ids.insert(info.key);
+    if (info.kind.isEmpty() && !has(QStringLiteral("kind")))
+        fail(QStringLiteral("kind"), QStringLiteral("missing (one of %1)").arg(kinds().join(QStringLiteral(", "))));
+    info.kind = choice(QStringLiteral("kind"), kinds(), info.kind);
+    if (info.unit.isEmpty() && !has(QStringLiteral("unit")))
+        fail(QStringLiteral("unit"), QStringLiteral("missing (the unit of the channel's values, e.g. \"mm\")"));
+    info.unit = string(QStringLiteral("unit"), info.unit);
+    info.sensor = string(QStringLiteral("sensor"), info.sensor);
+    info.location = string(QStringLiteral("location"), info.location);
+    info.role = string(QStringLiteral("role"), info.role);
+    if (has(QStringLiteral("screw_position_m")))
+        info.screwPosition_m = number(QStringLiteral("screw_position_m"), 0.0, 0.0, 100.0);
+}
+
 void JsonFields::finish() const
 {
     for (auto it = m_object.begin(); it != m_object.end(); ++it)

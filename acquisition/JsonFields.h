@@ -6,6 +6,8 @@
 // misspelt setting is an error instead of being silently ignored. Parsers built on it are
 // plain functions from JSON to a config struct (fuzzable, no I/O).
 
+#include "StorageTypes.h"
+
 #include <QJsonArray>
 #include <QJsonObject>
 #include <QSet>
@@ -44,6 +46,11 @@ public:
     JsonFields object(const QString &key);            // empty object when absent
     JsonFields element(const QJsonArray &array, const QString &key, int index) const; // array[index] must be an object
     void markKnown(const QString &key) { m_known.insert(key); }
+    // A device channel's bundle description: "id" (required, unique among `ids`), "kind"
+    // and "unit" (required unless `info` already holds them, e.g. from a module's range),
+    // "sensor", "location", "role", "screw_position_m".
+    void channel(ChannelInfo &info, QSet<QString> &ids);
+    static const QStringList &kinds(); // the bundle's channel kinds
     // Throws for the first key that was never read.
     void finish() const;
 

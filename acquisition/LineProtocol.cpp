@@ -8,9 +8,6 @@
 namespace driftlab {
 
 namespace {
-const QStringList kKinds{QStringLiteral("temperature"), QStringLiteral("displacement"), QStringLiteral("position"),
-                         QStringLiteral("feed"), QStringLiteral("other")};
-
 QByteArray unescape(const QString &s)
 {
     QString out;
@@ -55,19 +52,7 @@ LineProtocol LineProtocol::fromJson(JsonFields &f)
     for (int i = 0; i < channels.size(); ++i) {
         JsonFields c = f.element(channels, QStringLiteral("channels"), i);
         Channel ch;
-        ch.info.key = c.requiredString(QStringLiteral("id"));
-        if (ids.contains(ch.info.key))
-            c.fail(QStringLiteral("id"), QStringLiteral("duplicate channel id \"%1\"").arg(ch.info.key));
-        ids.insert(ch.info.key);
-        if (!c.has(QStringLiteral("kind")))
-            c.fail(QStringLiteral("kind"), QStringLiteral("missing (one of %1)").arg(kKinds.join(QStringLiteral(", "))));
-        ch.info.kind = c.choice(QStringLiteral("kind"), kKinds, QString());
-        ch.info.unit = c.requiredString(QStringLiteral("unit"));
-        ch.info.sensor = c.string(QStringLiteral("sensor"));
-        ch.info.location = c.string(QStringLiteral("location"));
-        ch.info.role = c.string(QStringLiteral("role"));
-        if (c.has(QStringLiteral("screw_position_m")))
-            ch.info.screwPosition_m = c.number(QStringLiteral("screw_position_m"), 0.0, 0.0, 100.0);
+        c.channel(ch.info, ids);
         ch.scale = c.number(QStringLiteral("scale"), 1.0, -1e12, 1e12);
         ch.offset = c.number(QStringLiteral("offset"), 0.0, -1e12, 1e12);
         for (const QJsonValue &v : c.array(QStringLiteral("invalid"))) {

@@ -14,11 +14,14 @@ static void initDeviceResources()
 
 namespace driftlab {
 
-namespace {
-int code(JsonFields &f, const QString &key)
+int ModbusPreset::readCode(JsonFields &f, const QString &key, std::optional<int> fallback)
 {
+    if (!f.has(key)) {
+        if (fallback)
+            return *fallback;
+        f.fail(key, QStringLiteral("missing (a range code such as \"0x03A4\")"));
+    }
     const QJsonValue v = f.object().value(key);
-    f.markKnown(key);
     bool ok = false;
     int c = -1;
     if (v.isString()) {
@@ -32,7 +35,6 @@ int code(JsonFields &f, const QString &key)
         f.fail(key, QStringLiteral("expected a range code such as \"0x03A4\", got %1").arg(JsonFields::shown(v)));
     return c;
 }
-} // namespace
 
 const ModbusRange *ModbusPreset::range(int c) const
 {
@@ -107,7 +109,7 @@ ModbusPreset ModbusPreset::fromJson(const QJsonObject &root, const QString &sour
         for (int i = 0; i < ranges.size(); ++i) {
             JsonFields r = f.element(ranges, QStringLiteral("ranges"), i);
             ModbusRange m;
-            m.code = code(r, QStringLiteral("code"));
+            m.code = readCode(r, QStringLiteral("code"));
             m.label = r.requiredString(QStringLiteral("label"));
             m.kind = r.choice(QStringLiteral("kind"), {QStringLiteral("temperature"), QStringLiteral("displacement"), QStringLiteral("position"),
                                                        QStringLiteral("feed"), QStringLiteral("other")},
@@ -122,7 +124,7 @@ ModbusPreset ModbusPreset::fromJson(const QJsonObject &root, const QString &sour
                 r.fail(QStringLiteral("code"), QStringLiteral("duplicate range code %1").arg(codeText(m.code)));
             p.ranges.push_back(m);
         }
-        p.defaultRange = code(f, QStringLiteral("default_range"));
+        p.defaultRange = readCode(f, QStringLiteral("default_range"));
         if (!p.range(p.defaultRange))
             f.fail(QStringLiteral("default_range"), QStringLiteral("is not one of the ranges"));
         f.finish();

@@ -9,6 +9,8 @@
 #include <QString>
 #include <QStringList>
 
+#include <optional>
+
 namespace driftlab {
 
 struct ModbusRange {
@@ -38,6 +40,9 @@ public:
 
     const ModbusRange *range(int code) const;
     static QString codeText(int code) { return QStringLiteral("0x%1").arg(code, 4, 16, QLatin1Char('0')).toUpper().replace(QLatin1String("0X"), QLatin1String("0x")); }
+
+    // A range code field ("0x03A4", "932" or 932); without the key: fallback, or an error.
+    static int readCode(JsonFields &f, const QString &key, std::optional<int> fallback = std::nullopt);
 
     static QStringList names();
     // Throws std::invalid_argument naming the unknown preset and the known ones.

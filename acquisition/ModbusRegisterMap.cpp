@@ -11,40 +11,6 @@
 namespace driftlab {
 
 namespace {
-const QStringList kKinds{QStringLiteral("temperature"), QStringLiteral("displacement"), QStringLiteral("position"),
-                         QStringLiteral("feed"), QStringLiteral("other")};
-
-int rangeCode(JsonFields &f, const QString &key, int fallback)
-{
-    if (!f.has(key))
-        return fallback;
-    const QJsonValue v = f.object().value(key);
-    bool ok = false;
-    int c = -1;
-    if (v.isString()) {
-        const QString s = v.toString();
-        c = s.startsWith(QLatin1String("0x"), Qt::CaseInsensitive) ? s.mid(2).toInt(&ok, 16) : s.toInt(&ok, 10);
-    } else if (v.isDouble()) {
-        c = v.toInt(-1);
-        ok = c >= 0 && v.toDouble() == c;
-    }
-    if (!ok || c < 0 || c > 0xffff)
-        f.fail(key, QStringLiteral("expected a range code such as \"0x03A4\", got %1").arg(JsonFields::shown(v)));
-    return c;
-}
-
-void readInfo(JsonFields &c, ChannelInfo &info)
-{
-    info.key = c.requiredString(QStringLiteral("id"));
-    info.kind = c.choice(QStringLiteral("kind"), kKinds, info.kind.isEmpty() ? QStringLiteral("other") : info.kind);
-    info.unit = c.string(QStringLiteral("unit"), info.unit);
-    info.sensor = c.string(QStringLiteral("sensor"), info.sensor);
-    info.location = c.string(QStringLiteral("location"), info.location);
-    info.role = c.string(QStringLiteral("role"), info.role);
-    if (c.has(QStringLiteral("screw_position_m")))
-        info.screwPosition_m = c.number(QStringLiteral("screw_position_m"), 0.0, 0.0, 100.0);
-}
-
 // value = v0 + (x - x0) (v1 - v0) / (x1 - x0), folded into scale and offset of x.
 void linear(double x0, double x1, double v0, double v1, double &scale, double &offset)
 {
@@ -95,7 +61,7 @@ ModbusRegisterMap ModbusRegisterMap::fromJson(JsonFields &settings)
             if (inputs.contains(ch.input))
                 c.fail(QStringLiteral("input"), QStringLiteral("input %1 is used by two channels").arg(ch.input));
             inputs.insert(ch.input);
-            const int code = rangeCode(c, QStringLiteral("range"), preset->defaultRange);
+            const int code = ModbusPreset::readCode(c, QStringLiteral("range"), preset->defaultRange);
             const ModbusRange *r = preset->range(code);
             if (!r) {
                 QStringList known;
@@ -130,7 +96,7 @@ ModbusRegisterMap ModbusRegisterMap::fromJson(JsonFields &settings)
             } else {
                 ch.validRange = std::make_pair(r->min, r->max);
             }
-            readInfo(c, ch.info);
+            c.channel(ch.info, ids);
             map.expectedCodes.push_back({ch.input, code, QString()});
         } else {
             ch.area = c.choice(QStringLiteral("area"), {QStringLiteral("input"), QStringLiteral("holding")}, QStringLiteral("holding")) ==
@@ -156,18 +122,11 @@ ModbusRegisterMap ModbusRegisterMap::fromJson(JsonFields &settings)
                 c.fail(QStringLiteral("scale"), QStringLiteral("must not be 0"));
             ch.offset = c.number(QStringLiteral("offset"), 0.0, -1e12, 1e12);
             ch.invalidRaw = c.numbers(QStringLiteral("invalid_raw"), 0, 64);
-            if (!c.has(QStringLiteral("kind")))
-                c.fail(QStringLiteral("kind"), QStringLiteral("missing (one of %1)").arg(kKinds.join(QStringLiteral(", "))));
-            if (!c.has(QStringLiteral("unit")))
-                c.fail(QStringLiteral("unit"), QStringLiteral("missing (the unit of the scaled value, e.g. \"mm\")"));
-            readInfo(c, ch.info);
+            c.channel(ch.info, ids);
         }
         if (const auto valid = c.pair(QStringLiteral("valid_range"), true))
             ch.validRange = valid;
         c.finish();
-        if (ids.contains(ch.info.key))
-            c.fail(QStringLiteral("id"), QStringLiteral("duplicate channel id \"%1\"").arg(ch.info.key));
-        ids.insert(ch.info.key);
         if (preset)
             map.expectedCodes.last().channel = ch.info.key;
         map.channels.push_back(ch);

@@ -17,8 +17,6 @@ namespace driftlab {
 
 namespace {
 constexpr int kOffsetSamples = 5; // answers used to estimate the agent's clock offset
-const QStringList kKinds{QStringLiteral("temperature"), QStringLiteral("displacement"), QStringLiteral("position"),
-                         QStringLiteral("feed"), QStringLiteral("other")};
 }
 
 MtconnectDevice::Config MtconnectDevice::Config::fromJson(const QJsonObject &settings, const QString &path)
@@ -36,22 +34,13 @@ MtconnectDevice::Config MtconnectDevice::Config::fromJson(const QJsonObject &set
     c.agentStamps = f.choice(QStringLiteral("stamping"), {QStringLiteral("agent"), QStringLiteral("receipt")}, QStringLiteral("agent")) ==
                     QLatin1String("agent");
     const QJsonArray channels = f.array(QStringLiteral("channels"));
-    QStringList ids;
+    QSet<QString> ids;
     for (int i = 0; i < channels.size(); ++i) {
         JsonFields ch = f.element(channels, QStringLiteral("channels"), i);
         Channel m;
-        m.info.key = ch.requiredString(QStringLiteral("id"));
-        if (ids.contains(m.info.key))
-            ch.fail(QStringLiteral("id"), QStringLiteral("duplicate channel id \"%1\"").arg(m.info.key));
-        ids << m.info.key;
         m.dataItem = ch.requiredString(QStringLiteral("data_item"));
-        if (!ch.has(QStringLiteral("kind")))
-            ch.fail(QStringLiteral("kind"), QStringLiteral("missing (one of %1)").arg(kKinds.join(QStringLiteral(", "))));
-        m.info.kind = ch.choice(QStringLiteral("kind"), kKinds, QString());
-        m.info.unit = ch.requiredString(QStringLiteral("unit"));
-        m.info.sensor = ch.string(QStringLiteral("sensor"), QStringLiteral("cnc"));
-        m.info.location = ch.string(QStringLiteral("location"));
-        m.info.role = ch.string(QStringLiteral("role"));
+        m.info.sensor = QStringLiteral("cnc");
+        ch.channel(m.info, ids);
         m.scale = ch.number(QStringLiteral("scale"), 1.0, -1e9, 1e9);
         m.offset = ch.number(QStringLiteral("offset"), 0.0, -1e9, 1e9);
         ch.finish();

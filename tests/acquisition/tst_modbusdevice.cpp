@@ -6,6 +6,7 @@
 #include "ModbusDevice.h"
 #include "SessionClock.h"
 
+#include "../support/DeviceRecording.h"
 #include "../support/TestPeers.h"
 
 #include <QJsonDocument>
@@ -16,6 +17,7 @@
 
 using namespace driftlab;
 using testpeers::Peer;
+using testpeers::Recording;
 
 namespace {
 // Raw ADAM-6015 value of a temperature on the -50..150 degC range.
@@ -27,28 +29,6 @@ int rawOf(double celsius)
 ModbusDevice::Config config(const QString &json, bool rtu = false)
 {
     return ModbusDevice::Config::fromJson(QJsonDocument::fromJson(json.toUtf8()).object(), QStringLiteral("test"), rtu);
-}
-
-struct Recording {
-    QVector<SampleBlock> channels;
-    QVector<EventRecord> events;
-};
-
-// Reads for wall_s seconds; errors propagate.
-void record(ModbusDevice &d, const SessionClock &clock, double wall_s, Recording &out)
-{
-    QElapsedTimer t;
-    t.start();
-    while (t.elapsed() < wall_s * 1000.0) {
-        const DeviceBlock b = d.read(0.2);
-        out.channels.resize(std::max(out.channels.size(), b.channels.size()));
-        for (int i = 0; i < b.channels.size(); ++i) {
-            out.channels[i].t += b.channels[i].t;
-            out.channels[i].v += b.channels[i].v;
-        }
-        out.events += b.events;
-        Q_UNUSED(clock);
-    }
 }
 } // namespace
 
@@ -92,7 +72,7 @@ void TestModbusDevice::adam6015KnownTemperaturesAndOpenCircuit()
     d.open();
     d.start(clock);
     Recording r;
-    record(d, clock, 0.6, r);
+    testpeers::readFor(d, 0.6, r, 0.2);
     QCOMPARE(r.channels.size(), 7);
     for (int i = 0; i < 7; ++i) {
         QVERIFY2(r.channels[i].v.size() >= 6, qPrintable(QStringLiteral("T%1: %2 samples in 0.6 s at 20 Hz").arg(i).arg(r.channels[i].v.size())));
@@ -106,7 +86,7 @@ void TestModbusDevice::adam6015KnownTemperaturesAndOpenCircuit()
     // The RTD on input 3 opens: the module reads 0xFFFF; a gap and an event, never a temperature.
     QVERIFY(peer.command("set input 3 65535"));
     Recording open;
-    record(d, clock, 0.4, open);
+    testpeers::readFor(d, 0.4, open, 0.2);
     QVERIFY(open.channels[3].v.isEmpty() || open.channels[3].v.size() <= 1); // one poll may precede the change
     for (double v : open.channels[3].v)
         QCOMPARE(v, temps[3]);
@@ -115,7 +95,7 @@ void TestModbusDevice::adam6015KnownTemperaturesAndOpenCircuit()
     QVERIFY2(open.events[0].label.contains(QLatin1String("gap start: T3 invalid reading: open circuit")), qPrintable(open.events[0].label));
     QVERIFY(peer.command(QStringLiteral("set input 3 %1").arg(rawOf(70.0)).toUtf8()));
     Recording back;
-    record(d, clock, 0.4, back);
+    testpeers::readFor(d, 0.4, back, 0.2);
     QVERIFY(!back.channels[3].v.isEmpty());
     QVERIFY(std::fabs(back.channels[3].v.last() - 70.0) < 0.01);
     QCOMPARE(back.events.size(), 1);
@@ -157,7 +137,7 @@ void TestModbusDevice::stallDropAndExceptionAreDeviceErrors()
     d.open();
     d.start(clock);
     Recording r;
-    record(d, clock, 0.1, r);
+    testpeers::readFor(d, 0.1, r, 0.2);
     QVERIFY(!r.channels[0].v.isEmpty());
 
     // Stall: the server reads requests and never answers.
@@ -165,7 +145,7 @@ void TestModbusDevice::stallDropAndExceptionAreDeviceErrors()
     QElapsedTimer t;
     t.start();
     try {
-        record(d, clock, 2.0, r);
+        testpeers::readFor(d, 2.0, r, 0.2);
         QFAIL("a stalled server was not noticed");
     } catch (const DeviceError &e) {
         QVERIFY2(QString::fromUtf8(e.what()).contains(QLatin1String("no answer")), e.what());
@@ -175,12 +155,12 @@ void TestModbusDevice::stallDropAndExceptionAreDeviceErrors()
     d.close();
     d.open();
     d.start(clock);
-    record(d, clock, 0.1, r);
+    testpeers::readFor(d, 0.1, r, 0.2);
 
     // Drop: the server closes every connection.
     QVERIFY(peer.command("drop"));
     try {
-        record(d, clock, 2.0, r);
+        testpeers::readFor(d, 2.0, r, 0.2);
         QFAIL("a dropped connection was not noticed");
     } catch (const DeviceError &e) {
         Q_UNUSED(e);
@@ -188,12 +168,12 @@ void TestModbusDevice::stallDropAndExceptionAreDeviceErrors()
     d.close();
     d.open(); // the server still accepts: reconnects
     d.start(clock);
-    record(d, clock, 0.1, r);
+    testpeers::readFor(d, 0.1, r, 0.2);
 
     // Exception: server device failure (4) to every request.
     QVERIFY(peer.command("exception 4"));
     try {
-        record(d, clock, 2.0, r);
+        testpeers::readFor(d, 2.0, r, 0.2);
         QFAIL("an exception answer was recorded");
     } catch (const DeviceError &e) {
         QVERIFY2(QString::fromUtf8(e.what()).contains(QLatin1String("exception 4")), e.what());
@@ -229,7 +209,7 @@ void TestModbusDevice::cncRegisters()
     d.open();
     d.start(clock);
     Recording r;
-    record(d, clock, 0.3, r);
+    testpeers::readFor(d, 0.3, r, 0.2);
     QVERIFY(!r.channels[0].v.isEmpty());
     QCOMPARE(r.channels[0].v.last(), -35.25);
     QCOMPARE(r.channels[1].v.last(), 4800.0);
@@ -256,13 +236,13 @@ void TestModbusDevice::rtuThroughPseudoTerminals()
     d.open();
     d.start(clock);
     Recording r;
-    record(d, clock, 0.8, r);
+    testpeers::readFor(d, 0.8, r, 0.2);
     QVERIFY2(r.channels.size() == 2 && r.channels[0].v.size() >= 2, qPrintable(QString::fromLatin1(peer.errors())));
     QVERIFY(std::fabs(r.channels[0].v.last() - 21.5) < 1e-9);
     QVERIFY(std::fabs(r.channels[1].v.last() + 4.2) < 1e-9);
     // The module is unplugged (peer gone): no answer -> DeviceError.
     peer.kill();
-    QVERIFY_EXCEPTION_THROWN(record(d, clock, 2.0, r), DeviceError);
+    QVERIFY_EXCEPTION_THROWN(testpeers::readFor(d, 2.0, r, 0.2), DeviceError);
     d.close();
 }
 

@@ -9,6 +9,7 @@
 #include "MtconnectStreams.h"
 #include "SessionClock.h"
 
+#include "../support/DeviceRecording.h"
 #include "../support/TestPeers.h"
 
 #include <QFile>
@@ -18,32 +19,14 @@
 
 using namespace driftlab;
 using testpeers::Peer;
+using testpeers::Recording;
+using testpeers::readFor;
 
 namespace {
 QByteArray data(const char *name)
 {
     QFile f(QStringLiteral(DRIFTLAB_SOURCE_DIR "/tests/data/mtconnect/%1").arg(QLatin1String(name)));
     return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
-}
-
-struct Recording {
-    QVector<SampleBlock> channels;
-    QVector<EventRecord> events;
-};
-
-void readFor(MtconnectDevice &d, double wall_s, Recording &r)
-{
-    QElapsedTimer t;
-    t.start();
-    while (t.elapsed() < wall_s * 1000.0) {
-        const DeviceBlock b = d.read(0.1);
-        r.channels.resize(std::max(r.channels.size(), b.channels.size()));
-        for (int i = 0; i < b.channels.size(); ++i) {
-            r.channels[i].t += b.channels[i].t;
-            r.channels[i].v += b.channels[i].v;
-        }
-        r.events += b.events;
-    }
 }
 
 MtconnectDevice::Config config(const QString &port, double poll = 5.0)

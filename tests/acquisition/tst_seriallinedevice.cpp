@@ -8,6 +8,7 @@
 #include "SerialLineDevice.h"
 #include "SessionClock.h"
 
+#include "../support/DeviceRecording.h"
 #include "../support/TestPeers.h"
 
 #include <QJsonDocument>
@@ -19,6 +20,7 @@
 #include <unistd.h>
 
 using namespace driftlab;
+using testpeers::Recording;
 
 namespace {
 LineProtocol protocol(const char *json)
@@ -73,27 +75,6 @@ private:
     int m_fd = -1;
 };
 
-struct Recording {
-    QVector<SampleBlock> channels;
-    QVector<EventRecord> events;
-};
-
-void readFor(SerialLineDevice &d, double wall_s, Recording &r, const std::function<void()> &each = {})
-{
-    QElapsedTimer t;
-    t.start();
-    while (t.elapsed() < wall_s * 1000.0) {
-        if (each)
-            each();
-        const DeviceBlock b = d.read(0.05);
-        r.channels.resize(std::max(r.channels.size(), b.channels.size()));
-        for (int i = 0; i < b.channels.size(); ++i) {
-            r.channels[i].t += b.channels[i].t;
-            r.channels[i].v += b.channels[i].v;
-        }
-        r.events += b.events;
-    }
-}
 } // namespace
 
 class TestSerialLineDevice : public QObject {
@@ -201,7 +182,7 @@ void TestSerialLineDevice::readsLinesThroughPseudoTerminal()
     QElapsedTimer sendTimer;
     sendTimer.start();
     QVector<double> sentAt;
-    readFor(d, 1.2, r, [&] {
+    testpeers::readFor(d, 1.2, r, 0.05, [&] {
         if (sent < lines.size() && sendTimer.elapsed() >= sent * 120) {
             sentAt.push_back(clock.now_s());
             instrument.send(lines[sent++]);
@@ -247,7 +228,7 @@ void TestSerialLineDevice::pollsWithARequest()
     Recording r;
     int answered = 0;
     QByteArray pending;
-    readFor(d, 0.8, r, [&] {
+    testpeers::readFor(d, 0.8, r, 0.05, [&] {
         pending += instrument.received();
         while (pending.contains('\r')) { // the instrument answers each request
             pending.remove(0, pending.indexOf('\r') + 1);
@@ -283,7 +264,7 @@ void TestSerialLineDevice::silentInstrumentIsADeviceError()
     QElapsedTimer t;
     t.start();
     try {
-        readFor(d, 3.0, r);
+        testpeers::readFor(d, 3.0, r, 0.05);
         QFAIL("a silent instrument was not noticed");
     } catch (const DeviceError &e) {
         QVERIFY2(QString::fromUtf8(e.what()).contains(QLatin1String("no data line")), e.what());
