@@ -57,7 +57,6 @@ QString ModbusDevice::Config::endpoint() const
 
 ModbusDevice::ModbusDevice(const QString &id, const Config &config) : m_id(id), m_config(config)
 {
-    m_last.resize(m_config.map.channels.size());
     m_invalid.fill(false, m_config.map.channels.size());
 }
 
@@ -226,7 +225,6 @@ DeviceBlock ModbusDevice::read(double timeoutWall_s)
             if (r.area != c.area || c.address < r.start || c.address + c.registerCount() > r.start + r.count)
                 continue;
             const ModbusReading reading = ModbusRegisterMap::decode(c, data[k].constData() + (c.address - r.start));
-            m_last[i] = reading;
             if (reading.valid) {
                 b.channels[i].t.push_back(t);
                 b.channels[i].v.push_back(reading.value);

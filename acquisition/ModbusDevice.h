@@ -62,8 +62,6 @@ public:
     DeviceBlock read(double timeoutWall_s) override;
 
     const Config &config() const { return m_config; }
-    // Last decoded reading of each channel (for "test connection" and live values).
-    QVector<ModbusReading> lastReadings() const { return m_last; }
 
 private:
     QVector<quint16> readRegisters(const QModbusDataUnit &unit);
@@ -74,7 +72,6 @@ private:
     std::unique_ptr<QModbusClient> m_client; // lives on the thread that called open()
     const SessionClock *m_clock = nullptr;
     double m_next_s = 0.0;
-    QVector<ModbusReading> m_last;
     QVector<bool> m_invalid; // channel currently in a gap because of invalid readings
 };
 

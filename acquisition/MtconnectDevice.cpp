@@ -63,7 +63,6 @@ MtconnectDevice::Config MtconnectDevice::Config::fromJson(const QJsonObject &set
 
 MtconnectDevice::MtconnectDevice(const QString &id, const Config &config) : m_id(id), m_config(config)
 {
-    m_last.fill(std::nan(""), m_config.channels.size());
     m_lastT.fill(-1e300, m_config.channels.size());
     m_invalid.fill(false, m_config.channels.size());
 }
@@ -182,7 +181,6 @@ void MtconnectDevice::take(const MtconnectDocument &doc, double received_s, Devi
             if (ok && std::isfinite(x)) {
                 b.channels[i].t.push_back(t);
                 b.channels[i].v.push_back(x * c.scale + c.offset);
-                m_last[i] = x * c.scale + c.offset;
                 m_lastT[i] = t;
                 if (m_invalid[i])
                     b.events.push_back({t, QStringLiteral("gap end: %1 available again").arg(c.info.key)});

@@ -59,8 +59,6 @@ public:
     bool deviceStamped() const override { return m_config.agentStamps; }
     DeviceBlock read(double timeoutWall_s) override;
 
-    QVector<double> lastValues() const { return m_last; }
-    qint64 nextSequence() const { return m_next; }
 
 private:
     MtconnectDocument get(const QString &path, double *received_s = nullptr);
@@ -78,7 +76,6 @@ private:
     double m_offset_s = 1e300;     // session time minus agent time (min over the first answers)
     int m_offsetSamples = 0;
     double m_nextPoll_s = 0.0;
-    QVector<double> m_last;
     QVector<double> m_lastT;
     QVector<bool> m_invalid;
 };

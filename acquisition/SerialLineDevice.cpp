@@ -37,7 +37,6 @@ SerialLineDevice::Config SerialLineDevice::Config::fromJson(const QJsonObject &s
 SerialLineDevice::SerialLineDevice(const QString &id, const Config &config) : m_id(id), m_config(config)
 {
     m_invalid.fill(false, m_config.protocol.channels().size());
-    m_last.resize(m_config.protocol.channels().size());
 }
 
 SerialLineDevice::~SerialLineDevice() = default;
@@ -97,7 +96,6 @@ void SerialLineDevice::handleLine(const QByteArray &raw, double t, DeviceBlock &
     const QVector<LineProtocol::Channel> &channels = m_config.protocol.channels();
     for (int i = 0; i < values->size(); ++i) {
         const LineProtocol::Value &v = values->at(i);
-        m_last[i] = v;
         if (v.valid) {
             b.channels[i].t.push_back(t);
             b.channels[i].v.push_back(v.value);

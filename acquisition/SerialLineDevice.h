@@ -48,7 +48,6 @@ public:
     bool deviceStamped() const override { return true; }
     DeviceBlock read(double timeoutWall_s) override;
 
-    QVector<LineProtocol::Value> lastValues() const { return m_last; }
     long long unrecognisedLines() const { return m_unrecognised; }
 
 private:
@@ -64,7 +63,6 @@ private:
     bool m_inUnrecognised = false;
     long long m_unrecognised = 0;
     QVector<bool> m_invalid;
-    QVector<LineProtocol::Value> m_last;
 };
 
 } // namespace driftlab

@@ -23,7 +23,6 @@ void DeviceTestRunner::start(const DeviceConfig &device, const RigConfig &baseRi
 {
     stop();
     m_stop = false;
-    m_done = false;
     m_thread = std::thread([this, device, baseRig] { run(device, baseRig); });
 }
 
@@ -47,7 +46,6 @@ void DeviceTestRunner::run(DeviceConfig config, RigConfig baseRig)
         device = registry.create(config.type, config.id, config.settings);
     } catch (const std::exception &e) {
         emit message(tr("invalid settings: %1").arg(QString::fromUtf8(e.what())));
-        m_done = true;
         return;
     }
     QStringList ids;
@@ -114,7 +112,6 @@ void DeviceTestRunner::run(DeviceConfig config, RigConfig baseRig)
     } catch (const std::exception &) {
     }
     emit update(ids, values, tr("stopped"));
-    m_done = true;
 }
 
 } // namespace driftlab

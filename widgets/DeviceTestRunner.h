@@ -23,7 +23,6 @@ public:
     // Starts testing (stops a running test first). The base rig is used by simulated types.
     void start(const DeviceConfig &device, const RigConfig &baseRig);
     void stop();
-    bool running() const { return m_thread.joinable() && !m_done; }
 
 signals:
     // channels: one "value unit" text per channel ("-" before the first value); state: the
@@ -36,7 +35,6 @@ private:
 
     std::thread m_thread;
     std::atomic<bool> m_stop{false};
-    std::atomic<bool> m_done{true};
 };
 
 } // namespace driftlab

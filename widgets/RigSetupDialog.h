@@ -37,7 +37,6 @@ public:
     void removeDevice(int index);
     void selectDevice(int index);
     int deviceCount() const { return m_devices.size(); }
-    int currentDevice() const { return m_current; }
     DeviceConfig device(int index) const { return m_devices.value(index); }
     // Replaces the current device's settings from JSON text; false (and a message) if invalid JSON.
     bool setSettingsJson(const QString &text);
