@@ -175,9 +175,11 @@ QVector<quint16> ModbusDevice::readRegisters(const QModbusDataUnit &unit)
     switch (reply->error()) {
     case QModbusDevice::NoError: break;
     case QModbusDevice::ProtocolError:
+        // The exception code is the answer's one data byte (QModbusPdu::exceptionCode()
+        // trips UBSan inside Qt's header, so it is read from the data).
         throw DeviceError(QStringLiteral("%1: %2 answered with Modbus exception %3 (%4)")
                               .arg(m_id, m_config.endpoint())
-                              .arg(static_cast<int>(reply->rawResult().exceptionCode()))
+                              .arg(reply->rawResult().data().isEmpty() ? -1 : static_cast<int>(static_cast<quint8>(reply->rawResult().data().at(0))))
                               .arg(reply->errorString())
                               .toStdString());
     case QModbusDevice::TimeoutError:
