@@ -150,10 +150,10 @@ void TestMtconnect::recordsEveryObservationFromTheAgent()
     d.open();
     d.start(clock);
     Recording r;
-    readFor(d, 1.6, r);
+    readFor(d, 1.2, r);
     const SampleBlock &x = r.channels[0], &f = r.channels[1];
     // 20 observations a second, polled 5 times a second: none lost between polls.
-    QVERIFY2(x.v.size() >= 24, qPrintable(QStringLiteral("%1 positions in 1.6 s at 20 Hz").arg(x.v.size())));
+    QVERIFY2(x.v.size() >= 18, qPrintable(QStringLiteral("%1 positions in 1.2 s at 20 Hz").arg(x.v.size())));
     for (int k = 2; k < x.t.size(); ++k)
         QVERIFY2(x.t[k] - x.t[k - 1] < 0.075, qPrintable(QStringLiteral("gap of %1 s between observations").arg(x.t[k] - x.t[k - 1])));
     // Known signal: X = 260 + 250 sin(2 pi t / 4) and F = |dX/dt| * 60 mm/min. The feed
@@ -167,7 +167,7 @@ void TestMtconnect::recordsEveryObservationFromTheAgent()
                  qPrintable(QStringLiteral("feed %1 mm/min, position slope %2 mm/min").arg(f.v[k]).arg(slope)));
         ++checked;
     }
-    QVERIFY(checked > 10);
+    QVERIFY(checked >= 6);
     for (double v : x.v)
         QVERIFY(v >= 10.0 - 1e-6 && v <= 510.0 + 1e-6);
     bool execution = false;

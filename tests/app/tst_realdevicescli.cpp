@@ -87,7 +87,7 @@ void TestRealDevicesCli::recordRealRigThenImportRtl()
     env.insert(QStringLiteral("XDG_DATA_HOME"), m_dir.filePath(QStringLiteral("data")));
     rec.setProcessEnvironment(env);
     rec.start(QStringLiteral(DRIFTLAB_CLI), {QStringLiteral("record"), QStringLiteral("--rig"), rigPath, QStringLiteral("--duration"),
-                                             QStringLiteral("4"), QStringLiteral("--db"), db, QStringLiteral("--json"), QStringLiteral("-")});
+                                             QStringLiteral("3"), QStringLiteral("--db"), db, QStringLiteral("--json"), QStringLiteral("-")});
     QVERIFY(rec.waitForStarted());
     // Export the frame once the camera device watches the folder (files already there are old frames).
     QByteArray progress;
