@@ -95,6 +95,14 @@ void AcquisitionEngine::stop()
         throw std::runtime_error(m_error);
 }
 
+void AcquisitionEngine::addInterferometerPoints(const QVector<InterferometerPoint> &points, const QString &note)
+{
+    std::lock_guard<std::mutex> lock(m_mutex);
+    m_points += points;
+    if (!note.isEmpty())
+        m_markers.push_back({m_clock.now_s(), note});
+}
+
 QVector<DeviceHealth> AcquisitionEngine::health() const
 {
     QVector<DeviceHealth> h;
@@ -158,9 +166,11 @@ void AcquisitionEngine::writerLoop(const QString &dbPath, const SessionInfo &inf
             for (auto &q : m_queues)
                 q->drain(blocks);
             QVector<EventRecord> markers;
+            QVector<InterferometerPoint> points;
             {
                 std::lock_guard<std::mutex> lock(m_mutex);
                 markers.swap(m_markers);
+                points.swap(m_points);
             }
             const bool paused = m_paused;
             store->begin();
@@ -175,6 +185,7 @@ void AcquisitionEngine::writerLoop(const QString &dbPath, const SessionInfo &inf
                 }
                 for (const EventRecord &e : markers)
                     sink->event(e.t, e.label);
+                sink->interferometerPoints(points);
                 store->commit();
             } catch (...) {
                 store->rollback();

@@ -49,6 +49,9 @@ public:
     void resume();
     bool paused() const { return m_paused; }
     void addMarker(const QString &label);
+    // Interferometer points entered while recording (the technician's run dialog); stored
+    // with the next commit, with an event naming the runs.
+    void addInterferometerPoints(const QVector<InterferometerPoint> &points, const QString &note = QString());
     // Stops the devices, stores what they delivered, marks the session complete.
     // Rethrows a writer failure.
     void stop();
@@ -80,6 +83,7 @@ private:
     std::atomic<bool> m_paused{false};
     std::atomic<bool> m_running{false};
     QVector<EventRecord> m_markers; // guarded by m_mutex
+    QVector<InterferometerPoint> m_points; // guarded by m_mutex
     qint64 m_session = 0;
     std::atomic<long long> m_samplesWritten{0};
     std::atomic<long long> m_commits{0};

@@ -127,9 +127,23 @@ bool DeviceWorker::reconnect(const QString &why)
         } catch (const DeviceError &e) {
             setState(DeviceHealth::State::Reconnecting, QString::fromUtf8(e.what()));
             backoff = std::min(m_options.backoffMax_wall_s, backoff * 2.0);
+        } catch (const std::exception &e) {
+            fail(QString::fromUtf8(e.what()));
+            return false;
         }
     }
     return false;
+}
+
+void DeviceWorker::fail(const QString &why)
+{
+    // A configuration the device refuses (not a lost connection): retrying cannot help.
+    pushEvent(m_clock.now_s(), QStringLiteral("device %1 failed: %2").arg(m_device.id(), why));
+    try {
+        m_device.close();
+    } catch (const std::exception &) {
+    }
+    setState(DeviceHealth::State::Failed, why);
 }
 
 void DeviceWorker::run()
@@ -140,20 +154,27 @@ void DeviceWorker::run()
         setState(DeviceHealth::State::Running);
     } catch (const DeviceError &e) {
         if (!reconnect(QString::fromUtf8(e.what()))) {
-            setState(DeviceHealth::State::Stopped);
+            if (health().state != DeviceHealth::State::Failed)
+                setState(DeviceHealth::State::Stopped);
             return;
         }
+    } catch (const std::exception &e) {
+        fail(QString::fromUtf8(e.what()));
+        return;
     }
     while (!m_stop) {
         DeviceBlock b;
         try {
             b = m_device.read(m_options.readTimeout_wall_s);
         } catch (const DeviceError &e) {
-            if (!reconnect(QString::fromUtf8(e.what())))
+            if (!reconnect(QString::fromUtf8(e.what()))) {
+                if (health().state == DeviceHealth::State::Failed)
+                    return;
                 break;
+            }
             continue;
         } catch (const std::exception &e) {
-            setState(DeviceHealth::State::Failed, QString::fromUtf8(e.what()));
+            fail(QString::fromUtf8(e.what()));
             return;
         }
         if (b.empty())

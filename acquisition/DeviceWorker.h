@@ -47,6 +47,7 @@ private:
     bool reconnect(const QString &why);
     void stamp(DeviceBlock &b);
     void pushEvent(double t, const QString &label);
+    void fail(const QString &why);
     void setState(DeviceHealth::State s, const QString &message = QString());
 
     Device &m_device;

@@ -98,6 +98,14 @@ void RecordingSink::event(double t_s, const QString &label)
     m_store.addEvent(m_session, e);
 }
 
+void RecordingSink::interferometerPoints(const QVector<InterferometerPoint> &points)
+{
+    if (points.isEmpty())
+        return;
+    m_store.addInterferometerPoints(m_session, points);
+    m_points += points.size();
+}
+
 void RecordingSink::finish(bool complete)
 {
     m_store.setComplete(m_session, complete);

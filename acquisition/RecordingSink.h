@@ -24,6 +24,8 @@ public:
     // must not go back in time: earlier ones are dropped and counted.
     void write(const DeviceBlock &block);
     void event(double t_s, const QString &label);
+    // Points not tied to a device (entered by the technician).
+    void interferometerPoints(const QVector<InterferometerPoint> &points);
     // Data stamped after end_s is not stored (a recording of a fixed duration).
     void setEnd(double end_s) { m_end_s = end_s; }
     void finish(bool complete);

@@ -6,6 +6,7 @@
 
 #include "FeedProgram.h"
 
+#include <QJsonObject>
 #include <QString>
 #include <QVector>
 
@@ -138,6 +139,15 @@ struct InfraredConfig {
     double noise_K = 0.05;
 };
 
+// An instrument of the rig file's "devices" list: a simulated one ("sim-pt100", ...) bound
+// to the simulated rig, or a real one ("modbus-tcp", "serial-line", "mtconnect", ...); the
+// settings are the device's own keys (checked by the loader, see RealDevices).
+struct DeviceConfig {
+    QString id;
+    QString type;
+    QJsonObject settings;
+};
+
 struct RigRandomise {
     bool enabled = false;
     double relativeSpread = 0.1;     // log-normal factor on heat, convection, contacts, conductivity
@@ -162,6 +172,8 @@ struct RigConfig {
     FeedProgram program = FeedProgram::seed000Table2(6000.0, 0.0, 520.0);
     RigRandomise randomise;
     unsigned seed = 1;
+    // Empty: the simulated instruments of "sensors". Otherwise exactly these devices.
+    QVector<DeviceConfig> devices;
 
     static QVector<Pt100Config> defaultPt100()
     {

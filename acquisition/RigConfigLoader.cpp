@@ -1,5 +1,7 @@
 #include "RigConfigLoader.h"
 
+#include "RealDevices.h"
+
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -29,8 +31,10 @@ public:
     bool reading() const { return m_reading; }
     QJsonObject &current() { return m_stack.back(); }
 
-    [[noreturn]] void fail(const QString &key, const QString &what) const
+    [[noreturn]] void fail(const QString &key, const QString &what, bool pathInMessage = false) const
     {
+        if (pathInMessage)
+            throw std::invalid_argument(QStringLiteral("%1: %2").arg(m_source, what).toStdString());
         throw std::invalid_argument(QStringLiteral("%1: %2: %3").arg(m_source, path(key), what).toStdString());
     }
     QString path(const QString &key) const
@@ -351,6 +355,63 @@ void bindSensors(Binder &b, RigConfig &c)
     });
 }
 
+void bindDevices(Binder &b, RigConfig &c)
+{
+    if (!b.reading()) {
+        if (c.devices.isEmpty())
+            return;
+        QJsonArray a;
+        for (const DeviceConfig &d : c.devices) {
+            QJsonObject o = d.settings;
+            o.insert(QStringLiteral("id"), d.id);
+            o.insert(QStringLiteral("type"), d.type);
+            a.append(o);
+        }
+        b.current().insert(QStringLiteral("devices"), a);
+        return;
+    }
+    if (!b.has("devices"))
+        return;
+    const QJsonValue v = b.get("devices");
+    if (!v.isArray() || v.toArray().isEmpty())
+        b.fail(QStringLiteral("devices"), QStringLiteral("expected a non-empty array of devices"));
+    const QJsonArray a = v.toArray();
+    QStringList ids;
+    int camera = -1;
+    for (int i = 0; i < a.size(); ++i) {
+        const QString key = QStringLiteral("devices[%1]").arg(i);
+        if (!a[i].isObject())
+            b.fail(key, QStringLiteral("expected an object"));
+        QJsonObject o = a[i].toObject();
+        DeviceConfig d;
+        const QJsonValue id = o.take(QStringLiteral("id"));
+        const QJsonValue type = o.take(QStringLiteral("type"));
+        if (!id.isString() || id.toString().isEmpty())
+            b.fail(key + QStringLiteral(".id"), QStringLiteral("expected a non-empty string, got %1").arg(Binder::shown(id)));
+        if (!type.isString() || !RealDevices::knownType(type.toString()))
+            b.fail(key + QStringLiteral(".type"), QStringLiteral("expected one of %1, got %2")
+                                                      .arg(RealDevices::allTypes().join(QStringLiteral(", ")), Binder::shown(type)));
+        d.id = id.toString();
+        d.type = type.toString();
+        d.settings = o;
+        if (ids.contains(d.id))
+            b.fail(key + QStringLiteral(".id"), QStringLiteral("duplicate device id \"%1\"").arg(d.id));
+        ids << d.id;
+        if (RealDevices::isCamera(d.type)) {
+            if (camera >= 0)
+                b.fail(key + QStringLiteral(".type"),
+                       QStringLiteral("only one infrared camera per rig (a session has one infrared calibration); devices[%1] is one").arg(camera));
+            camera = i;
+        }
+        try {
+            RealDevices::validate(d.type, d.settings, b.path(key));
+        } catch (const std::invalid_argument &e) {
+            b.fail(QString(), QString::fromUtf8(e.what()), true);
+        }
+        c.devices.push_back(d);
+    }
+}
+
 void bind(Binder &b, RigConfig &c)
 {
     if (b.reading()) {
@@ -461,6 +522,7 @@ void bind(Binder &b, RigConfig &c)
         b.nonNegative("relative_spread", c.randomise.relativeSpread);
         b.nonNegative("fixed_end_jitter_mm", c.randomise.fixedEndJitter_mm);
     });
+    bindDevices(b, c);
 }
 } // namespace
 
@@ -492,20 +554,30 @@ QJsonObject RigConfigLoader::toJson(const RigConfig &config)
     return root;
 }
 
+RigConfig RigConfigLoader::fromText(const QByteArray &text, const QString &source)
+{
+    QJsonParseError err{};
+    const QJsonDocument doc = QJsonDocument::fromJson(text, &err);
+    if (err.error != QJsonParseError::NoError) {
+        const QByteArray before = text.left(err.offset);
+        throw std::invalid_argument(QStringLiteral("%1: line %2: invalid JSON: %3")
+                                        .arg(source)
+                                        .arg(before.count('\n') + 1)
+                                        .arg(err.errorString())
+                                        .toStdString());
+    }
+    if (!doc.isObject())
+        throw std::invalid_argument(QStringLiteral("%1: expected a JSON object").arg(source).toStdString());
+    return fromJson(doc.object(), source);
+}
+
 RigConfig RigConfigLoader::loadFile(const QString &path)
 {
     QFile f(path);
     if (!f.open(QIODevice::ReadOnly))
         throw std::runtime_error(QStringLiteral("%1: cannot open rig file: %2").arg(path, f.errorString()).toStdString());
-    QJsonParseError err{};
-    const QJsonDocument doc = QJsonDocument::fromJson(f.readAll(), &err);
-    if (err.error != QJsonParseError::NoError)
-        throw std::invalid_argument(
-            QStringLiteral("%1: offset %2: invalid JSON: %3").arg(path).arg(err.offset).arg(err.errorString()).toStdString());
-    if (!doc.isObject())
-        throw std::invalid_argument(QStringLiteral("%1: expected a JSON object").arg(path).toStdString());
     const QString source = path.startsWith(QLatin1Char(':')) ? QFileInfo(path).fileName() : path;
-    return fromJson(doc.object(), source);
+    return fromText(f.readAll(), source);
 }
 
 QStringList RigConfigLoader::presetNames()

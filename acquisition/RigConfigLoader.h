@@ -18,6 +18,8 @@ public:
     // Throws std::invalid_argument (bad content) or std::runtime_error (unreadable file).
     static RigConfig loadFile(const QString &path);
     static RigConfig fromJson(const QJsonObject &root, const QString &source = QStringLiteral("rig"));
+    // The whole file's text to a config (no I/O; invalid JSON names the line).
+    static RigConfig fromText(const QByteArray &text, const QString &source = QStringLiteral("rig"));
     static QJsonObject toJson(const RigConfig &config);
 
     // Presets compiled into the library (resources/rigs/*.json): names and loading.

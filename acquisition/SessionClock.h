@@ -16,6 +16,8 @@ public:
     double now_s() const;
     // Wall-clock seconds that correspond to a session-time interval.
     double toWall_s(double session_s) const { return session_s / m_speed; }
+    // The steady-clock instant of session time 0 (to compare with other processes' clocks).
+    std::chrono::steady_clock::time_point startTime() const { return m_t0; }
     // Sleeps until now_s() >= t_s or until maxWall_s of wall time passed or *stop is set.
     // Returns true when t_s was reached.
     bool sleepUntil(double t_s, double maxWall_s, const std::atomic<bool> *stop = nullptr) const;

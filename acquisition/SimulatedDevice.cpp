@@ -1,6 +1,7 @@
 #include "SimulatedDevice.h"
 
 #include "DeviceRegistry.h"
+#include "JsonFields.h"
 #include "SessionClock.h"
 
 #include <cmath>
@@ -30,16 +31,6 @@ const TypeInfo &typeInfo(const QString &type)
         if (type == QLatin1String(t.type))
             return t;
     throw std::invalid_argument(QStringLiteral("unknown simulated device type '%1'").arg(type).toStdString());
-}
-double number(const QJsonObject &s, const char *key, double fallback, double lo, double hi, const QString &id)
-{
-    const QJsonValue v = s.value(QLatin1String(key));
-    if (v.isUndefined())
-        return fallback;
-    if (!v.isDouble() || v.toDouble() < lo || v.toDouble() > hi)
-        throw std::invalid_argument(
-            QStringLiteral("device '%1': %2 must be a number in [%3, %4]").arg(id, QLatin1String(key)).arg(lo).arg(hi).toStdString());
-    return v.toDouble();
 }
 } // namespace
 
@@ -88,21 +79,31 @@ void SimulatedDevice::registerTypes(DeviceRegistry &registry, const std::shared_
 
 void SimulatedDevice::configure(const QJsonObject &s)
 {
-    m_declared_s = number(s, "latency_s", m_declared_s, 0.0, 60.0, m_id);
-    m_true_s = number(s, "true_latency_s", m_declared_s, 0.0, 60.0, m_id);
-    m_jitter_s = number(s, "latency_jitter_s", 0.0, 0.0, 10.0, m_id);
-    m_rate_Hz = number(s, "rate_Hz", m_rate_Hz, 1e-4, 10000.0, m_id);
-    m_maxBlockWall_s = number(s, "max_block_wall_s", m_maxBlockWall_s, 1e-4, 10.0, m_id);
-    m_failAt_s = number(s, "fail_at_s", -1.0, -1.0, 1e9, m_id);
-    m_failFor_s = number(s, "fail_for_s", 0.0, 0.0, 1e9, m_id);
-    const QJsonValue stamping = s.value(QLatin1String("stamping"));
-    if (stamping.isString() && stamping.toString() == QLatin1String("receipt"))
-        m_deviceStamped = false;
-    else if (stamping.isString() && stamping.toString() == QLatin1String("device"))
-        m_deviceStamped = true;
-    else if (!stamping.isUndefined())
-        throw std::invalid_argument(
-            QStringLiteral("device '%1': stamping must be \"device\" or \"receipt\"").arg(m_id).toStdString());
+    JsonFields f(s, QStringLiteral("device '%1'").arg(m_id));
+    read(f);
+}
+
+void SimulatedDevice::read(JsonFields &f)
+{
+    m_declared_s = f.number(QStringLiteral("latency_s"), m_declared_s, 0.0, 60.0);
+    m_true_s = f.number(QStringLiteral("true_latency_s"), m_declared_s, 0.0, 60.0);
+    m_jitter_s = f.number(QStringLiteral("latency_jitter_s"), 0.0, 0.0, 10.0);
+    m_rate_Hz = f.number(QStringLiteral("rate_Hz"), m_rate_Hz, 1e-4, 10000.0);
+    m_maxBlockWall_s = f.number(QStringLiteral("max_block_wall_s"), m_maxBlockWall_s, 1e-4, 10.0);
+    m_failAt_s = f.number(QStringLiteral("fail_at_s"), -1.0, -1.0, 1e9);
+    m_failFor_s = f.number(QStringLiteral("fail_for_s"), 0.0, 0.0, 1e9);
+    const QString stamping = f.choice(QStringLiteral("stamping"), {QStringLiteral("device"), QStringLiteral("receipt")},
+                                      m_deviceStamped ? QStringLiteral("device") : QStringLiteral("receipt"));
+    m_deviceStamped = stamping == QLatin1String("device");
+    f.finish();
+}
+
+void SimulatedDevice::validateSettings(const QJsonObject &settings, const QString &path)
+{
+    // The same reader on a device bound to nothing: only the settings are checked.
+    SimulatedDevice probe;
+    JsonFields f(settings, path);
+    probe.read(f);
 }
 
 bool SimulatedDevice::failing() const

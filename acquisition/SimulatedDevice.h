@@ -27,6 +27,7 @@
 namespace driftlab {
 
 class DeviceRegistry;
+class JsonFields;
 
 class SimulatedDevice : public Device {
 public:
@@ -47,16 +48,20 @@ public:
     void kill() { m_killed = true; }
     void revive() { m_killed = false; }
 
+    // Checks a simulated device's settings (errors name path and field); no hub needed.
+    static void validateSettings(const QJsonObject &settings, const QString &path);
     // Registers the five simulated types bound to one hub.
     static void registerTypes(DeviceRegistry &registry, const std::shared_ptr<SimulatedRigHub> &hub);
     static QStringList typeNames();
 
 private:
+    SimulatedDevice() = default; // settings check only
+    void read(JsonFields &f);
     bool failing() const;
 
     QString m_id, m_type;
     std::shared_ptr<SimulatedRigHub> m_hub;
-    SimulatedRigHub::Group m_group;
+    SimulatedRigHub::Group m_group = SimulatedRigHub::Group::Pt100;
     const SessionClock *m_clock = nullptr;
     bool m_deviceStamped = false;
     double m_declared_s = 0.0;

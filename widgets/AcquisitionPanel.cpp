@@ -1,12 +1,11 @@
 #include "AcquisitionPanel.h"
 
 #include "AcquisitionEngine.h"
-#include "DeviceRegistry.h"
 #include "RigConfigLoader.h"
-#include "RigRecorder.h"
+#include "RigDeviceSet.h"
+#include "RigSetupDialog.h"
+#include "MeasurementRunDialog.h"
 #include "SessionStore.h"
-#include "SimulatedDevice.h"
-#include "SimulatedRigHub.h"
 #include "TimeSeriesPlot.h"
 
 #include <QComboBox>
@@ -80,6 +79,8 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     m_pause->setCheckable(true);
     m_marker = new QPushButton(tr("Marker..."), this);
     m_stop = new QPushButton(tr("Stop"), this);
+    m_setup = new QPushButton(tr("Rig setup..."), this);
+    m_run = new QPushButton(tr("Measurement run..."), this);
     m_elapsed = new QLabel(tr("not recording"), this);
     m_devices = new QTableWidget(0, 5, this);
     m_devices->setHorizontalHeaderLabels({tr("Device"), tr("State"), tr("Rate (Hz)"), tr("Samples"), tr("Gaps")});
@@ -103,6 +104,8 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     for (QWidget *w : {static_cast<QWidget *>(m_start), static_cast<QWidget *>(m_pause), static_cast<QWidget *>(m_marker),
                        static_cast<QWidget *>(m_stop)})
         buttons->addWidget(w);
+    buttons->addWidget(m_setup);
+    buttons->addWidget(m_run);
     buttons->addStretch();
     buttons->addWidget(m_elapsed);
     auto *layout = new QVBoxLayout(this);
@@ -136,6 +139,29 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
         const QString label = QInputDialog::getText(this, tr("Marker"), tr("Label"), QLineEdit::Normal, QString(), &ok);
         if (ok && !label.isEmpty())
             addMarker(label);
+    });
+    connect(m_setup, &QPushButton::clicked, this, [this] {
+        RigSetupDialog dialog(this);
+        if (dialog.exec() == QDialog::Accepted && !dialog.savedPath().isEmpty()) {
+            m_rig->insertItem(m_rig->count() - 1, dialog.savedPath());
+            m_rig->setCurrentIndex(m_rig->count() - 2);
+        }
+    });
+    connect(m_run, &QPushButton::clicked, this, [this] {
+        if (!m_engine)
+            return;
+        AcquisitionEngine *engine = m_engine.get();
+        int firstRun = 0; // entered runs follow the session's stored runs
+        for (const InterferometerPoint &p : m_reader->interferometerPoints(m_session))
+            firstRun = std::max(firstRun, p.run + 1);
+        auto *dialog = new MeasurementRunDialog([engine] { return engine->now_s(); },
+                                                [engine](const QVector<InterferometerPoint> &points, const QString &note) {
+                                                    engine->addInterferometerPoints(points, note);
+                                                },
+                                                this, firstRun);
+        dialog->setAttribute(Qt::WA_DeleteOnClose);
+        connect(this, &AcquisitionPanel::recordingStopped, dialog, &QDialog::reject);
+        dialog->show();
     });
     updateButtons();
 }
@@ -171,30 +197,20 @@ bool AcquisitionPanel::startRecording(const QString &rigNameOrPath, const QStrin
         if (!QDir().mkpath(folder))
             throw std::runtime_error(tr("cannot create the folder %1 for %2").arg(folder, dbPath).toStdString());
         const RigConfig config = RigConfigLoader::load(rigNameOrPath);
-        auto hub = std::make_shared<SimulatedRigHub>(config);
-        DeviceRegistry registry;
-        SimulatedDevice::registerTypes(registry, hub);
+        RigDeviceSet set = RigDeviceSet::build(config, QString());
+        set.session.name = (set.realDevices ? tr("Rig '%1', %2") : tr("Simulated rig '%1', %2"))
+                               .arg(config.name, QDateTime::currentDateTime().toString(QStringLiteral("yyyy-MM-dd HH:mm")));
         AcquisitionEngine::Options options;
-        options.speed = speed;
+        options.speed = set.realDevices ? 1.0 : speed; // real instruments record in real time
         m_end_s = 60.0 * m_duration->value();
         if (m_end_s > 0)
             options.end_s = m_end_s;
         auto engine = std::make_unique<AcquisitionEngine>(options);
-        const SimulatedRigHub::Group groups[] = {SimulatedRigHub::Group::Pt100, SimulatedRigHub::Group::Probe,
-                                                 SimulatedRigHub::Group::Cnc, SimulatedRigHub::Group::Interferometer,
-                                                 SimulatedRigHub::Group::Infrared};
-        const QStringList types = SimulatedDevice::typeNames();
-        for (int i = 0; i < types.size(); ++i)
-            if (hub->hasGroup(groups[i]))
-                engine->addDevice(registry.create(types[i], types[i].mid(4)));
-        SessionInfo info;
-        hub->withRig([&](const SimulatedRig &rig) {
-            info = RigRecorder::sessionInfo(rig, m_name->text().trimmed().isEmpty()
-                                                     ? tr("Simulated rig '%1', %2")
-                                                           .arg(config.name, QDateTime::currentDateTime().toString(
-                                                                                 QStringLiteral("yyyy-MM-dd HH:mm")))
-                                                     : m_name->text().trimmed());
-        });
+        for (auto &d : set.devices)
+            engine->addDevice(std::move(d));
+        SessionInfo info = set.session;
+        if (!m_name->text().trimmed().isEmpty())
+            info.name = m_name->text().trimmed();
         info.operatorName = m_operator->text().trimmed();
         if (!m_notes->toPlainText().trimmed().isEmpty())
             info.notes = m_notes->toPlainText().trimmed() + (info.notes.isEmpty() ? QString() : QStringLiteral("\n") + info.notes);
@@ -286,6 +302,8 @@ void AcquisitionPanel::updateButtons()
     m_pause->setEnabled(rec);
     m_marker->setEnabled(rec);
     m_stop->setEnabled(rec);
+    m_setup->setEnabled(!rec);
+    m_run->setEnabled(rec);
 }
 
 void AcquisitionPanel::onTick()

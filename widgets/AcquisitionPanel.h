@@ -74,6 +74,7 @@ private:
     QDoubleSpinBox *m_speed;
     QLabel *m_message;        // errors and results, word-wrapped
     QPushButton *m_start, *m_pause, *m_marker, *m_stop;
+    QPushButton *m_setup, *m_run; // rig setup dialog, technician's measurement run dialog
     QLabel *m_elapsed;
     QTableWidget *m_devices;
     TimeSeriesPlot *m_plot;

@@ -3,11 +3,11 @@
 #include "AcquisitionEngine.h"
 #include "BundleTransfer.h"
 #include "CliSupport.h"
-#include "DeviceRegistry.h"
+#include "RealDevices.h"
 #include "RigConfigLoader.h"
 #include "RigRecorder.h"
 #include "SessionStore.h"
-#include "SimulatedDevice.h"
+#include "RigDeviceSet.h"
 
 #include <QCommandLineParser>
 #include <QElapsedTimer>
@@ -15,10 +15,17 @@
 #include <QThread>
 
 #include <cmath>
+#include <csignal>
 
 namespace driftlab {
 
 namespace {
+volatile std::sig_atomic_t g_interrupted = 0;
+void onInterrupt(int)
+{
+    g_interrupted = 1;
+}
+
 QString hms(double s)
 {
     const qint64 t = static_cast<qint64>(std::llround(s));
@@ -34,7 +41,9 @@ QString RecordCommand::summary() const
                           "Table 2 programme: warm-up 84 min, cool-down 42 min, warm-up 42 min).\n"
                           "Without --speed the simulation runs as fast as possible (deterministic); --speed N\n"
                           "runs one acquisition thread per simulated device on a session clock N times faster\n"
-                          "than real time.");
+                          "than real time. A rig file with a \"devices\" list (real instruments: Modbus, serial,\n"
+                          "infrared camera, MTConnect; see docs/acquisition.md) records those devices in real\n"
+                          "time; Ctrl-C stops early and keeps everything recorded.");
 }
 
 int RecordCommand::run(const QStringList &args)
@@ -111,6 +120,14 @@ int RecordCommand::run(const QStringList &args)
         if (!ok)
             throw UsageError(QStringLiteral("record: --seed must be a non-negative integer, got '%1'").arg(p.value(seed)));
     }
+    const bool deviceList = !config.devices.isEmpty();
+    bool realDevices = false;
+    for (const DeviceConfig &d : config.devices)
+        realDevices = realDevices || !RealDevices::isSimulated(d.type);
+    if (realDevices && speedValue > 0.0 && speedValue != 1.0)
+        throw UsageError(QStringLiteral("record: the rig has real instruments, which record in real time only (--speed 1)"));
+    if (deviceList && speedValue <= 0.0)
+        speedValue = 1.0; // a device list always records through the device threads
     std::unique_ptr<SimulatedRig> simRig;
     try {
         simRig = std::make_unique<SimulatedRig>(config);
@@ -120,9 +137,10 @@ int RecordCommand::run(const QStringList &args)
     }
 
     const QString sessionName =
-        p.isSet(name) ? p.value(name) : QStringLiteral("Simulated rig '%1', %2").arg(config.name, hms(seconds));
-    CliSupport::progress(QStringLiteral("recording %1 of simulated rig '%2' into %3%4")
-                             .arg(hms(seconds), config.name, path,
+        p.isSet(name) ? p.value(name)
+                      : (realDevices ? QStringLiteral("Rig '%1', %2") : QStringLiteral("Simulated rig '%1', %2")).arg(config.name, hms(seconds));
+    CliSupport::progress(QStringLiteral("recording %1 of %2 rig '%3' into %4%5")
+                             .arg(hms(seconds), realDevices ? QStringLiteral("the") : QStringLiteral("simulated"), config.name, path,
                                   speedValue > 0.0 ? QStringLiteral(" at %1x real time (device threads)").arg(speedValue)
                                                    : QString()));
     QElapsedTimer timer;
@@ -144,33 +162,56 @@ int RecordCommand::run(const QStringList &args)
     int points = -1, frames = -1; // unknown in threaded mode until read back
     std::unique_ptr<SessionStore> store;
     if (speedValue > 0.0) {
-        // Real-time style: one worker thread per simulated device on one session clock.
-        const SessionInfo info = RigRecorder::sessionInfo(*simRig, sessionName);
+        // One worker thread per device on one session clock (simulated or real instruments).
         simRig.reset();
-        auto hub = std::make_shared<SimulatedRigHub>(config);
-        DeviceRegistry registry;
-        SimulatedDevice::registerTypes(registry, hub);
+        RigDeviceSet set;
+        try {
+            set = RigDeviceSet::build(config, sessionName);
+        } catch (const std::invalid_argument &e) {
+            throw UsageError(QStringLiteral("record: %1").arg(QString::fromUtf8(e.what())));
+        }
+        const SessionInfo info = set.session;
         AcquisitionEngine::Options options;
         options.speed = speedValue;
         options.end_s = seconds;
         AcquisitionEngine engine(options);
-        const SimulatedRigHub::Group groups[] = {SimulatedRigHub::Group::Pt100, SimulatedRigHub::Group::Probe,
-                                                 SimulatedRigHub::Group::Cnc, SimulatedRigHub::Group::Interferometer,
-                                                 SimulatedRigHub::Group::Infrared};
-        const QStringList types = SimulatedDevice::typeNames();
-        for (int i = 0; i < types.size(); ++i)
-            if (hub->hasGroup(groups[i]))
-                engine.addDevice(registry.create(types[i], types[i].mid(4)));
+        for (auto &d : set.devices)
+            engine.addDevice(std::move(d));
         id = engine.start(path, info);
-        while (engine.now_s() < seconds) {
+        g_interrupted = 0;
+        const auto previousInt = std::signal(SIGINT, onInterrupt);
+        const auto previousTerm = std::signal(SIGTERM, onInterrupt);
+        QVector<DeviceHealth::State> states(engine.deviceCount(), DeviceHealth::State::Closed);
+        while (engine.now_s() < seconds && !g_interrupted) {
             QThread::msleep(100);
             report(engine.now_s(), seconds, engine.samplesWritten());
+            const QVector<DeviceHealth> health = engine.health();
+            for (int i = 0; i < health.size(); ++i)
+                if (health[i].state != states[i]) {
+                    states[i] = health[i].state;
+                    CliSupport::progress(QStringLiteral("  %1: %2%3").arg(engine.device(i).id(), DeviceHealth::stateName(states[i]),
+                                                                          health[i].message.isEmpty() || states[i] == DeviceHealth::State::Running
+                                                                              ? QString()
+                                                                              : QStringLiteral(" (%1)").arg(health[i].message)));
+                }
+        }
+        if (g_interrupted) {
+            engine.addMarker(QStringLiteral("recording stopped by the operator"));
+            CliSupport::progress(QStringLiteral("  interrupted at %1: storing what was recorded").arg(hms(engine.now_s())));
         }
         engine.stop();
+        std::signal(SIGINT, previousInt);
+        std::signal(SIGTERM, previousTerm);
         samples = engine.samplesWritten();
-        for (const DeviceHealth &h : engine.health())
-            if (h.gaps > 0)
-                CliSupport::progress(QStringLiteral("  warning: a device had %1 gap(s)").arg(h.gaps));
+        for (int i = 0; i < engine.deviceCount(); ++i) {
+            const DeviceHealth h = engine.health().value(i);
+            if (h.gaps > 0 || h.state == DeviceHealth::State::Failed)
+                CliSupport::progress(QStringLiteral("  warning: %1 had %2 gap(s), %3 reconnect(s)%4")
+                                         .arg(engine.device(i).id())
+                                         .arg(h.gaps)
+                                         .arg(h.reconnects)
+                                         .arg(h.state == DeviceHealth::State::Failed ? QStringLiteral(", failed: ") + h.message : QString()));
+        }
         store = std::make_unique<SessionStore>(path);
         points = store->interferometerPoints(id).size();
         frames = store->irFrames(id).size();

@@ -7,6 +7,7 @@
 #include "ImportCommand.h"
 #include "ImportCsvCommand.h"
 #include "Iso230Command.h"
+#include "ImportRtlCommand.h"
 #include "InfoCommand.h"
 #include "ListCommand.h"
 #include "NewBundleCommand.h"
@@ -35,6 +36,7 @@ std::vector<std::unique_ptr<CliCommand>> commands()
     list.push_back(std::make_unique<ImportCommand>());
     list.push_back(std::make_unique<ImportCsvCommand>());
     list.push_back(std::make_unique<Iso230Command>());
+    list.push_back(std::make_unique<ImportRtlCommand>());
     list.push_back(std::make_unique<ExportCommand>());
     list.push_back(std::make_unique<ListCommand>());
     list.push_back(std::make_unique<PlotCommand>());
@@ -50,7 +52,7 @@ void usage(QTextStream &out, const std::vector<std::unique_ptr<CliCommand>> &lis
     out << "Usage: driftlab-cli COMMAND [options]\n"
            "       driftlab-cli COMMAND --help\n\nCommands:\n";
     for (const auto &c : list)
-        out << "  " << c->name().leftJustified(10) << c->summary().section(QLatin1Char('\n'), 0, 0) << '\n';
+        out << "  " << c->name().leftJustified(14) << c->summary().section(QLatin1Char('\n'), 0, 0) << '\n';
     out << "\nExit codes: 0 done, 1 failed, 2 bad usage or bad input.\n";
 }
 

@@ -1,0 +1,109 @@
+// The rig setup dialog as a technician uses it: add an ADAM-6015 from its preset, point it
+// at the module (here the libmodbus server), name the channels, test the connection and
+// see the live temperatures, break the settings and read which field is wrong, save the
+// rig file and load it back through the same loader the recorder uses.
+#include "RigConfigLoader.h"
+#include "RigSetupDialog.h"
+
+#include "../support/TestPeers.h"
+
+#include <QJsonArray>
+#include <QTemporaryDir>
+#include <QtTest>
+
+using namespace driftlab;
+
+class TestRigSetupDialog : public QObject {
+    Q_OBJECT
+private slots:
+    void setUpTestAndSave();
+};
+
+void TestRigSetupDialog::setUpTestAndSave()
+{
+    QTemporaryDir dir;
+    testpeers::Peer peer;
+    QStringList args{QStringLiteral("--tcp"), QStringLiteral("0")};
+    for (int i = 0; i < 7; ++i)
+        args << QStringLiteral("--input") << QStringLiteral("%1=%2").arg(i).arg(std::lround((20.0 + i + 50.0) / 200.0 * 65535.0))
+             << QStringLiteral("--holding") << QStringLiteral("%1=%2").arg(200 + i).arg(0x03A4);
+    QVERIFY(peer.start(QStringLiteral(MODBUS_PEER), args));
+
+    RigSetupDialog dialog;
+    dialog.show();
+    QVERIFY(!dialog.allValid()); // no device yet
+    const int i = dialog.addDevice(QStringLiteral("modbus-tcp"), QStringLiteral("adam-6015"));
+    QCOMPARE(i, 0);
+    QCOMPARE(dialog.channelRows(), 7);
+    QCOMPARE(dialog.device(0).id, QStringLiteral("adam6015"));
+    dialog.setConnection(QStringLiteral("127.0.0.1"), peer.ready().toInt());
+    dialog.setChannelCell(0, 1, QStringLiteral("T_fixed_bearing"));
+    dialog.setChannelCell(0, 3, QStringLiteral("fixed_bearing"));
+    dialog.setChannelCell(0, 4, QStringLiteral("fixed-end bearing housing"));
+    dialog.setChannelCell(1, 1, QStringLiteral("T_amb"));
+    dialog.setChannelCell(1, 3, QStringLiteral("ambient"));
+    QVERIFY2(dialog.allValid(), qPrintable(dialog.validationMessage()));
+    const QJsonArray channels = dialog.device(0).settings.value(QStringLiteral("channels")).toArray();
+    QCOMPARE(channels[0].toObject().value(QStringLiteral("id")).toString(), QStringLiteral("T_fixed_bearing"));
+    QCOMPARE(channels[0].toObject().value(QStringLiteral("role")).toString(), QStringLiteral("fixed_bearing"));
+    QCOMPARE(dialog.device(0).settings.value(QStringLiteral("port")).toInt(), peer.ready().toInt());
+
+    // Test connection: live values from the module.
+    dialog.testConnection();
+    // "id: value unit", the module's temperature to one count (200/65535 degC).
+    auto live = [&](int row) { return dialog.liveValue(row).section(QLatin1Char(' '), 1, 1).toDouble(); };
+    QTRY_VERIFY_WITH_TIMEOUT(dialog.liveValue(1).startsWith(QLatin1String("T_amb: 2")), 10000);
+    QVERIFY2(std::fabs(live(1) - 21.0) < 0.005, qPrintable(dialog.liveValue(1)));
+    QVERIFY2(std::fabs(live(0) - 20.0) < 0.005, qPrintable(dialog.liveValue(0)));
+    QVERIFY(dialog.liveValue(6).contains(QLatin1String("degC")));
+    QCOMPARE(dialog.testState(), QStringLiteral("running"));
+    if (qEnvironmentVariableIsSet("DRIFTLAB_SCREENSHOTS")) { // docs/screenshots/rig-setup.png
+        QTest::qWait(500);
+        dialog.grab().save(QDir(qEnvironmentVariable("DRIFTLAB_SCREENSHOTS")).filePath(QStringLiteral("rig-setup.png")));
+    }
+    // The module stops answering: the state says so.
+    QVERIFY(peer.command("stall"));
+    QTRY_VERIFY_WITH_TIMEOUT(dialog.testState().startsWith(QLatin1String("no answer")), 10000);
+    QVERIFY(peer.command("resume"));
+    dialog.stopTest();
+
+    // A wrong range code typed into the table names the field.
+    dialog.setChannelCell(2, 2, QStringLiteral("0x0148"));
+    QVERIFY2(dialog.validationMessage().contains(QLatin1String("devices[0].channels[2].range: 0x0148 is not a range code")), qPrintable(dialog.validationMessage()));
+    QVERIFY(!dialog.saveTo(dir.filePath(QStringLiteral("bad.json"))));
+    QVERIFY(!QFileInfo::exists(dir.filePath(QStringLiteral("bad.json"))));
+    dialog.setChannelCell(2, 2, QStringLiteral("0x03A6"));
+    QVERIFY(dialog.allValid());
+    // Broken JSON in the settings editor: the line is named, the device keeps its settings.
+    QVERIFY(!dialog.setSettingsJson(QStringLiteral("{\n  \"host\": \"127.0.0.1\",\n  \"port\": ,\n}")));
+    QVERIFY2(dialog.validationMessage().startsWith(QLatin1String("settings: line 3")), qPrintable(dialog.validationMessage()));
+    QCOMPARE(dialog.device(0).settings.value(QStringLiteral("channels")).toArray().size(), 7);
+
+    // A second device from a template, edited as JSON.
+    dialog.addDevice(QStringLiteral("mtconnect"));
+    QCOMPARE(dialog.deviceCount(), 2);
+    QString json = dialog.settingsJson();
+    json.replace(QStringLiteral("192.168.1.20:5000"), QStringLiteral("cnc-agent:5000"));
+    QVERIFY(dialog.setSettingsJson(json));
+    QVERIFY2(dialog.allValid(), qPrintable(dialog.validationMessage()));
+
+    const QString path = dir.filePath(QStringLiteral("my-rig.json"));
+    QVERIFY2(dialog.saveTo(path), qPrintable(dialog.validationMessage()));
+    QCOMPARE(dialog.savedPath(), path);
+    const RigConfig rig = RigConfigLoader::loadFile(path);
+    QCOMPARE(rig.devices.size(), 2);
+    QCOMPARE(rig.devices[0].type, QStringLiteral("modbus-tcp"));
+    QCOMPARE(rig.devices[0].settings.value(QStringLiteral("preset")).toString(), QStringLiteral("adam-6015"));
+    QCOMPARE(rig.devices[0].settings.value(QStringLiteral("channels")).toArray()[2].toObject().value(QStringLiteral("range")).toString(),
+             QStringLiteral("0x03A6"));
+    QCOMPARE(rig.devices[1].settings.value(QStringLiteral("url")).toString(), QStringLiteral("http://cnc-agent:5000"));
+
+    // Loading it again shows the same devices.
+    RigSetupDialog again;
+    QVERIFY(again.loadFrom(path));
+    QCOMPARE(again.deviceCount(), 2);
+    QCOMPARE(again.device(0).settings, rig.devices[0].settings);
+}
+
+QTEST_MAIN(TestRigSetupDialog)
+#include "tst_rigsetupdialog.moc"
