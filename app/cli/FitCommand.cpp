@@ -1,6 +1,7 @@
 #include "FitCommand.h"
 
 #include "CliSupport.h"
+#include "DataDrivenFitCommand.h"
 #include "SessionAnalysis.h"
 #include "SessionStore.h"
 #include "ThermalErrorTable.h"
@@ -66,7 +67,8 @@ QString FitCommand::summary() const
         "elongation channel are the observations (sigma 1 um each, probe decimated to one sample a\n"
         "minute). Without interferometer runs the fit uses the elongation alone and holds P_f at the\n"
         "machine block's value. Prints parameters with standard errors; --json writes MODEL.json for\n"
-        "'simulate --model'. The fitted model is stored with each session.");
+        "'simulate --model'. The fitted model is stored with each session.\n"
+        "Data-driven models: --model mlr|ridge|exp|synthetic|dynamic (see 'fit --model dynamic --help').");
 }
 
 QJsonObject FitCommand::modelJson(const IdentificationResult &r, const ScrewGeometry &g, const IdentificationOptions &o)
@@ -119,6 +121,8 @@ QJsonObject FitCommand::modelJson(const IdentificationResult &r, const ScrewGeom
 
 int FitCommand::run(const QStringList &args)
 {
+    if (DataDrivenFitCommand::handles(args))
+        return DataDrivenFitCommand().run(args);
     QCommandLineParser p;
     const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
     const QCommandLineOption model(QStringLiteral("model"), QStringLiteral("Model to fit: fdm (seed-000 screw model)."),
@@ -137,7 +141,7 @@ int FitCommand::run(const QStringList &args)
     if (!parse(p, args))
         return 0;
     if (p.value(model) != QLatin1String("fdm"))
-        throw UsageError(QStringLiteral("fit: unknown --model '%1' (known: fdm)").arg(p.value(model)));
+        throw UsageError(QStringLiteral("fit: unknown --model '%1' (known: fdm, mlr, ridge, exp, synthetic, dynamic)").arg(p.value(model)));
     if (p.positionalArguments().isEmpty())
         throw UsageError(QStringLiteral("fit: name at least one SESSION id (see 'driftlab-cli fit --help')"));
     bool ok = false;

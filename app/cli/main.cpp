@@ -9,7 +9,9 @@
 #include "ListCommand.h"
 #include "PlotCommand.h"
 #include "RecordCommand.h"
+#include "SelectPointsCommand.h"
 #include "SimulateCommand.h"
+#include "ValidateCommand.h"
 
 #include <QApplication>
 #include <QCoreApplication>
@@ -36,6 +38,8 @@ std::vector<std::unique_ptr<CliCommand>> commands()
     list.push_back(std::make_unique<FitCommand>());
     list.push_back(std::make_unique<SimulateCommand>());
     list.push_back(std::make_unique<DiagnoseCommand>());
+    list.push_back(std::make_unique<SelectPointsCommand>());
+    list.push_back(std::make_unique<ValidateCommand>());
     return list;
 }
 
@@ -44,7 +48,7 @@ void usage(QTextStream &out, const std::vector<std::unique_ptr<CliCommand>> &lis
     out << "Usage: driftlab-cli COMMAND [options]\n"
            "       driftlab-cli COMMAND --help\n\nCommands:\n";
     for (const auto &c : list)
-        out << "  " << c->name().leftJustified(10) << c->summary().section(QLatin1Char('\n'), 0, 0) << '\n';
+        out << "  " << c->name().leftJustified(14) << c->summary().section(QLatin1Char('\n'), 0, 0) << '\n';
     out << "\nExit codes: 0 done, 1 failed, 2 bad usage or bad input.\n";
 }
 
