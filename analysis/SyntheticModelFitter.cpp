@@ -155,20 +155,40 @@ SyntheticFit SyntheticModelFitter::fit(const SignalTable &table, const Synthetic
     const double t0 = samples.front().temp;
     double pRef = 0.0, p0 = 0.0;
     if (position) {
-        // Linear in position over all points -> P0; P_ref = the target with the largest mean |E|.
-        Eigen::MatrixXd X(static_cast<Eigen::Index>(samples.size()), 2);
-        Eigen::VectorXd Y(X.rows());
+        // Eq. (22): linear in position at the last training run (runs split where the time
+        // between consecutive points exceeds 5x the median) -> P0 and R^2; P_ref = the target
+        // with the largest mean |E| over all runs.
+        std::vector<std::size_t> order(samples.size());
+        for (std::size_t i = 0; i < order.size(); ++i)
+            order[i] = i;
+        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return samples[a].t < samples[b].t; });
+        std::vector<double> gaps;
+        for (std::size_t i = 1; i < order.size(); ++i)
+            gaps.push_back(samples[order[i]].t - samples[order[i - 1]].t);
+        std::vector<double> sorted = gaps;
+        std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+        const double split = 5.0 * std::max(sorted[sorted.size() / 2], 1e-9);
+        std::size_t runStart = 0;
+        for (std::size_t i = 1; i < order.size(); ++i)
+            if (gaps[i - 1] > split)
+                runStart = i;
         std::map<double, std::pair<double, int>> byTarget;
-        for (std::size_t i = 0; i < samples.size(); ++i) {
-            X(static_cast<Eigen::Index>(i), 0) = 1.0;
-            X(static_cast<Eigen::Index>(i), 1) = samples[i].p;
-            Y(static_cast<Eigen::Index>(i)) = samples[i].e;
-            auto &acc = byTarget[samples[i].p];
-            acc.first += std::fabs(samples[i].e);
+        for (const Sample &s : samples) {
+            auto &acc = byTarget[s.p];
+            acc.first += std::fabs(s.e);
             ++acc.second;
         }
-        if (byTarget.size() < 2)
-            throw std::invalid_argument("synthetic: the interferometer points need at least two target positions");
+        if (byTarget.size() < 2 || order.size() - runStart < 2)
+            throw std::invalid_argument("synthetic: the interferometer points need at least two target positions per run");
+        const Eigen::Index nRun = static_cast<Eigen::Index>(order.size() - runStart);
+        Eigen::MatrixXd X(nRun, 2);
+        Eigen::VectorXd Y(nRun);
+        for (Eigen::Index i = 0; i < nRun; ++i) {
+            const Sample &s = samples[order[runStart + static_cast<std::size_t>(i)]];
+            X(i, 0) = 1.0;
+            X(i, 1) = s.p;
+            Y(i) = s.e;
+        }
         const Eigen::VectorXd c = X.colPivHouseholderQr().solve(Y);
         const double ss = (Y.array() - Y.mean()).square().sum();
         fit.positionLawR2 = ss > 0 ? 1.0 - (Y - X * c).squaredNorm() / ss : 0.0;

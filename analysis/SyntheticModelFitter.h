@@ -2,7 +2,7 @@
 // Seed 002's synthetic thermal-error model (section "Thermal error modelling"):
 //  - time: the error at the reference position is a second-order exponential in time,
 //    E(t) = y0 + A1 (1 - exp(-t/tau1)) + A2 (1 - exp(-t/tau2)) (eq. 21; reported, R^2);
-//  - position: linear with a zero-error point P0 (eq. 22);
+//  - position: linear with a zero-error point P0 (eq. 22; its R^2 at the last training run);
 //  - temperature: exponential in the screw characteristic temperature T, the mean of the
 //    temperature inputs (eq. 20, 23-25): g(T) = c + a (exp(b (T - T0)) - 1), T0 = T at the
 //    first training sample;
@@ -42,7 +42,7 @@ struct SyntheticFit {
     // Eq. (21) at the reference position (or of the displacement): y0, A1, tau1_s, A2, tau2_s.
     std::vector<double> timeLaw;
     double timeLawR2 = 0.0;
-    double positionLawR2 = 0.0;  // linear in position over the training points (interferometer)
+    double positionLawR2 = 0.0;  // eq. (22), linear in position at the last training run (interferometer)
 };
 
 class SyntheticModelFitter {
