@@ -84,7 +84,8 @@ struct Solution {
     MatrixXd DCD;
 };
 
-Solution solve(const Sums &t, double lambda)
+// prior(j) > 0: the feature's fixed scale; otherwise its standard deviation over these samples.
+Solution solve(const Sums &t, double lambda, const VectorXd &prior)
 {
     Solution r;
     const Index p = t.s.size();
@@ -93,7 +94,7 @@ Solution solve(const Sums &t, double lambda)
     const MatrixXd C = t.S - t.n * r.mu * r.mu.transpose();
     r.d.resize(p);
     for (Index j = 0; j < p; ++j) {
-        const double sd = std::sqrt(std::max(0.0, C(j, j) / t.n));
+        const double sd = prior(j) > 0 ? prior(j) : std::sqrt(std::max(0.0, C(j, j) / t.n));
         r.d(j) = sd > 1e-12 ? 1.0 / sd : 0.0; // a feature constant over these samples gets no weight
     }
     r.DCD = r.d.asDiagonal() * C * r.d.asDiagonal();
@@ -170,10 +171,10 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
         if (!(sd > 1e-9 * (1.0 + std::fabs(mean))))
             throw std::invalid_argument("input '" + inputs[i]->id + "' is constant over the training samples");
         offset[i] = mean;
-        scale[i] = sd;
+        scale[i] = std::max(sd, o.scaleFloor);
         z[i].resize(N);
         for (std::size_t k = 0; k < N; ++k)
-            z[i][k] = (h[k] - mean) / sd;
+            z[i][k] = (h[k] - mean) / scale[i];
     }
     double driveScale = 1.0;
     std::vector<double> driveHeld;
@@ -255,6 +256,11 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
                             throw std::invalid_argument("dynamic: lag time constants must be >= 0");
                     structures.push_back({m, tl, dl});
                 }
+        // The drive alone (no temperatures): seed 001's virtual sensor as a lag bank.
+        if (drive)
+            for (const std::vector<double> &dl : o.driveLags)
+                if (!dl.empty())
+                    structures.push_back({0, {}, dl});
     } else {
         structures.push_back({});
     }
@@ -287,6 +293,14 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
         return X;
     };
 
+    // Scales of the features in the ridge penalty: 0 = the feature's own standard deviation.
+    auto priorScale = [&](const Structure &s, Index columns) {
+        VectorXd prior = VectorXd::Zero(columns);
+        if (s.components > 0 && !o.standardizeComponents)
+            prior.head(static_cast<Index>(s.temperatureLags.size()) * s.components).setOnes();
+        return prior;
+    };
+
     std::vector<double> times(rows.size());
     for (std::size_t r = 0; r < rows.size(); ++r)
         times[r] = table.t[rows[r]];
@@ -300,6 +314,7 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
     for (std::size_t si = 0; si < structures.size(); ++si) {
         const Structure &s = structures[si];
         const MatrixXd X = design(s);
+        const VectorXd prior = priorScale(s, X.cols());
         const Sums total = sums(X, y, 0, n);
         std::vector<Sums> train;
         for (const TimeBlockedFold &f : folds)
@@ -316,7 +331,7 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
             double sse = 0.0, count = 0.0;
             for (std::size_t fi = 0; fi < folds.size(); ++fi) {
                 const TimeBlockedFold &f = folds[fi];
-                const Solution sol = solve(train[fi], lambda);
+                const Solution sol = solve(train[fi], lambda, prior);
                 const Index b = static_cast<Index>(f.begin), len = static_cast<Index>(f.end - f.begin);
                 const VectorXd e = y.segment(b, len) - (X.middleRows(b, len) * sol.c).array().matrix() -
                                    VectorXd::Constant(len, sol.intercept);
@@ -348,7 +363,7 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
     // Final fit on every training sample.
     const MatrixXd X = design(bestStructure);
     const Sums total = sums(X, y, 0, n);
-    const Solution sol = solve(total, best.lambda);
+    const Solution sol = solve(total, best.lambda, priorScale(bestStructure, X.cols()));
     const VectorXd residual = y - X * sol.c - VectorXd::Constant(n, sol.intercept);
     // Degrees of freedom and the sandwich covariance of the standardised coefficients.
     const Eigen::CompleteOrthogonalDecomposition<MatrixXd> Ainv(sol.A);
@@ -366,15 +381,16 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
     DataDrivenModel &model = fit.model;
     model.kind = o.kind;
     model.target = {target.id, target.unit, target.kind};
-    for (const SignalColumn *c : inputs)
-        model.inputs.push_back({c->id, c->unit, c->kind});
-    if (drive)
+    const std::size_t nTl = bestStructure.temperatureLags.size();
+    if (nTl > 0)
+        for (const SignalColumn *c : inputs)
+            model.inputs.push_back({c->id, c->unit, c->kind});
+    if (drive && !bestStructure.driveLags.empty())
         model.inputs.push_back({drive->id, drive->unit, drive->kind});
     model.samplePeriod_s = SignalTable::medianInterval(times);
     const Index p = X.cols();
     std::vector<VectorXd> mapRows;
-    const std::size_t nTl = bestStructure.temperatureLags.size();
-    for (Index i = 0; i < nT; ++i) {
+    for (Index i = 0; i < (nTl > 0 ? nT : 0); ++i) {
         ModelTerm term;
         term.input = static_cast<int>(i);
         term.offset = offset[static_cast<std::size_t>(i)];
@@ -399,7 +415,7 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
         if (bestStructure.driveLags.empty())
             break;
         ModelTerm term;
-        term.input = static_cast<int>(nT);
+        term.input = static_cast<int>(model.inputs.size()) - 1;
         term.power = power;
         term.offset = 0.0;
         term.scale = driveScale;
@@ -428,10 +444,8 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
 
     // Training metrics through the predictor (the same code a controller runs).
     std::vector<std::vector<double>> columns;
-    for (const SignalColumn *c : inputs)
-        columns.push_back(c->v);
-    if (drive)
-        columns.push_back(drive->v);
+    for (const ModelChannel &c : model.inputs)
+        columns.push_back(table.column(c.id).v);
     const std::vector<double> predicted = DataDrivenPredictor::run(model, table.t, columns);
     std::vector<char> mask(N, 0);
     for (std::size_t r : rows)

@@ -4,12 +4,14 @@
 //    intercept);
 //  - ridge: ridge regression on the given channels, the penalty from time-blocked
 //    cross-validation;
-//  - dynamic: DriftLab's own model. The z-scored temperatures are reduced to their first m
-//    principal components (over the training samples), which pass through a bank of
+//  - dynamic: DriftLab's own model. The temperatures, centred and scaled by their standard
+//    deviation but at least scaleFloor (0.5 K), are reduced to their first m principal
+//    components (over the training samples), which pass through a bank of
 //    first-order lags (time constants 0 = no lag and a few of 15 min .. 4 h); the drive (spindle
 //    speed or feed, scaled to its training maximum) enters as v and v^2 (heat generation
 //    a v + b v^2 spans the load term ~ v and the viscous term ~ v^(5/3) of bearing friction)
-//    through a second lag bank. m, both banks and the ridge penalty are chosen by time-blocked
+//    through a second lag bank (or the drive alone, m = 0, no temperatures: seed 001's virtual
+//    sensor as a lag bank). m, both banks and the ridge penalty are chosen by time-blocked
 //    cross-validation on the training samples only. Since lags and the projection are linear,
 //    the result is stored as per-channel lag coefficients (DataDrivenModel terms).
 //
@@ -40,6 +42,10 @@ struct LinearLagOptions {
     std::vector<int> components{2, 3, 4, 5, 6, 8};
     int folds = 4;
     double gap_s = -1.0;               // < 0: TimeBlockedFolds::defaultGap
+    // Inputs are scaled by max(standard deviation, floor) (K for temperatures): a channel that
+    // barely moves is not blown up to the weight of one that carries the thermal load.
+    double scaleFloor = 0.5;
+    bool standardizeComponents = true; // dynamic: penalise the components per standard deviation
 };
 
 struct CvCandidate {

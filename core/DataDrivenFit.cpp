@@ -324,12 +324,14 @@ DataDrivenFitResult DataDrivenFit::fit(const DataDrivenFitRequest &q, const Prog
         o.drive = drive.toStdString();
         o.trainRows = trainRows;
         o.folds = q.folds;
+        o.scaleFloor = q.scaleFloor_K;
         const LinearLagFit f = LinearLagFitter::fit(table, o, sub);
         result.model = f.model;
         result.cvRmse = f.chosen.cvRmse;
         trainingMetrics = f.training;
         hyper = QJsonObject{{QStringLiteral("folds"), f.folds},
                             {QStringLiteral("gap_s"), f.gap_s},
+                            {QStringLiteral("scale_floor"), o.scaleFloor},
                             {QStringLiteral("chosen"), candidateJson(f.chosen)}};
         if (q.model == QLatin1String("dynamic")) {
             QJsonArray searched;

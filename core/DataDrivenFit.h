@@ -47,6 +47,7 @@ struct DataDrivenFitRequest {
     std::optional<HourRange> holdoutRange;
     int kMin = 2, kMax = 8;
     int folds = 4;
+    double scaleFloor_K = 0.5; // dynamic: inputs scaled by max(standard deviation, floor)
 };
 
 struct ValidationSeries {

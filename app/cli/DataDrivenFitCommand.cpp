@@ -95,10 +95,13 @@ int DataDrivenFitCommand::run(const QStringList &args)
                                     QStringLiteral("K:K"), QStringLiteral("2:8"));
     const QCommandLineOption folds(QStringLiteral("folds"), QStringLiteral("Time-blocked CV folds (default 4)."),
                                    QStringLiteral("n"), QStringLiteral("4"));
+    const QCommandLineOption floor(QStringLiteral("scale-floor"),
+                                   QStringLiteral("dynamic: scale inputs by max(standard deviation, FLOOR) (default 0.5 K)."),
+                                   QStringLiteral("K"), QStringLiteral("0.5"));
     const QCommandLineOption out(QStringLiteral("out"), QStringLiteral("MODEL.json to write."), QStringLiteral("file"));
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
                                   QStringLiteral("file"));
-    p.addOptions({db, model, target, points, drive, train, holdout, holdoutRange, kRange, folds, out, json});
+    p.addOptions({db, model, target, points, drive, train, holdout, holdoutRange, kRange, folds, floor, out, json});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id to fit."));
     if (!parse(p, args))
         return 0;
@@ -118,6 +121,9 @@ int DataDrivenFitCommand::run(const QStringList &args)
     if (!ok || q.folds < 2 || q.folds > 20)
         throw UsageError(QStringLiteral("fit: --folds must be an integer in [2, 20], got '%1'").arg(p.value(folds)));
     parseKRange(p.value(kRange), q.kMin, q.kMax, cmd);
+    q.scaleFloor_K = p.value(floor).toDouble(&ok);
+    if (!ok || q.scaleFloor_K < 0 || q.scaleFloor_K > 100)
+        throw UsageError(QStringLiteral("fit: --scale-floor must be a number in [0, 100], got '%1'").arg(p.value(floor)));
     if (p.isSet(points)) {
         if (p.value(points) == QLatin1String("auto"))
             q.autoPoints = true;
