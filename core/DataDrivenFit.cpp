@@ -153,6 +153,11 @@ QJsonObject DataDrivenFit::selectionJson(const SelectionResult &r)
     for (const ExcludedChannel &e : r.excluded)
         excluded.append(QJsonObject{{QStringLiteral("channel"), QString::fromStdString(e.id)},
                                     {QStringLiteral("reason"), QString::fromStdString(e.reason)}});
+    QJsonArray matrix;
+    const std::size_t n = r.channels.size();
+    for (std::size_t i = 0; i < n && r.correlationMatrix.size() == n * n; ++i)
+        matrix.append(jsonNumbers(std::vector<double>(r.correlationMatrix.begin() + static_cast<std::ptrdiff_t>(i * n),
+                                                      r.correlationMatrix.begin() + static_cast<std::ptrdiff_t>((i + 1) * n))));
     QJsonArray clusters;
     for (const std::vector<int> &members : r.clusters) {
         QJsonArray m;
@@ -170,6 +175,7 @@ QJsonObject DataDrivenFit::selectionJson(const SelectionResult &r)
                        {QStringLiteral("channels"), channels},
                        {QStringLiteral("chosen"), jsonStrings(r.chosen)},
                        {QStringLiteral("excluded"), excluded},
+                       {QStringLiteral("correlation_matrix"), matrix},
                        {QStringLiteral("rule"), QString::fromStdString(r.rule)}};
 }
 

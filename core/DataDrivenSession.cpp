@@ -44,7 +44,7 @@ QStringList DataDrivenSession::screwTemperatureChannels() const
     QStringList out;
     for (const ChannelInfo &c : m_channels)
         if (c.kind == QLatin1String("temperature") &&
-            (c.role == QLatin1String("screw") || c.location == QLatin1String("screw") || c.screwPosition_m.has_value()))
+            (c.role == QLatin1String("screw") || c.role == QLatin1String("screw_surface") || c.location == QLatin1String("screw")))
             out << c.key;
     return out;
 }

@@ -29,7 +29,7 @@ public:
     QStringList temperatureChannels() const;
     // The channel with role spindle or feed_rate, else the first of kind feed; empty if none.
     QString driveChannel() const;
-    // Temperature channels on the screw (role or location "screw"), for seed 002's
+    // Temperature channels on the screw (role screw or screw_surface, or location screw), for seed 002's
     // characteristic temperature.
     QStringList screwTemperatureChannels() const;
 

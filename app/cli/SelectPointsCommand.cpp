@@ -1,5 +1,6 @@
 #include "SelectPointsCommand.h"
 
+#include "AnalysisPlots.h"
 #include "CliSupport.h"
 #include "DataDrivenFit.h"
 #include "DataDrivenFitCommand.h"
@@ -61,7 +62,7 @@ int SelectPointsCommand::run(const QStringList &args)
     }
     QJsonObject result = DataDrivenFit::selectionJson(r);
     result.insert(QStringLiteral("session"), session);
-    store.addAnalysisResult(session, resultKind(), result);
+    store.addAnalysisResult(session, AnalysisPlots::selectionResultKind(), result);
     if (p.isSet(json))
         CliSupport::writeJson(QJsonDocument(result), p.value(json));
     if (!p.isSet(json) || p.value(json) != QLatin1String("-")) {

@@ -11,7 +11,6 @@ public:
     QString name() const override { return QStringLiteral("select-points"); }
     QString summary() const override;
     int run(const QStringList &args) override;
-    static QString resultKind() { return QStringLiteral("sensitive-points"); }
 };
 
 } // namespace driftlab
