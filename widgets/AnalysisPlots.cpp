@@ -112,8 +112,8 @@ std::unique_ptr<QwtPlot> gradesPlot(const QJsonObject &selection, QWidget *paren
         symbol->setFrameStyle(QwtColumnSymbol::Plain);
         symbol->setPalette(QPalette(clusterColours().at((it.key() - 1) % clusterColours().size())));
         bars->setSymbol(symbol);
-        bars->setLayoutPolicy(QwtPlotBarChart::FixedSampleSize);
-        bars->setLayoutHint(0.7);
+        bars->setLayoutPolicy(QwtPlotBarChart::ScaleSamplesToAxes);
+        bars->setLayoutHint(0.7); // 70 % of the space between channels
         bars->setLegendMode(QwtPlotBarChart::LegendChartTitle);
         bars->attach(plot.get());
     }
@@ -209,15 +209,18 @@ std::unique_ptr<QwtPlot> pointsPlot(const QJsonObject &selection, const SessionS
         wanted << c.toString();
     const QString target = selection.value(QStringLiteral("target")).toString();
     const double from = selection.value(QStringLiteral("from_s")).toDouble(), to = selection.value(QStringLiteral("to_s")).toDouble();
+    QString targetTitle = target;
     for (const QString &id : wanted + QStringList{target}) {
         for (const ChannelInfo &c : store->channels(session)) {
             if (c.key != id)
                 continue;
             const SampleBlock b = store->samples(c.id, from, to);
             plot->addCurve(QStringLiteral("%1 [%2]").arg(c.key, c.unit), b.t, b.v, id == target);
+            if (id == target)
+                targetTitle = QStringLiteral("%1 (%2)").arg(c.key, c.unit);
         }
     }
-    plot->setAxisTitles(QObject::tr("chosen temperatures (°C)"), QObject::tr("%1").arg(target));
+    plot->setAxisTitles(QObject::tr("chosen temperatures (°C)"), targetTitle);
     plot->setTitle(QObject::tr("Sensitive points chosen for %1: %2").arg(target, wanted.join(QStringLiteral(", "))));
     plot->zoomToData();
     return plot;
@@ -278,6 +281,7 @@ void AnalysisPlots::showPrediction(TimeSeriesPlot &plot, const ValidationSeries 
         add(QObject::tr("predicted (%1)").arg(where), holdout->t, holdout->predicted);
     }
     plot.setAxisTitles(QObject::tr("displacement (µm)"), QString());
+    plot.enableAxis(QwtPlot::yRight, false);
     plot.zoomToData();
 }
 
@@ -294,6 +298,7 @@ void AnalysisPlots::showResidual(TimeSeriesPlot &plot, const ValidationSeries &t
     if (holdout)
         plot.addCurve(QObject::tr("residual (held out)"), vec(holdout->t), vec(residual(*holdout)), false);
     plot.setAxisTitles(QObject::tr("measured - predicted (µm)"), QString());
+    plot.enableAxis(QwtPlot::yRight, false);
     plot.zoomToData();
 }
 

@@ -2,6 +2,7 @@
 
 #include "AcquisitionPanel.h"
 #include "BundleTransfer.h"
+#include "AnalysisPanel.h"
 #include "DiagnosisPanel.h"
 #include "ModelsPanel.h"
 #include "PlotExporter.h"
@@ -45,7 +46,8 @@ MainWindow::MainWindow(QWidget *parent)
       m_comparison(new ReviewWorkspace(this)),
       m_acquisition(new AcquisitionPanel(this)),
       m_models(new ModelsPanel(this)),
-      m_diagnosis(new DiagnosisPanel(this))
+      m_diagnosis(new DiagnosisPanel(this)),
+      m_analysis(new AnalysisPanel(this))
 {
     setObjectName(QStringLiteral("DriftLabMainWindow"));
     setWindowTitle(tr("DriftLab"));
@@ -75,12 +77,19 @@ MainWindow::MainWindow(QWidget *parent)
     addDockWidget(Qt::BottomDockWidgetArea, diagnosis);
     tabifyDockWidget(models, diagnosis);
     diagnosis->hide();
+    auto *analysis = new QDockWidget(tr("Analysis"), this); // sensitive points and data-driven models
+    analysis->setObjectName(QStringLiteral("AnalysisDock"));
+    analysis->setWidget(m_analysis);
+    addDockWidget(Qt::BottomDockWidgetArea, analysis);
+    tabifyDockWidget(diagnosis, analysis);
+    analysis->hide();
     buildMenus();
     QMenu *viewMenu = menuBar()->findChild<QMenu *>(QStringLiteral("ViewMenu"));
     viewMenu->addAction(dock->toggleViewAction());
     viewMenu->addAction(acquisition->toggleViewAction());
     viewMenu->addAction(models->toggleViewAction());
     viewMenu->addAction(diagnosis->toggleViewAction());
+    viewMenu->addAction(analysis->toggleViewAction());
     // A finished recording appears in the session list (opening its database if needed).
     connect(m_acquisition, &AcquisitionPanel::recordingStopped, this, [this](qint64 id) {
         const QString db = m_acquisition->databasePath();
@@ -177,12 +186,13 @@ bool MainWindow::openDatabase(const QString &path)
 {
     try {
         auto store = std::make_unique<SessionStore>(path);
-        if (m_models->running() || m_diagnosis->running()) {
+        if (m_models->running() || m_diagnosis->running() || m_analysis->running()) {
             reportError(tr("A model fit or diagnosis is running on the open database; cancel it first"));
             return false;
         }
         m_models->setStore(nullptr);
         m_diagnosis->setStore(nullptr);
+        m_analysis->setStore(nullptr);
         m_workspace->clear();
         m_comparison->clear();
         m_comparison->hide();
@@ -205,6 +215,8 @@ void MainWindow::refreshSessions(qint64 select)
         m_models->setStore(m_store.get());
     if (!m_diagnosis->running())
         m_diagnosis->setStore(m_store.get());
+    if (!m_analysis->running())
+        m_analysis->setStore(m_store.get());
     m_browser->setSessions(sessions);
     if (sessions.isEmpty())
         return;

@@ -15,6 +15,7 @@ class QSplitter;
 namespace driftlab {
 
 class AcquisitionPanel;
+class AnalysisPanel;
 class DiagnosisPanel;
 class ModelsPanel;
 class ReviewWorkspace;
@@ -43,6 +44,7 @@ public:
     AcquisitionPanel *acquisition() const { return m_acquisition; }
     ModelsPanel *models() const { return m_models; }
     DiagnosisPanel *diagnosis() const { return m_diagnosis; }
+    AnalysisPanel *analysis() const { return m_analysis; }
     SessionBrowser *browser() const { return m_browser; }
     qint64 currentSession() const { return m_sessionId; }
     QString lastError() const { return m_lastError; }
@@ -73,6 +75,7 @@ private:
     AcquisitionPanel *m_acquisition;
     ModelsPanel *m_models;
     DiagnosisPanel *m_diagnosis;
+    AnalysisPanel *m_analysis;
     QMenu *m_recentMenu = nullptr;
     qint64 m_sessionId = 0;
     QString m_lastError;

@@ -1,5 +1,6 @@
 // driftlab: the DriftLab desktop application.
 
+#include "AnalysisPanel.h"
 #include "DiagnosisPanel.h"
 #include "MainWindow.h"
 #include "ModelsPanel.h"
@@ -15,6 +16,8 @@
 #include <QStandardPaths>
 #include <QTextStream>
 #include <QTimer>
+
+#include <cmath>
 
 using namespace driftlab;
 
@@ -50,7 +53,12 @@ int main(int argc, char **argv)
     const QCommandLineOption diagnose(QStringLiteral("diagnose"),
                                       QStringLiteral("Open the Diagnosis dock and diagnose: TRAIN:VALIDATE session ids."),
                                       QStringLiteral("ids"));
-    p.addOptions({db, session, screenshot, view, compare, fit, diagnose});
+    const QCommandLineOption analysis(QStringLiteral("analysis"),
+                                      QStringLiteral("Open the Analysis dock: select sensitive points of TARGET in session ID, "
+                                                     "then fit the data-driven models on hours 0..TRAIN_H and validate on the "
+                                                     "rest: ID:TARGET[:TRAIN_H[:select]] ('select': stop after the selection)."),
+                                      QStringLiteral("spec"));
+    p.addOptions({db, session, screenshot, view, compare, fit, diagnose, analysis});
     p.process(app);
 
     QTextStream err(stderr);
@@ -115,7 +123,27 @@ int main(int argc, char **argv)
         if (!diagnosing)
             err << "driftlab: cannot diagnose: " << window.diagnosis()->lastError() << '\n';
     }
-    if (p.isSet(screenshot) && diagnosing) {
+    bool analysing = false;
+    if (p.isSet(analysis)) {
+        const QStringList a = p.value(analysis).split(QLatin1Char(':'));
+        if (QDockWidget *dock = window.findChild<QDockWidget *>(QStringLiteral("AnalysisDock")))
+            dock->show();
+        window.resize(1700, 1200);
+        analysing = a.size() >= 2 && window.analysis()->startWorkflow(a.at(0).toLongLong(), a.at(1),
+                                                                        a.size() > 2 ? a.at(2).toDouble() : std::nan(""),
+                                                                        a.size() > 3 && a.at(3) == QLatin1String("select"));
+        if (!analysing)
+            err << "driftlab: cannot analyse: " << window.analysis()->lastError() << '\n';
+    }
+    if (p.isSet(screenshot) && analysing) {
+        QObject::connect(window.analysis(), &AnalysisPanel::workflowFinished, &window, [&window, &err, png = p.value(screenshot)] {
+            QTimer::singleShot(300, &window, [&window, &err, png] {
+                const bool ok = window.grab().save(png, "PNG");
+                err << "driftlab: screenshot " << (ok ? "written to " : "FAILED: ") << png << '\n';
+                QApplication::exit(ok ? 0 : 1);
+            });
+        });
+    } else if (p.isSet(screenshot) && diagnosing) {
         QObject::connect(window.diagnosis(), &DiagnosisPanel::finished, &window, [&window, &err, png = p.value(screenshot)] {
             QTimer::singleShot(300, &window, [&window, &err, png] {
                 const bool ok = window.grab().save(png, "PNG");
