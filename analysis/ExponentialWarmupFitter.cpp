@@ -35,11 +35,20 @@ void response(const Data &d, const std::vector<std::size_t> &rows, double tauWar
     const std::vector<double> &t = *d.t;
     double x = 0.0;
     std::size_t r = 0;
+    // exp(-dt/tau) for the last (dt, tau): most steps repeat the same sample period.
+    double lastDt = -1.0, lastTau = -1.0, keep = 0.0;
     for (std::size_t k = 0; k <= rows.back(); ++k) {
         if (k > 0) {
             const bool on = d.v[k] > d.threshold;
-            const double goal = on ? std::pow(d.v[k] / d.reference, p) : 0.0;
-            x = DataDrivenPredictor::lagStep(x, goal, t[k] - t[k - 1], on ? tauWarm : tauCool);
+            const double ratio = d.v[k] / d.reference;
+            const double goal = on ? (p == 1.0 ? ratio : std::pow(ratio, p)) : 0.0;
+            const double dt = t[k] - t[k - 1], tau = on ? tauWarm : tauCool;
+            if (dt != lastDt || tau != lastTau) {
+                keep = std::exp(-dt / tau);
+                lastDt = dt;
+                lastTau = tau;
+            }
+            x = goal + keep * (x - goal); // DataDrivenPredictor::lagStep
         }
         if (k == rows[r])
             out[r++] = x;

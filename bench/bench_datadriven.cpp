@@ -212,6 +212,69 @@ std::vector<std::vector<double>> inputColumns(const SignalTable &t, const DataDr
     return cols;
 }
 
+// Plain reference of the ridge penalty search: for every fold and penalty, the training
+// design matrix is built, standardised and solved by QR of [X; sqrt(lambda n) I].
+double naiveRidgeSearch(const SignalTable &t, const std::vector<std::string> &inputs, const std::string &target,
+                        const std::vector<char> &train, const std::vector<double> &lambdas, int folds, double gap_s,
+                        double *bestLambda)
+{
+    std::vector<std::size_t> rows;
+    for (std::size_t k = 0; k < t.t.size(); ++k)
+        if (train[k])
+            rows.push_back(k);
+    const Eigen::Index n = static_cast<Eigen::Index>(rows.size()), p = static_cast<Eigen::Index>(inputs.size());
+    Eigen::MatrixXd X(n, p);
+    Eigen::VectorXd y(n);
+    for (Eigen::Index r = 0; r < n; ++r) {
+        for (Eigen::Index j = 0; j < p; ++j)
+            X(r, j) = t.column(inputs[static_cast<std::size_t>(j)]).v[rows[static_cast<std::size_t>(r)]];
+        y(r) = t.column(target).v[rows[static_cast<std::size_t>(r)]];
+    }
+    double best = 1e300;
+    for (double lambda : lambdas) {
+        double sse = 0;
+        for (int f = 0; f < folds; ++f) {
+            const Eigen::Index b = n * f / folds, e = n * (f + 1) / folds;
+            std::vector<Eigen::Index> idx;
+            for (Eigen::Index r = 0; r < n; ++r)
+                if (t.t[rows[static_cast<std::size_t>(r)]] < t.t[rows[static_cast<std::size_t>(b)]] - gap_s ||
+                    t.t[rows[static_cast<std::size_t>(r)]] > t.t[rows[static_cast<std::size_t>(e - 1)]] + gap_s)
+                    idx.push_back(r);
+            const Eigen::Index m = static_cast<Eigen::Index>(idx.size());
+            Eigen::MatrixXd A(m + p, p);
+            Eigen::VectorXd rhs = Eigen::VectorXd::Zero(m + p);
+            Eigen::RowVectorXd mu = Eigen::RowVectorXd::Zero(p);
+            double ybar = 0;
+            for (Eigen::Index i : idx) {
+                mu += X.row(i);
+                ybar += y(i);
+            }
+            mu /= static_cast<double>(m);
+            ybar /= static_cast<double>(m);
+            Eigen::RowVectorXd sd = Eigen::RowVectorXd::Zero(p);
+            for (Eigen::Index i : idx)
+                sd += (X.row(i) - mu).array().square().matrix();
+            sd = (sd / static_cast<double>(m)).array().sqrt().max(1e-12).matrix();
+            for (Eigen::Index i = 0; i < m; ++i) {
+                A.row(i) = (X.row(idx[static_cast<std::size_t>(i)]) - mu).cwiseQuotient(sd);
+                rhs(i) = y(idx[static_cast<std::size_t>(i)]) - ybar;
+            }
+            A.bottomRows(p) = std::sqrt(lambda * static_cast<double>(m)) * Eigen::MatrixXd::Identity(p, p);
+            const Eigen::VectorXd beta = A.householderQr().solve(rhs);
+            for (Eigen::Index r = b; r < e; ++r) {
+                const double pred = ybar + ((X.row(r) - mu).cwiseQuotient(sd)).dot(beta);
+                sse += (y(r) - pred) * (y(r) - pred);
+            }
+        }
+        const double cv = std::sqrt(sse / static_cast<double>(n));
+        if (cv < best) {
+            best = cv;
+            *bestLambda = lambda;
+        }
+    }
+    return best;
+}
+
 double heldOut(const SignalTable &t, const DataDrivenModel &m, const std::vector<char> &test)
 {
     const std::vector<double> p = DataDrivenPredictor::run(m, t.t, inputColumns(t, m));
@@ -283,11 +346,88 @@ void benchFlThermal(const std::string &path)
                     heldOut(t, fa.model, test), pts.c_str(), sel.chosenK, heldOut(t, fb.model, test),
                     heldOut(t, fc.model, test), heldOut(t, fe.model, test));
         std::printf("    CV RMSE: mlr %.2f ridge %.2f (lambda %g) dynamic %.2f (m=%d, %zu T lags, %zu drive lags, lambda %g) exp %.2f; "
-                    "time: select %.3f s, mlr %.3f s, ridge %.3f s, dynamic %.3f s, exp %.3f s\n",
+                    "time: select %.3f s, mlr %.3f s, ridge %.3f s, dynamic %.3f s, exp %.3f s (with its 4-fold CV)\n",
                     fa.chosen.cvRmse, fb.chosen.cvRmse, fb.chosen.lambda, fc.chosen.cvRmse, fc.chosen.components,
                     fc.chosen.temperatureLags_s.size(), fc.chosen.driveLags_s.size(), fc.chosen.lambda, fe.cvRmse, tSel, tA,
                     tB, tC, tE);
     }
+
+    // Speed against plain references on ch3 (46-h session, training 24 h).
+    LinearLagOptions ridge;
+    ridge.kind = "ridge";
+    ridge.target = "ch3";
+    ridge.inputs = temps;
+    ridge.trainRows = train;
+    auto a = std::chrono::steady_clock::now();
+    const LinearLagFit fr = LinearLagFitter::fit(t, ridge);
+    const double tRidge = seconds(a);
+    double refLambda = 0;
+    a = std::chrono::steady_clock::now();
+    const double refCv = naiveRidgeSearch(t, temps, "ch3", train, ridge.lambdas, 4, fr.gap_s, &refLambda);
+    const double tRidgeRef = seconds(a);
+    std::printf("ridge penalty search (16 ch, 9 penalties, 4 folds): DriftLab %.3f s (lambda %g, CV %.4f), reference "
+                "(per-fold design matrix + QR) %.3f s (lambda %g, CV %.4f), ratio %.1fx\n",
+                tRidge, fr.chosen.lambda, fr.chosen.cvRmse, tRidgeRef, refLambda, refCv, tRidgeRef / tRidge);
+    LinearLagOptions dyn = ridge;
+    dyn.kind = "dynamic";
+    dyn.drive = "spindle_rpm";
+    a = std::chrono::steady_clock::now();
+    const LinearLagFit fd = LinearLagFitter::fit(t, dyn);
+    const double tDyn = seconds(a);
+    // Reference: the same grid as independent fits, one per (structure, penalty).
+    a = std::chrono::steady_clock::now();
+    double refBest = 1e300;
+    std::size_t fits = 0;
+    for (int m : dyn.components)
+        for (const auto &tl : dyn.temperatureLags)
+            for (const auto &dl : dyn.driveLags)
+                for (double lambda : dyn.lambdas) {
+                    LinearLagOptions one = dyn;
+                    one.components = {m};
+                    one.temperatureLags = {tl};
+                    one.driveLags = {dl};
+                    one.lambdas = {lambda};
+                    refBest = std::min(refBest, LinearLagFitter::fit(t, one).chosen.cvRmse);
+                    ++fits;
+                }
+    const double tDynRef = seconds(a);
+    std::printf("dynamic structure + penalty search (%zu candidates incl. drive-only, 4 folds): DriftLab %.3f s (CV %.4f), reference "
+                "(%zu independent fits of the temperature structures) %.3f s (best CV %.4f), ratio %.1fx\n",
+                fd.structures.size() * dyn.lambdas.size(), tDyn, fd.chosen.cvRmse, fits, tDynRef, refBest, tDynRef / tDyn);
+    LinearLagOptions fixed = dyn;
+    fixed.components = {fd.chosen.components > 0 ? fd.chosen.components : 2};
+    fixed.temperatureLags = {fd.chosen.temperatureLags_s.empty() ? std::vector<double>{0.0} : fd.chosen.temperatureLags_s};
+    fixed.driveLags = {fd.chosen.driveLags_s};
+    fixed.lambdas = {fd.chosen.lambda};
+    a = std::chrono::steady_clock::now();
+    LinearLagFitter::fit(t, fixed);
+    const double tFixed = seconds(a);
+    ExponentialOptions eo;
+    eo.target = "ch3";
+    eo.drive = "spindle_rpm";
+    eo.trainRows = train;
+    eo.crossValidate = false;
+    a = std::chrono::steady_clock::now();
+    ExponentialWarmupFitter::fit(t, eo);
+    const double tExp = seconds(a);
+    std::printf("single fits (no search): dynamic with the chosen structure %.3f s, exp (seed 001) %.3f s\n", tFixed, tExp);
+
+    // Sensitivity of the held-out RMSE of (c) to the design choices (hyperparameters by CV each time).
+    std::printf("dynamic held-out RMSE (um) by input scale floor and CV folds:\n| floor | folds | ch1 | ch2 | ch3 | ch4 | ch5 |\n");
+    for (double floor : {0.0, 0.5, 1.0})
+        for (int folds : {3, 4, 5, 6}) {
+            if (floor != 0.5 && folds != 4)
+                continue;
+            std::printf("| %.1f K | %d |", floor, folds);
+            for (const char *target : {"ch1", "ch2", "ch3", "ch4", "ch5"}) {
+                LinearLagOptions o = dyn;
+                o.target = target;
+                o.scaleFloor = floor;
+                o.folds = folds;
+                std::printf(" %.2f |", heldOut(t, LinearLagFitter::fit(t, o).model, test));
+            }
+            std::printf("\n");
+        }
 }
 
 } // namespace
