@@ -26,14 +26,6 @@ namespace {
     throw std::invalid_argument(message.toStdString());
 }
 
-QJsonArray jsonNumbers(const std::vector<double> &v)
-{
-    QJsonArray a;
-    for (double x : v)
-        a.append(std::isfinite(x) ? QJsonValue(x) : QJsonValue());
-    return a;
-}
-
 QJsonArray jsonStrings(const std::vector<std::string> &v)
 {
     QJsonArray a;
@@ -63,12 +55,12 @@ QJsonObject rangeJson(const HourRange &r)
 QJsonObject candidateJson(const CvCandidate &c)
 {
     return QJsonObject{{QStringLiteral("components"), c.components},
-                       {QStringLiteral("temperature_lags_s"), jsonNumbers(c.temperatureLags_s)},
-                       {QStringLiteral("drive_lags_s"), jsonNumbers(c.driveLags_s)},
+                       {QStringLiteral("temperature_lags_s"), DataDrivenModelJson::numbers(c.temperatureLags_s)},
+                       {QStringLiteral("drive_lags_s"), DataDrivenModelJson::numbers(c.driveLags_s)},
                        {QStringLiteral("lambda"), c.lambda},
                        {QStringLiteral("features"), static_cast<double>(c.features)},
                        {QStringLiteral("cv_rmse"), c.cvRmse},
-                       {QStringLiteral("fold_rmse"), jsonNumbers(c.foldRmse)}};
+                       {QStringLiteral("fold_rmse"), DataDrivenModelJson::numbers(c.foldRmse)}};
 }
 
 QJsonObject parametersJson(const std::vector<std::string> &names, const std::vector<double> &values,
@@ -156,7 +148,7 @@ QJsonObject DataDrivenFit::selectionJson(const SelectionResult &r)
     QJsonArray matrix;
     const std::size_t n = r.channels.size();
     for (std::size_t i = 0; i < n && r.correlationMatrix.size() == n * n; ++i)
-        matrix.append(jsonNumbers(std::vector<double>(r.correlationMatrix.begin() + static_cast<std::ptrdiff_t>(i * n),
+        matrix.append(DataDrivenModelJson::numbers(std::vector<double>(r.correlationMatrix.begin() + static_cast<std::ptrdiff_t>(i * n),
                                                       r.correlationMatrix.begin() + static_cast<std::ptrdiff_t>((i + 1) * n))));
     QJsonArray clusters;
     for (const std::vector<int> &members : r.clusters) {
@@ -272,6 +264,8 @@ DataDrivenFitResult DataDrivenFit::fit(const DataDrivenFitRequest &q, const Prog
         bad(QStringLiteral("give --holdout SESSION or --holdout-range H:H, not both"));
     if (q.holdoutSession == q.session)
         bad(QStringLiteral("--holdout: the held-out session must differ from the training session"));
+    if (q.model == QLatin1String("exp") && (!q.points.isEmpty() || q.autoPoints))
+        bad(QStringLiteral("--points: the exp model (seed 001) is driven by the drive channel alone; name it with --drive"));
     for (const QString &p : q.points)
         if (!s.hasChannel(p))
             bad(QStringLiteral("--points: session %1 has no channel '%2'").arg(q.session).arg(p));
@@ -344,7 +338,7 @@ DataDrivenFitResult DataDrivenFit::fit(const DataDrivenFitRequest &q, const Prog
             for (const CvCandidate &c : f.structures)
                 searched.append(candidateJson(c));
             hyper.insert(QStringLiteral("searched"), searched);
-            hyper.insert(QStringLiteral("component_variance"), jsonNumbers(f.componentVariance));
+            hyper.insert(QStringLiteral("component_variance"), DataDrivenModelJson::numbers(f.componentVariance));
         }
         uncertainty = QJsonObject{{QStringLiteral("method"), QStringLiteral("ridge sandwich covariance, AR(1) inflation")},
                                   {QStringLiteral("residual_lag1"), f.residualLag1},
@@ -366,7 +360,7 @@ DataDrivenFitResult DataDrivenFit::fit(const DataDrivenFitRequest &q, const Prog
         hyper = QJsonObject{{QStringLiteral("folds"), q.folds},
                             {QStringLiteral("exponent_fitted"), f.exponentFitted},
                             {QStringLiteral("cv_rmse"), f.cvRmse},
-                            {QStringLiteral("fold_rmse"), jsonNumbers(f.foldRmse)},
+                            {QStringLiteral("fold_rmse"), DataDrivenModelJson::numbers(f.foldRmse)},
                             {QStringLiteral("converged"), f.converged}};
         uncertainty = QJsonObject{{QStringLiteral("method"), QStringLiteral("numerical Jacobian, AR(1) inflation")},
                                   {QStringLiteral("se_inflation"), f.seInflation},

@@ -14,14 +14,6 @@ namespace driftlab {
 
 namespace {
 
-QJsonArray numbers(const std::vector<double> &v)
-{
-    QJsonArray a;
-    for (double x : v)
-        a.append(std::isfinite(x) ? QJsonValue(x) : QJsonValue());
-    return a;
-}
-
 QJsonObject channel(const ModelChannel &c)
 {
     return QJsonObject{{QStringLiteral("channel"), QString::fromStdString(c.id)},
@@ -123,9 +115,9 @@ QJsonObject DataDrivenModelJson::toJson(const DataDrivenModel &m)
                                      {QStringLiteral("power"), t.power},
                                      {QStringLiteral("offset"), t.offset},
                                      {QStringLiteral("scale"), t.scale},
-                                     {QStringLiteral("lags_s"), numbers(t.lags_s)},
-                                     {QStringLiteral("coefficients"), numbers(t.coefficients)},
-                                     {QStringLiteral("standard_errors"), numbers(t.standardErrors)}});
+                                     {QStringLiteral("lags_s"), DataDrivenModelJson::numbers(t.lags_s)},
+                                     {QStringLiteral("coefficients"), DataDrivenModelJson::numbers(t.coefficients)},
+                                     {QStringLiteral("standard_errors"), DataDrivenModelJson::numbers(t.standardErrors)}});
         o.insert(QStringLiteral("linear"), QJsonObject{{QStringLiteral("intercept"), m.intercept},
                                                        {QStringLiteral("intercept_standard_error"), m.interceptStandardError},
                                                        {QStringLiteral("terms"), terms}});
@@ -299,6 +291,14 @@ DataDrivenModel DataDrivenModelJson::read(const QString &path, QJsonObject *docu
     if (!f.open(QIODevice::ReadOnly))
         throw std::invalid_argument(QStringLiteral("%1: cannot read: %2").arg(path, f.errorString()).toStdString());
     return parse(f.readAll(), path, document);
+}
+
+QJsonArray DataDrivenModelJson::numbers(const std::vector<double> &v)
+{
+    QJsonArray a;
+    for (double x : v)
+        a.append(std::isfinite(x) ? QJsonValue(x) : QJsonValue());
+    return a;
 }
 
 void DataDrivenModelJson::write(const QJsonObject &document, const QString &path)

@@ -11,8 +11,11 @@
 #include "DataDrivenModel.h"
 
 #include <QByteArray>
+#include <QJsonArray>
 #include <QJsonObject>
 #include <QString>
+
+#include <vector>
 
 namespace driftlab {
 
@@ -26,6 +29,8 @@ public:
     static DataDrivenModel read(const QString &path, QJsonObject *document = nullptr);
     // Writes atomically (QSaveFile); throws std::runtime_error naming the file.
     static void write(const QJsonObject &document, const QString &path);
+    // Numbers as a JSON array, NaN as null.
+    static QJsonArray numbers(const std::vector<double> &values);
 };
 
 } // namespace driftlab
