@@ -124,6 +124,36 @@ QJsonObject SessionAnalysis::toJson(const ElongationCheck &check)
     };
 }
 
+std::vector<PositioningErrorPoint> SessionAnalysis::interferometerErrors(int *referenceRunOut) const
+{
+    std::vector<PositioningErrorPoint> out;
+    const QVector<InterferometerPoint> raw = m_store.interferometerPoints(m_sessionId);
+    if (raw.isEmpty())
+        return out;
+    const std::vector<InterferometerReading> readings = InterferometerReadings::fromPoints(raw);
+    const int referenceRun = InterferometerReadings::referenceRun(m_info, readings);
+    const ThermalErrorTable table = ThermalErrorTable::build(readings, referenceRun);
+    for (const ThermalErrorTable::Cell &c : table.measurements()) {
+        if (!c.valid)
+            continue;
+        PositioningErrorPoint p;
+        p.t_s = c.time_s;
+        p.position_mm = c.position_mm;
+        p.error_um = c.thermal_um;
+        // When the reference run measured this target (nearest reference reading).
+        double best = std::numeric_limits<double>::infinity();
+        for (const InterferometerReading &r : readings)
+            if (r.run == referenceRun && std::fabs(r.position_mm - c.position_mm) < best) {
+                best = std::fabs(r.position_mm - c.position_mm);
+                p.referenceTime_s = r.time_s;
+            }
+        out.push_back(p);
+    }
+    if (referenceRunOut)
+        *referenceRunOut = referenceRun;
+    return out;
+}
+
 ScrewRecording SessionAnalysis::recording(QString *note) const
 {
     const SessionAnalysis &analysis = *this;
@@ -146,31 +176,12 @@ ScrewRecording SessionAnalysis::recording(QString *note) const
     } catch (const std::runtime_error &) {
         // no probe channel: interferometer only
     }
-    const QVector<InterferometerPoint> raw = store.interferometerPoints(sessionId);
-    if (!raw.isEmpty()) {
-        const std::vector<InterferometerReading> readings = InterferometerReadings::fromPoints(raw);
-        const int referenceRun = InterferometerReadings::referenceRun(info, readings);
-        const ThermalErrorTable table = ThermalErrorTable::build(readings, referenceRun);
-        for (const ThermalErrorTable::Cell &c : table.measurements()) {
-            if (!c.valid)
-                continue;
-            PositioningErrorPoint p;
-            p.t_s = c.time_s;
-            p.position_mm = c.position_mm;
-            p.error_um = c.thermal_um;
-            // When the reference run measured this target (nearest reference reading).
-            double best = std::numeric_limits<double>::infinity();
-            for (const InterferometerReading &r : readings)
-                if (r.run == referenceRun && std::fabs(r.position_mm - c.position_mm) < best) {
-                    best = std::fabs(r.position_mm - c.position_mm);
-                    p.referenceTime_s = r.time_s;
-                }
-            rec.interferometer.push_back(p);
-        }
+    int referenceRun = 0;
+    rec.interferometer = interferometerErrors(&referenceRun);
+    if (!rec.interferometer.empty())
         used << QStringLiteral("%1 interferometer points (reference run %2)").arg(rec.interferometer.size()).arg(referenceRun);
-    } else {
+    else
         used << QStringLiteral("no interferometer runs");
-    }
     if (note)
         *note = used.join(QStringLiteral(", "));
     return rec;

@@ -39,6 +39,8 @@ public:
     // and direction), the screw_elongation channel if present (relative to its first
     // sample). `note` receives what was used. Throws std::runtime_error for a missing drive channel.
     ScrewRecording recording(QString *note = nullptr) const;
+    // The interferometer thermal errors alone (no drive channels needed); empty without runs.
+    std::vector<PositioningErrorPoint> interferometerErrors(int *referenceRun = nullptr) const;
     // recording() plus every temperature channel by role (the candidates' drivers) and the
     // drawing's P_f from the machine block: the input of the mismatch diagnosis.
     DiagnosisRecording diagnosisRecording(QString *note = nullptr) const;

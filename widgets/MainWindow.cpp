@@ -3,6 +3,7 @@
 #include "AcquisitionPanel.h"
 #include "BundleTransfer.h"
 #include "CsvImportDialog.h"
+#include "AnalysisPanel.h"
 #include "DiagnosisPanel.h"
 #include "DuplicateSessionError.h"
 #include "ErrorSurface3D.h"
@@ -65,7 +66,8 @@ MainWindow::MainWindow(QWidget *parent)
       m_acquisition(new AcquisitionPanel(this)),
       m_models(new ModelsPanel(this)),
       m_diagnosis(new DiagnosisPanel(this)),
-      m_undo(new QUndoStack(this))
+      m_undo(new QUndoStack(this)),
+      m_analysis(new AnalysisPanel(this))
 {
     setObjectName(QStringLiteral("DriftLabMainWindow"));
     setWindowTitle(tr("DriftLab"));
@@ -95,7 +97,11 @@ MainWindow::MainWindow(QWidget *parent)
                                           Qt::BottomDockWidgetArea, QKeySequence(Qt::CTRL + Qt::Key_4));
     tabifyDockWidget(models, diagnosis);
     diagnosis->hide();
-    // Further docks (analysis, rig setup, ...): addPanelDock(...) here.
+    QDockWidget *analysis = addPanelDock(tr("Analysis"), QStringLiteral("AnalysisDock"), m_analysis,
+                                         Qt::BottomDockWidgetArea, QKeySequence(Qt::CTRL + Qt::Key_5));
+    tabifyDockWidget(diagnosis, analysis); // sensitive points and data-driven models
+    analysis->hide();
+    // Further docks (rig setup, ...): addPanelDock(...) here.
 
     // A finished recording appears in the session list of the database it went to.
     connect(m_acquisition, &AcquisitionPanel::recordingStopped, this, [this](qint64 id) {
@@ -287,7 +293,7 @@ bool MainWindow::newDatabase(const QString &path)
 
 bool MainWindow::openDatabase(const QString &path)
 {
-    if (m_models->running() || m_diagnosis->running()) {
+    if (m_models->running() || m_diagnosis->running() || m_analysis->running()) {
         reportError(tr("A model fit or diagnosis is running on the open database; cancel it first"));
         return false;
     }
@@ -296,6 +302,7 @@ bool MainWindow::openDatabase(const QString &path)
         m_undo->clear();
         m_models->setStore(nullptr);
         m_diagnosis->setStore(nullptr);
+        m_analysis->setStore(nullptr);
         m_workspace->clear();
         m_comparison->clear();
         m_comparison->hide();
@@ -320,6 +327,8 @@ void MainWindow::refreshSessions(qint64 select)
         m_models->setStore(m_store.get());
     if (!m_diagnosis->running())
         m_diagnosis->setStore(m_store.get());
+    if (!m_analysis->running())
+        m_analysis->setStore(m_store.get());
     m_browser->setSessions(sessions);
     if (sessions.isEmpty()) {
         m_workspace->clear();
@@ -486,7 +495,7 @@ bool MainWindow::deleteSession(qint64 sessionId)
 {
     if (!m_store)
         return false;
-    if (m_models->running() || m_diagnosis->running()) {
+    if (m_models->running() || m_diagnosis->running() || m_analysis->running()) {
         reportError(tr("A model fit or diagnosis is running; cancel it before deleting sessions"));
         return false;
     }

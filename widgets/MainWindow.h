@@ -19,6 +19,7 @@ class QUndoStack;
 namespace driftlab {
 
 class AcquisitionPanel;
+class AnalysisPanel;
 class DiagnosisPanel;
 class ModelsPanel;
 class ReviewWorkspace;
@@ -67,6 +68,7 @@ public:
     AcquisitionPanel *acquisition() const { return m_acquisition; }
     ModelsPanel *models() const { return m_models; }
     DiagnosisPanel *diagnosis() const { return m_diagnosis; }
+    AnalysisPanel *analysis() const { return m_analysis; }
     SessionBrowser *browser() const { return m_browser; }
     QUndoStack *undoStack() const { return m_undo; }
     const SessionStore *store() const { return m_store.get(); }
@@ -109,6 +111,7 @@ private:
     ModelsPanel *m_models;
     DiagnosisPanel *m_diagnosis;
     QUndoStack *m_undo;
+    AnalysisPanel *m_analysis;
     QMenu *m_recentMenu = nullptr;
     QMenu *m_viewMenu = nullptr;
     QAction *m_viewDocksEnd = nullptr;

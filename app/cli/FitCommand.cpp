@@ -2,6 +2,7 @@
 
 #include "CliSupport.h"
 #include "ParameterPlausibility.h"
+#include "DataDrivenFitCommand.h"
 #include "SessionAnalysis.h"
 #include "SessionStore.h"
 #include "ThermalErrorTable.h"
@@ -81,7 +82,8 @@ QString FitCommand::summary() const
         "'simulate --model'. The fitted model is stored with each session.\n"
         "Parameters are flagged IMPLAUSIBLE outside physical ranges (lambda 22.5-90 W/(m K), k2 8-150\n"
         "W/(m^2 K), P_f within 30 mm of the drawing) or at a bound (k3 = 0, k4 = 0, ...), and POORLY\n"
-        "IDENTIFIED when the standard error exceeds a third of the value (the same rules as 'diagnose').");
+        "IDENTIFIED when the standard error exceeds a third of the value (the same rules as 'diagnose').\n"
+        "Data-driven models: --model mlr|ridge|exp|synthetic|dynamic (see 'fit --model dynamic --help').");
 }
 
 QJsonObject FitCommand::modelJson(const IdentificationResult &r, const ScrewGeometry &g, const IdentificationOptions &o)
@@ -134,6 +136,8 @@ QJsonObject FitCommand::modelJson(const IdentificationResult &r, const ScrewGeom
 
 int FitCommand::run(const QStringList &args)
 {
+    if (DataDrivenFitCommand::handles(args))
+        return DataDrivenFitCommand().run(args);
     QCommandLineParser p;
     const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
     const QCommandLineOption model(QStringLiteral("model"), QStringLiteral("Model to fit: fdm (seed-000 screw model)."),
@@ -152,7 +156,7 @@ int FitCommand::run(const QStringList &args)
     if (!parse(p, args))
         return 0;
     if (p.value(model) != QLatin1String("fdm"))
-        throw UsageError(QStringLiteral("fit: unknown --model '%1' (known: fdm)").arg(p.value(model)));
+        throw UsageError(QStringLiteral("fit: unknown --model '%1' (known: fdm, mlr, ridge, exp, synthetic, dynamic)").arg(p.value(model)));
     if (p.positionalArguments().isEmpty())
         throw UsageError(QStringLiteral("fit: name at least one SESSION id (see 'driftlab-cli fit --help')"));
     bool ok = false;

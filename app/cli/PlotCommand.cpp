@@ -1,5 +1,6 @@
 #include "PlotCommand.h"
 
+#include "AnalysisPlots.h"
 #include "CliSupport.h"
 #include "InfraredPanel.h"
 #include "PlotExporter.h"
@@ -21,7 +22,7 @@ QString PlotCommand::summary() const
                           "--channels picks the channels of the timeseries view, --from/--to its time window (also\n"
                           "error-time), --target the interferometer target of error-temperature, --frame the\n"
                           "infrared frame of ir-profile.")
-        .arg(ReviewWorkspace::viewNames().join(QStringLiteral(", ")));
+        .arg((ReviewWorkspace::viewNames() + AnalysisPlots::selectionViews()).join(QStringLiteral(", ")));
 }
 
 int PlotCommand::run(const QStringList &args)
@@ -64,9 +65,10 @@ int PlotCommand::run(const QStringList &args)
     if (!PlotExporter::supportedSuffix(file))
         throw UsageError(QStringLiteral("plot: --out %1: use a .png, .svg or .pdf file").arg(file));
     const QString name = p.value(view);
-    if (!ReviewWorkspace::viewNames().contains(name))
+    const bool selectionView = AnalysisPlots::selectionViews().contains(name);
+    if (!selectionView && !ReviewWorkspace::viewNames().contains(name))
         throw UsageError(QStringLiteral("plot: --view '%1' is not a view; choose one of %2")
-                             .arg(name, ReviewWorkspace::viewNames().join(QStringLiteral(", "))));
+                             .arg(name, (ReviewWorkspace::viewNames() + AnalysisPlots::selectionViews()).join(QStringLiteral(", "))));
     auto number = [&](const QCommandLineOption &o, double lo, double hi) {
         bool good = false;
         const double v = p.value(o).toDouble(&good);
@@ -100,6 +102,18 @@ int PlotCommand::run(const QStringList &args)
         found = found || s.id == session;
     if (!found)
         throw UsageError(QStringLiteral("plot: %1 has no session %2").arg(path).arg(session));
+    if (selectionView) { // the latest select-points result stored with the session
+        std::unique_ptr<QwtPlot> plot;
+        try {
+            plot = AnalysisPlots::selectionPlot(name, AnalysisPlots::storedSelection(store, session), &store, session);
+        } catch (const std::invalid_argument &e) {
+            throw UsageError(QStringLiteral("plot: %1").arg(QString::fromUtf8(e.what())));
+        }
+        plot->resize(1600, 1000);
+        PlotExporter::exportPlot(*plot, file, size, resolution);
+        CliSupport::progress(QStringLiteral("wrote %1 (%2 of session %3)").arg(QFileInfo(file).absoluteFilePath(), name).arg(session));
+        return 0;
+    }
     ReviewWorkspace workspace;
     workspace.resize(1600, 1000);
     workspace.setSession(&store, session);

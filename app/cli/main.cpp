@@ -13,7 +13,9 @@
 #include "NewBundleCommand.h"
 #include "PlotCommand.h"
 #include "RecordCommand.h"
+#include "SelectPointsCommand.h"
 #include "SimulateCommand.h"
+#include "ValidateCommand.h"
 
 #include <QApplication>
 #include <QCoreApplication>
@@ -44,6 +46,8 @@ std::vector<std::unique_ptr<CliCommand>> commands()
     list.push_back(std::make_unique<SimulateCommand>());
     list.push_back(std::make_unique<DiagnoseCommand>());
     list.push_back(std::make_unique<NewBundleCommand>());
+    list.push_back(std::make_unique<SelectPointsCommand>());
+    list.push_back(std::make_unique<ValidateCommand>());
     return list;
 }
 

@@ -2,6 +2,7 @@
 // Exit codes as driftlab-cli's: 0 done, 1 failed, 2 bad usage or bad input (an unknown
 // option, a session id the database does not hold, a held-out session that is also trained on).
 
+#include "AnalysisPanel.h"
 #include "DiagnosisPanel.h"
 #include "MainWindow.h"
 #include "ModelsPanel.h"
@@ -19,6 +20,7 @@
 #include <QTextStream>
 #include <QTimer>
 
+#include <cmath>
 #include <functional>
 
 using namespace driftlab;
@@ -91,9 +93,14 @@ int main(int argc, char **argv)
                                       QStringLiteral("Open the Diagnosis dock and diagnose: TRAIN:VALIDATE session ids."),
                                       QStringLiteral("ids"));
     const QCommandLineOption dock(QStringLiteral("dock"),
-                                  QStringLiteral("Show a dock: sessions, acquisition, models or diagnosis (repeatable)."),
+                                  QStringLiteral("Show a dock: sessions, acquisition, models, diagnosis or analysis (repeatable)."),
                                   QStringLiteral("name"));
-    p.addOptions({db, session, screenshot, view, compare, fit, diagnose, dock});
+    const QCommandLineOption analysis(QStringLiteral("analysis"),
+                                      QStringLiteral("Open the Analysis dock: select sensitive points of TARGET in session ID, "
+                                                     "then fit the data-driven models on hours 0..TRAIN_H and validate on the "
+                                                     "rest: ID:TARGET[:TRAIN_H[:select]] ('select': stop after the selection)."),
+                                      QStringLiteral("spec"));
+    p.addOptions({db, session, screenshot, view, compare, fit, diagnose, dock, analysis});
     if (!p.parse(QApplication::arguments()))
         return usageError(p.errorText());
     if (p.isSet(help))
@@ -122,7 +129,7 @@ int main(int argc, char **argv)
     } else if (p.isSet(db)) {
         return usageError(QStringLiteral("database %1 does not exist").arg(path));
     }
-    const bool needStore = p.isSet(session) || p.isSet(compare) || p.isSet(fit) || p.isSet(diagnose);
+    const bool needStore = p.isSet(session) || p.isSet(compare) || p.isSet(fit) || p.isSet(diagnose) || p.isSet(analysis);
     if (needStore && !window.store())
         return usageError(QStringLiteral("no database open (%1 does not exist): give --db FILE").arg(path));
     if (p.isSet(session)) {
@@ -141,7 +148,7 @@ int main(int argc, char **argv)
         const QString object = name.left(1).toUpper() + name.mid(1).toLower() + QStringLiteral("Dock");
         QDockWidget *d = window.dock(object);
         if (!d)
-            return usageError(QStringLiteral("--dock: unknown dock '%1' (sessions, acquisition, models, diagnosis)").arg(name));
+            return usageError(QStringLiteral("--dock: unknown dock '%1' (sessions, acquisition, models, diagnosis, analysis)").arg(name));
         d->show();
     }
     if (p.isSet(view) && !window.workspace()->selectView(p.value(view)))
@@ -201,6 +208,27 @@ int main(int argc, char **argv)
         if (p.isSet(screenshot) && !waiting) {
             waiting = true;
             QObject::connect(window.diagnosis(), &DiagnosisPanel::finished, &window, takeScreenshot);
+        }
+    }
+    if (p.isSet(analysis)) {
+        const QStringList a = p.value(analysis).split(QLatin1Char(':'));
+        const qint64 id = sessionArg(window, a.value(0));
+        bool hoursOk = true;
+        const double trainHours = a.size() > 2 ? a.at(2).toDouble(&hoursOk) : std::nan("");
+        if (!id || a.size() < 2 || a.size() > 4 || a.at(1).isEmpty() || !hoursOk ||
+            (a.size() == 4 && a.at(3) != QLatin1String("select")))
+            return usageError(QStringLiteral("--analysis: expected ID:TARGET[:TRAIN_H[:select]] with a session id of %1, got '%2'")
+                                  .arg(path, p.value(analysis)));
+        if (QDockWidget *d = window.dock(QStringLiteral("AnalysisDock"))) {
+            d->show();
+            d->raise();
+            QTimer::singleShot(0, &window, [&window, d] { window.resizeDocks({d}, {window.height() * 11 / 20}, Qt::Vertical); });
+        }
+        if (!window.analysis()->startWorkflow(id, a.at(1), trainHours, a.size() == 4))
+            return usageError(QStringLiteral("cannot analyse: %1").arg(window.analysis()->lastError()));
+        if (p.isSet(screenshot) && !waiting) {
+            waiting = true;
+            QObject::connect(window.analysis(), &AnalysisPanel::workflowFinished, &window, takeScreenshot);
         }
     }
     if (p.isSet(screenshot) && !waiting)

@@ -1,0 +1,80 @@
+#pragma once
+// A fitted data-driven thermal-error model in the plain form a controller evaluates:
+// standard library only (driftlab_model). Saved as "driftlab-model" JSON version 1 (see
+// docs/datadriven.md); core/DataDrivenModelJson reads and writes it.
+//
+// Kinds:
+//  - mlr, ridge, dynamic ("linear-lag"): y = intercept + sum over terms and lags of
+//    coefficient * x, where x is the feature ((u - offset) / scale)^power of an input channel
+//    u passed through a first-order lag with time constant tau (tau = 0: no lag). mlr and
+//    ridge use tau = 0 only; dynamic adds lagged temperatures and the drive (spindle speed or
+//    feed) through lag banks.
+//  - exp (seed 001, eq. 6): a first-order warm-up / cool-down of the displacement towards a
+//    steady state y_ss(v) = k (v / v_ref)^p while the drive v is on (time constant tau_warm)
+//    and towards zero while it is off (tau_cool); y = baseline + state.
+//  - synthetic (seed 002, eq. 26): E(P, T) = g(T) (P - P0) / (P_ref - P0) with the screw
+//    characteristic temperature T = mean of the temperature inputs and
+//    g(T) = c + a (exp(b (T - T0)) - 1); P is the position (the reference position P_ref when
+//    the target is a displacement channel).
+
+#include <string>
+#include <vector>
+
+namespace driftlab {
+
+struct ModelChannel {
+    std::string id;   // session channel id
+    std::string unit; // e.g. degC, um, rpm
+    std::string kind; // temperature | displacement | feed | other
+};
+
+// One input feature family of a linear-lag model.
+struct ModelTerm {
+    int input = 0;      // index into DataDrivenModel::inputs
+    int power = 1;      // 1 or 2
+    double offset = 0.0;
+    double scale = 1.0; // the feature is ((u - offset) / scale)^power
+    std::vector<double> lags_s;         // first-order lag time constants; 0 = the feature itself
+    std::vector<double> coefficients;   // target unit per feature unit, one per lag
+    std::vector<double> standardErrors; // one per lag (NaN where not available)
+};
+
+struct ExponentialLaw {
+    int drive = 0;                 // index into inputs (spindle speed or feed)
+    double onThreshold = 0.0;      // drive > threshold = warming
+    double referenceDrive = 1.0;   // v_ref (drive unit)
+    double steadyState = 0.0;      // k: y_ss at v_ref (target unit)
+    double exponent = 1.0;         // p
+    double tauWarm_s = 1.0;
+    double tauCool_s = 1.0;
+    double baseline = 0.0;         // cold displacement (target unit)
+    // Virtual sensor (seed 001 eq. 9-10): screw temperature rise = state / (alpha L); 0 = unknown.
+    double expansion_per_K = 0.0;
+    double length_m = 0.0;
+};
+
+struct SyntheticLaw {
+    std::vector<int> temperatures; // indices into inputs; characteristic temperature = their mean
+    double a = 0.0;                // target unit
+    double b_perK = 0.0;
+    double c = 0.0;                // target unit
+    double t0_C = 0.0;
+    double p0_mm = 0.0;            // zero-error point
+    double pRef_mm = 1.0;          // reference position (ratio 1)
+};
+
+struct DataDrivenModel {
+    std::string kind;                 // mlr | ridge | dynamic | exp | synthetic
+    ModelChannel target;
+    std::vector<ModelChannel> inputs; // channels the predictor reads, in this order
+    double intercept = 0.0;
+    double interceptStandardError = 0.0;
+    std::vector<ModelTerm> terms;     // linear-lag kinds
+    ExponentialLaw exponential;       // exp
+    SyntheticLaw synthetic;           // synthetic
+    double samplePeriod_s = 0.0;      // grid the model was fitted on (informational)
+
+    bool linearLag() const { return kind == "mlr" || kind == "ridge" || kind == "dynamic"; }
+};
+
+} // namespace driftlab

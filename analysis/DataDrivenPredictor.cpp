@@ -1,0 +1,186 @@
+#include "DataDrivenPredictor.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace driftlab {
+
+namespace {
+
+void require(bool ok, const std::string &what)
+{
+    if (!ok)
+        throw std::invalid_argument("data-driven model: " + what);
+}
+
+} // namespace
+
+DataDrivenPredictor::DataDrivenPredictor(const DataDrivenModel &model) : m_model(model)
+{
+    const int n = static_cast<int>(model.inputs.size());
+    if (model.linearLag()) {
+        for (std::size_t i = 0; i < model.terms.size(); ++i) {
+            const ModelTerm &t = model.terms[i];
+            const std::string where = "terms[" + std::to_string(i) + "]";
+            require(t.input >= 0 && t.input < n, where + ".input out of range");
+            require(t.power == 1 || t.power == 2, where + ".power must be 1 or 2");
+            require(std::isfinite(t.scale) && t.scale > 0, where + ".scale must be positive");
+            require(!t.lags_s.empty() && t.lags_s.size() == t.coefficients.size(),
+                    where + ": one coefficient per lag");
+            for (double tau : t.lags_s)
+                require(std::isfinite(tau) && tau >= 0, where + ".lags_s must be >= 0");
+            m_first.push_back(m_states.size());
+            m_states.resize(m_states.size() + t.lags_s.size(), 0.0);
+        }
+    } else if (model.kind == "exp") {
+        const ExponentialLaw &e = model.exponential;
+        require(e.drive >= 0 && e.drive < n, "exponential.drive out of range");
+        require(e.tauWarm_s > 0 && e.tauCool_s > 0, "exponential time constants must be positive");
+        require(e.referenceDrive > 0, "exponential.reference_drive must be positive");
+    } else if (model.kind == "synthetic") {
+        const SyntheticLaw &s = model.synthetic;
+        require(!s.temperatures.empty(), "synthetic needs at least one temperature input");
+        for (int i : s.temperatures)
+            require(i >= 0 && i < n, "synthetic temperature input out of range");
+        require(s.pRef_mm != s.p0_mm, "synthetic reference position equals P0");
+    } else {
+        throw std::invalid_argument("data-driven model: unknown kind '" + model.kind + "'");
+    }
+}
+
+double DataDrivenPredictor::lagStep(double x, double u, double dt_s, double tau_s)
+{
+    if (tau_s <= 0)
+        return u;
+    return x + (1.0 - std::exp(-dt_s / tau_s)) * (u - x);
+}
+
+std::vector<double> DataDrivenPredictor::lagSeries(const std::vector<double> &t, const std::vector<double> &u,
+                                                  double tau_s)
+{
+    std::vector<double> x(u.size());
+    for (std::size_t k = 0; k < u.size(); ++k)
+        x[k] = k == 0 ? u[0] : lagStep(x[k - 1], u[k], t[k] - t[k - 1], tau_s);
+    return x;
+}
+
+double DataDrivenPredictor::feature(const ModelTerm &term, double u)
+{
+    const double z = (u - term.offset) / term.scale;
+    return term.power == 2 ? z * z : z;
+}
+
+double DataDrivenPredictor::linearOutput() const
+{
+    double y = m_model.intercept;
+    for (std::size_t i = 0; i < m_model.terms.size(); ++i) {
+        const ModelTerm &t = m_model.terms[i];
+        for (std::size_t l = 0; l < t.coefficients.size(); ++l)
+            y += t.coefficients[l] * m_states[m_first[i] + l];
+    }
+    return y;
+}
+
+double DataDrivenPredictor::characteristicTemperature(const double *inputs) const
+{
+    double sum = 0.0;
+    for (int i : m_model.synthetic.temperatures)
+        sum += inputs[i];
+    return sum / static_cast<double>(m_model.synthetic.temperatures.size());
+}
+
+void DataDrivenPredictor::reset(const double *inputs)
+{
+    m_started = true;
+    m_expState = 0.0;
+    for (std::size_t i = 0; i < m_model.terms.size(); ++i) {
+        const ModelTerm &t = m_model.terms[i];
+        const double f = feature(t, inputs[t.input]);
+        for (std::size_t l = 0; l < t.lags_s.size(); ++l)
+            m_states[m_first[i] + l] = f;
+    }
+}
+
+double DataDrivenPredictor::step(double dt_s, const double *inputs)
+{
+    if (!m_started)
+        reset(inputs);
+    if (m_model.linearLag()) {
+        for (std::size_t i = 0; i < m_model.terms.size(); ++i) {
+            const ModelTerm &t = m_model.terms[i];
+            const double f = feature(t, inputs[t.input]);
+            for (std::size_t l = 0; l < t.lags_s.size(); ++l) {
+                double &x = m_states[m_first[i] + l];
+                x = lagStep(x, f, dt_s, t.lags_s[l]);
+            }
+        }
+        return linearOutput();
+    }
+    if (m_model.kind == "exp") {
+        const ExponentialLaw &e = m_model.exponential;
+        const double v = std::fabs(inputs[e.drive]);
+        const bool on = v > e.onThreshold;
+        const double goal = on ? e.steadyState * std::pow(v / e.referenceDrive, e.exponent) : 0.0;
+        m_expState = lagStep(m_expState, goal, dt_s, on ? e.tauWarm_s : e.tauCool_s);
+        return e.baseline + m_expState;
+    }
+    return predictAt(m_model.synthetic.pRef_mm, inputs);
+}
+
+double DataDrivenPredictor::virtualTemperatureRise_K() const
+{
+    const ExponentialLaw &e = m_model.exponential;
+    if (m_model.kind != "exp" || !(e.expansion_per_K > 0) || !(e.length_m > 0))
+        return std::numeric_limits<double>::quiet_NaN();
+    return m_expState * 1e-6 / (e.expansion_per_K * e.length_m);
+}
+
+double DataDrivenPredictor::predictAt(double position_mm, const double *inputs) const
+{
+    if (m_model.kind != "synthetic")
+        return std::numeric_limits<double>::quiet_NaN();
+    const SyntheticLaw &s = m_model.synthetic;
+    const double temperature = characteristicTemperature(inputs);
+    const double g = s.c + s.a * (std::exp(s.b_perK * (temperature - s.t0_C)) - 1.0);
+    return g * (position_mm - s.p0_mm) / (s.pRef_mm - s.p0_mm);
+}
+
+std::vector<double> DataDrivenPredictor::run(const DataDrivenModel &model, const std::vector<double> &t,
+                                             const std::vector<std::vector<double>> &columns)
+{
+    DataDrivenPredictor p(model);
+    const std::size_t n = model.inputs.size();
+    if (columns.size() != n)
+        throw std::invalid_argument("data-driven model: " + std::to_string(n) + " input columns expected, got " +
+                                    std::to_string(columns.size()));
+    std::vector<double> out(t.size(), std::numeric_limits<double>::quiet_NaN());
+    if (t.empty())
+        return out;
+    // Hold the last finite value of each input; before the first finite value use the first one.
+    std::vector<double> row(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (columns[i].size() != t.size())
+            throw std::invalid_argument("data-driven model: input column " + model.inputs[i].id + " has " +
+                                        std::to_string(columns[i].size()) + " samples, the grid " +
+                                        std::to_string(t.size()));
+        for (double v : columns[i])
+            if (std::isfinite(v)) {
+                row[i] = v;
+                break;
+            }
+    }
+    p.reset(row.data());
+    double previous = t.front();
+    for (std::size_t k = 0; k < t.size(); ++k) {
+        for (std::size_t i = 0; i < n; ++i)
+            if (std::isfinite(columns[i][k]))
+                row[i] = columns[i][k];
+        out[k] = p.step(t[k] - previous, row.data());
+        previous = t[k];
+    }
+    return out;
+}
+
+} // namespace driftlab

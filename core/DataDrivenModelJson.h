@@ -1,0 +1,36 @@
+#pragma once
+// "driftlab-model" JSON, version 1 (docs/datadriven.md): the model a controller evaluates
+// (format, version, model, target, inputs, linear | exponential | synthetic, evaluation) plus
+// whatever documentation blocks the fit adds (training, hyperparameters, uncertainties,
+// metrics, selection), which reading keeps but does not need.
+//
+// parse() takes bytes and returns the model or throws std::invalid_argument naming the
+// source and the field ("model.json: linear.terms[2].lags_s: expected an array of numbers
+// >= 0"), so it can be fuzzed.
+
+#include "DataDrivenModel.h"
+
+#include <QByteArray>
+#include <QJsonArray>
+#include <QJsonObject>
+#include <QString>
+
+#include <vector>
+
+namespace driftlab {
+
+class DataDrivenModelJson {
+public:
+    static constexpr int kVersion = 1;
+    static QJsonObject toJson(const DataDrivenModel &model);
+    static DataDrivenModel fromJson(const QJsonObject &object, const QString &source);
+    static DataDrivenModel parse(const QByteArray &bytes, const QString &source, QJsonObject *document = nullptr);
+    // Reads and parses a file (std::invalid_argument names the file for every failure).
+    static DataDrivenModel read(const QString &path, QJsonObject *document = nullptr);
+    // Writes atomically (QSaveFile); throws std::runtime_error naming the file.
+    static void write(const QJsonObject &document, const QString &path);
+    // Numbers as a JSON array, NaN as null.
+    static QJsonArray numbers(const std::vector<double> &values);
+};
+
+} // namespace driftlab

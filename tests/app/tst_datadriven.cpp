@@ -1,0 +1,329 @@
+// The data-driven commands through the executable: select-points on simulated rig sessions
+// with known thermal groups (ambient, motor, nut housing: three PT100 each) picks one channel
+// from each group; fit --model mlr|ridge|dynamic|exp|synthetic writes MODEL.json that validate
+// reads back to the same held-out numbers; bad input exits 2 naming what is wrong and writes
+// nothing; on FL_THERMAL (real data, ../shared/extdata; skipped without it) the seed-003
+// pipeline gives the reference ~10 um on ch3 and the dynamic model at most 4 um held-out.
+
+#include <QDir>
+#include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QProcess>
+#include <QSet>
+#include <QTemporaryDir>
+#include <QTextStream>
+#include <QtTest>
+
+#include <cmath>
+
+class TestDataDriven : public QObject {
+    Q_OBJECT
+private slots:
+    void initTestCase();
+    void selectionPicksOneChannelPerGroup();
+    void fitAndValidateAgree();
+    void syntheticOnInterferometerRuns();
+    void plotsSelectionHeadless();
+    void badInputExitsTwo();
+    void flThermalHeldOut();
+
+private:
+    int run(const QStringList &args, QByteArray *out = nullptr, QByteArray *err = nullptr);
+    QJsonObject json(const QStringList &args);
+    QTemporaryDir m_dir;
+    QString m_db;
+};
+
+int TestDataDriven::run(const QStringList &args, QByteArray *out, QByteArray *err)
+{
+    QProcess p;
+    p.start(QStringLiteral(DRIFTLAB_CLI), args);
+    if (!p.waitForFinished(600000))
+        return -1;
+    if (out)
+        *out = p.readAllStandardOutput();
+    const QByteArray e = p.readAllStandardError();
+    if (err)
+        *err = e;
+    return p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
+}
+
+QJsonObject TestDataDriven::json(const QStringList &args)
+{
+    QByteArray out, err;
+    const int code = run(args + QStringList{QStringLiteral("--json"), QStringLiteral("-")}, &out, &err);
+    if (code != 0)
+        qWarning("%s", err.constData());
+    return code == 0 ? QJsonDocument::fromJson(out).object() : QJsonObject();
+}
+
+void TestDataDriven::initTestCase()
+{
+    QVERIFY(m_dir.isValid());
+    m_db = m_dir.filePath(QStringLiteral("dd.sqlite"));
+    // Three truly distinct thermal groups: the drifting ambient, the motor (losses + its own
+    // capacity) and the nut housing (friction heat), three PT100s each with different noise.
+    QJsonArray pt100;
+    for (const char *group : {"A", "M", "N"})
+        for (int i = 1; i <= 3; ++i) {
+            const QString location = group[0] == 'A' ? QStringLiteral("ambient")
+                                                     : (group[0] == 'M' ? QStringLiteral("motor") : QStringLiteral("nut"));
+            pt100.append(QJsonObject{{QStringLiteral("id"), QStringLiteral("%1%2").arg(QLatin1String(group)).arg(i)},
+                                     {QStringLiteral("location"), location},
+                                     {QStringLiteral("noise_K"), 0.02 * i * i}});
+        }
+    const QJsonObject rig{{QStringLiteral("format"), QStringLiteral("driftlab-rig")},
+                          {QStringLiteral("version"), 1},
+                          {QStringLiteral("name"), QStringLiteral("groups")},
+                          {QStringLiteral("sensors"),
+                           QJsonObject{{QStringLiteral("pt100"), pt100},
+                                       {QStringLiteral("infrared"), QJsonObject{{QStringLiteral("enabled"), false}}},
+                                       {QStringLiteral("interferometer"), QJsonObject{{QStringLiteral("enabled"), false}}}}}};
+    const QString rigFile = m_dir.filePath(QStringLiteral("groups.json"));
+    QFile f(rigFile);
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write(QJsonDocument(rig).toJson());
+    f.close();
+    for (const char *seed : {"1", "2"})
+        QCOMPARE(run({QStringLiteral("record"), QStringLiteral("--rig"), rigFile, QStringLiteral("--seed"), QLatin1String(seed),
+                      QStringLiteral("--duration"), QStringLiteral("3:00:00"), QStringLiteral("--out"), m_db}),
+                 0);
+    // Session 3: seed 002's instruments (screw PT100s T6, T7 and laser runs every 30 min).
+    QCOMPARE(run({QStringLiteral("record"), QStringLiteral("--rig"), QStringLiteral("seed002-instruments"),
+                  QStringLiteral("--duration"), QStringLiteral("3:00:00"), QStringLiteral("--out"), m_db}),
+             0);
+}
+
+void TestDataDriven::selectionPicksOneChannelPerGroup()
+{
+    for (const char *session : {"1", "2"}) {
+        const QJsonObject r = json({QStringLiteral("select-points"), QLatin1String(session), QStringLiteral("--db"), m_db,
+                                    QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--k-range"), QStringLiteral("2:6")});
+        QCOMPARE(r.value(QStringLiteral("k")).toInt(), 3);
+        QCOMPARE(r.value(QStringLiteral("silhouettes")).toArray().size(), 5);
+        QSet<QChar> groups;
+        for (const QJsonValue &c : r.value(QStringLiteral("chosen")).toArray())
+            groups.insert(c.toString().at(0));
+        QCOMPARE(groups, (QSet<QChar>{QLatin1Char('A'), QLatin1Char('M'), QLatin1Char('N')}));
+        for (const QJsonValue &cluster : r.value(QStringLiteral("clusters")).toArray()) {
+            const QJsonArray members = cluster.toArray();
+            QCOMPARE(members.size(), 3);
+            for (const QJsonValue &m : members)
+                QCOMPARE(m.toString().at(0), members.first().toString().at(0));
+        }
+        // Every channel has a grade and a cluster.
+        QCOMPARE(r.value(QStringLiteral("channels")).toArray().size(), 9);
+    }
+}
+
+void TestDataDriven::fitAndValidateAgree()
+{
+    for (const char *model : {"mlr", "ridge", "dynamic", "exp"}) {
+        const QString file = m_dir.filePath(QStringLiteral("%1.json").arg(QLatin1String(model)));
+        const QJsonObject fit = json({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"),
+                                      QLatin1String(model), QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--holdout"),
+                                      QStringLiteral("2"), QStringLiteral("--out"), file});
+        QVERIFY2(!fit.isEmpty(), model);
+        QFile f(file);
+        QVERIFY(f.open(QIODevice::ReadOnly));
+        const QJsonObject doc = QJsonDocument::fromJson(f.readAll()).object();
+        QCOMPARE(doc.value(QStringLiteral("format")).toString(), QStringLiteral("driftlab-model"));
+        QCOMPARE(doc.value(QStringLiteral("version")).toInt(), 1);
+        QCOMPARE(doc.value(QStringLiteral("model")).toString(), QLatin1String(model));
+        QCOMPARE(doc.value(QStringLiteral("target")).toObject().value(QStringLiteral("channel")).toString(), QStringLiteral("S1"));
+        QVERIFY(!doc.value(QStringLiteral("inputs")).toArray().isEmpty());
+        QVERIFY(doc.contains(QStringLiteral("uncertainties")));
+        const double heldOut = fit.value(QStringLiteral("metrics")).toObject().value(QStringLiteral("holdout")).toObject()
+                                   .value(QStringLiteral("rmse_um")).toDouble();
+        QVERIFY(heldOut > 0);
+        const QJsonObject v = json({QStringLiteral("validate"), file, QStringLiteral("2"), QStringLiteral("--db"), m_db});
+        QVERIFY2(std::fabs(v.value(QStringLiteral("rmse_um")).toDouble() - heldOut) < 1e-9 * heldOut, model);
+        QCOMPARE(v.value(QStringLiteral("samples")).toInt(),
+                 fit.value(QStringLiteral("metrics")).toObject().value(QStringLiteral("holdout")).toObject().value(QStringLiteral("samples")).toInt());
+        if (QLatin1String(model) == QLatin1String("mlr"))
+            QCOMPARE(doc.value(QStringLiteral("selection")).toObject().value(QStringLiteral("chosen")).toArray().size(), 3);
+        if (QLatin1String(model) == QLatin1String("exp")) {
+            // The rig's elongation follows the feed: seed 001's model predicts the other session.
+            const QJsonObject h = fit.value(QStringLiteral("metrics")).toObject().value(QStringLiteral("holdout")).toObject();
+            QVERIFY2(h.value(QStringLiteral("fitting_degree_pct")).toDouble() > 95, qPrintable(QString::number(heldOut)));
+            const QJsonObject p = doc.value(QStringLiteral("uncertainties")).toObject().value(QStringLiteral("parameters")).toObject();
+            QVERIFY(p.value(QStringLiteral("tau_warm_s")).toObject().value(QStringLiteral("standard_error")).toDouble() > 0);
+        }
+    }
+}
+
+void TestDataDriven::syntheticOnInterferometerRuns()
+{
+    const QString file = m_dir.filePath(QStringLiteral("synthetic.json"));
+    const QJsonObject fit = json({QStringLiteral("fit"), QStringLiteral("3"), QStringLiteral("--db"), m_db, QStringLiteral("--model"),
+                                  QStringLiteral("synthetic"), QStringLiteral("--target"), QStringLiteral("interferometer"),
+                                  QStringLiteral("--train-range"), QStringLiteral("0:2"), QStringLiteral("--holdout-range"),
+                                  QStringLiteral("2:"), QStringLiteral("--out"), file});
+    QVERIFY(!fit.isEmpty());
+    QJsonArray inputs;
+    for (const QJsonValue &i : fit.value(QStringLiteral("inputs")).toArray())
+        inputs.append(i.toObject().value(QStringLiteral("channel")));
+    QCOMPARE(inputs, (QJsonArray{QStringLiteral("T6"), QStringLiteral("T7")}));
+    const QJsonObject training = fit.value(QStringLiteral("metrics")).toObject().value(QStringLiteral("training")).toObject();
+    QVERIFY(training.value(QStringLiteral("samples")).toInt() >= 24);
+    QVERIFY(training.value(QStringLiteral("fitting_degree_pct")).toDouble() > 80);
+    const QJsonObject v = json({QStringLiteral("validate"), file, QStringLiteral("3"), QStringLiteral("--db"), m_db,
+                                QStringLiteral("--range"), QStringLiteral("2:")});
+    QCOMPARE(v.value(QStringLiteral("rmse_um")).toDouble(),
+             fit.value(QStringLiteral("metrics")).toObject().value(QStringLiteral("holdout")).toObject().value(QStringLiteral("rmse_um")).toDouble());
+}
+
+void TestDataDriven::plotsSelectionHeadless()
+{
+    QVERIFY(!json({QStringLiteral("select-points"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--target"),
+                   QStringLiteral("S1")})
+                 .isEmpty());
+    for (const char *view : {"selection-grades", "selection-clusters", "selection-points"}) {
+        const QString png = m_dir.filePath(QStringLiteral("%1.png").arg(QLatin1String(view)));
+        QCOMPARE(run({QStringLiteral("plot"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--view"),
+                      QLatin1String(view), QStringLiteral("--out"), png}),
+                 0);
+        const QImage image(png);
+        QVERIFY2(!image.isNull() && image.width() > 800, view);
+    }
+    // Session 3 has no stored selection: the views say so (exit 2).
+    QByteArray err;
+    QCOMPARE(run({QStringLiteral("plot"), QStringLiteral("3"), QStringLiteral("--db"), m_db, QStringLiteral("--view"),
+                  QStringLiteral("selection-grades"), QStringLiteral("--out"), m_dir.filePath(QStringLiteral("x.png"))},
+                 nullptr, &err),
+             2);
+    QVERIFY(err.contains("select-points"));
+}
+
+void TestDataDriven::badInputExitsTwo()
+{
+    QByteArray err;
+    const QString out = m_dir.filePath(QStringLiteral("never.json"));
+    auto expect2 = [&](const QStringList &args, const char *needle) {
+        err.clear();
+        const int code = run(args, nullptr, &err);
+        QVERIFY2(code == 2, qPrintable(args.join(QLatin1Char(' ')) + QStringLiteral(" -> %1: ").arg(code) + QString::fromUtf8(err)));
+        QVERIFY2(err.contains(needle), qPrintable(QString::fromUtf8(err)));
+    };
+    expect2({QStringLiteral("select-points"), QStringLiteral("1"), QStringLiteral("--db"), m_db}, "--target");
+    expect2({QStringLiteral("select-points"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--target"),
+             QStringLiteral("NOPE")},
+            "NOPE");
+    expect2({QStringLiteral("select-points"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--target"),
+             QStringLiteral("S1"), QStringLiteral("--k-range"), QStringLiteral("5:3")},
+            "--k-range");
+    expect2({QStringLiteral("select-points"), QStringLiteral("99"), QStringLiteral("--db"), m_db, QStringLiteral("--target"),
+             QStringLiteral("S1")},
+            "no session 99");
+    expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("dynamic"),
+             QStringLiteral("--target"), QStringLiteral("S1")},
+            "--out");
+    expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("exp"),
+             QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--drive"), QStringLiteral("none"), QStringLiteral("--out"), out},
+            "drive");
+    expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("ridge"),
+             QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--train-range"), QStringLiteral("5:1"), QStringLiteral("--out"), out},
+            "--train-range");
+    expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("mlr"),
+             QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--points"), QStringLiteral("A1,Q7"), QStringLiteral("--out"), out},
+            "Q7");
+    expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("ridge"),
+             QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--train-range"), QStringLiteral("50:60"), QStringLiteral("--out"), out},
+            "training samples");
+    QVERIFY(!QFile::exists(out)); // nothing half-written
+    // A model file of a newer format version, and a model whose input the session lacks.
+    QFile m(m_dir.filePath(QStringLiteral("ridge.json")));
+    QVERIFY(m.open(QIODevice::ReadOnly));
+    QJsonObject doc = QJsonDocument::fromJson(m.readAll()).object();
+    m.close();
+    QJsonObject newer = doc;
+    newer.insert(QStringLiteral("version"), 2);
+    const QString newerFile = m_dir.filePath(QStringLiteral("newer.json"));
+    QFile n(newerFile);
+    QVERIFY(n.open(QIODevice::WriteOnly));
+    n.write(QJsonDocument(newer).toJson());
+    n.close();
+    expect2({QStringLiteral("validate"), newerFile, QStringLiteral("1"), QStringLiteral("--db"), m_db}, "version");
+    QJsonArray inputs = doc.value(QStringLiteral("inputs")).toArray();
+    inputs[0] = QJsonObject{{QStringLiteral("channel"), QStringLiteral("T_missing")}, {QStringLiteral("unit"), QStringLiteral("degC")}};
+    doc.insert(QStringLiteral("inputs"), inputs);
+    const QString missingFile = m_dir.filePath(QStringLiteral("missing.json"));
+    QFile mm(missingFile);
+    QVERIFY(mm.open(QIODevice::WriteOnly));
+    mm.write(QJsonDocument(doc).toJson());
+    mm.close();
+    expect2({QStringLiteral("validate"), missingFile, QStringLiteral("1"), QStringLiteral("--db"), m_db}, "T_missing");
+    QFile broken(m_dir.filePath(QStringLiteral("broken.json")));
+    QVERIFY(broken.open(QIODevice::WriteOnly));
+    broken.write("{\"format\": \"driftlab-model\", \"version\": 1, \"model\": \"ridge\", \"target\": {\"channel\": \"S1\"}, "
+                 "\"inputs\": [{\"channel\": \"A1\"}], \"linear\": {\"intercept\": 0, \"terms\": [{\"input\": 0, \"lags_s\": [0], "
+                 "\"coefficients\": [1, 2]}]}}");
+    broken.close();
+    expect2({QStringLiteral("validate"), broken.fileName(), QStringLiteral("1"), QStringLiteral("--db"), m_db},
+            "linear.terms[0].coefficients");
+}
+
+void TestDataDriven::flThermalHeldOut()
+{
+    // DRIFTLAB_SHARED_DIR in the environment overrides the checkout's ../shared (worktrees).
+    const QString source = qEnvironmentVariable("DRIFTLAB_SHARED_DIR", QStringLiteral(DRIFTLAB_SHARED_DIR)) +
+                           QStringLiteral("/extdata/fl_thermal/fl_thermal_data.csv");
+    if (!QFileInfo::exists(source))
+        QSKIP("../shared/extdata is not beside this checkout");
+    // A bundle with the agreed channel ids (t1..t16 degC, ch1..ch5 um, spindle_rpm role spindle).
+    QFile in(source);
+    QVERIFY(in.open(QIODevice::ReadOnly | QIODevice::Text));
+    const QString bundle = m_dir.filePath(QStringLiteral("fl.bundle"));
+    QVERIFY(QDir().mkpath(bundle));
+    QFile channels(bundle + QStringLiteral("/channels.csv"));
+    QVERIFY(channels.open(QIODevice::WriteOnly | QIODevice::Text));
+    QTextStream src(&in), dst(&channels);
+    QStringList header = src.readLine().trimmed().split(QLatin1Char(','));
+    QJsonArray list;
+    for (int i = 1; i < header.size(); ++i) {
+        const bool temp = header[i].endsWith(QLatin1String("_C")), disp = header[i].endsWith(QLatin1String("_um"));
+        header[i] = header[i].section(QLatin1Char('_'), 0, temp || disp ? 0 : 1);
+        list.append(QJsonObject{{QStringLiteral("id"), header[i]},
+                                {QStringLiteral("kind"), temp ? "temperature" : (disp ? "displacement" : "other")},
+                                {QStringLiteral("unit"), temp ? "degC" : (disp ? "um" : "rpm")},
+                                {QStringLiteral("role"), temp || disp ? "" : "spindle"}});
+    }
+    dst << header.join(QLatin1Char(',')) << '\n';
+    while (!src.atEnd()) {
+        const QString line = src.readLine().trimmed();
+        if (!line.isEmpty())
+            dst << line << '\n';
+    }
+    channels.close();
+    QFile manifest(bundle + QStringLiteral("/manifest.json"));
+    QVERIFY(manifest.open(QIODevice::WriteOnly));
+    manifest.write(QJsonDocument(QJsonObject{{QStringLiteral("format"), QStringLiteral("thermal-error-bundle")},
+                                             {QStringLiteral("version"), 1},
+                                             {QStringLiteral("session"), QJsonObject{{QStringLiteral("name"), QStringLiteral("FL_THERMAL")},
+                                                                                     {QStringLiteral("started"), QStringLiteral("2024-05-23T00:00:00Z")}}},
+                                             {QStringLiteral("channels"), list}})
+                       .toJson());
+    manifest.close();
+    const QString db = m_dir.filePath(QStringLiteral("fl.sqlite"));
+    QCOMPARE(run({QStringLiteral("import"), bundle, QStringLiteral("--db"), db}), 0);
+    auto heldOut = [&](const char *model, const char *target) {
+        const QJsonObject r = json({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), db, QStringLiteral("--model"),
+                                    QLatin1String(model), QStringLiteral("--target"), QLatin1String(target), QStringLiteral("--train-range"),
+                                    QStringLiteral("0:24"), QStringLiteral("--holdout-range"), QStringLiteral("24:"), QStringLiteral("--out"),
+                                    m_dir.filePath(QStringLiteral("fl-%1-%2.json").arg(QLatin1String(model), QLatin1String(target)))});
+        return r.value(QStringLiteral("metrics")).toObject().value(QStringLiteral("holdout")).toObject().value(QStringLiteral("rmse_um")).toDouble(-1);
+    };
+    // Issue 15's reference: the seed-003 pipeline gives about 9-10 um on ch3 (the training
+    // mean 26.7 um); the goal for the best model is at most 4 um.
+    const double a = heldOut("mlr", "ch3");
+    QVERIFY2(a > 8 && a < 12, qPrintable(QString::number(a)));
+    for (const char *target : {"ch3", "ch5"}) {
+        const double c = heldOut("dynamic", target);
+        QVERIFY2(c > 0 && c <= 4.0, qPrintable(QStringLiteral("%1: %2").arg(QLatin1String(target)).arg(c)));
+    }
+}
+
+QTEST_GUILESS_MAIN(TestDataDriven)
+#include "tst_datadriven.moc"
