@@ -5,6 +5,7 @@
 #include "DuplicateSessionError.h"
 #include "DiagnosisEngine.h"
 #include "SessionAnalysis.h"
+#include "ReportBuilder.h"
 #include "SessionStore.h"
 
 #include <QCommandLineParser>
@@ -267,6 +268,11 @@ int DiagnoseCommand::run(const QStringList &args)
         return true;
     });
     CliSupport::writeJson(QJsonDocument(reportJson(report)), p.value(json));
+    if (a.first == userStore.get()) { // a session of --db: keep the diagnosis for its test report
+        QJsonObject stored = reportJson(report);
+        stored.insert(QStringLiteral("validate"), p.value(validate));
+        userStore->addAnalysisResult(a.second, ReportBuilder::diagnosisResultKind(), stored);
+    }
     if (p.isSet(predictions)) {
         QFile f(p.value(predictions));
         if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate | QIODevice::Text))

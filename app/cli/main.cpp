@@ -13,6 +13,7 @@
 #include "NewBundleCommand.h"
 #include "PlotCommand.h"
 #include "RecordCommand.h"
+#include "ReportCommand.h"
 #include "SelectPointsCommand.h"
 #include "SimulateCommand.h"
 #include "ValidateCommand.h"
@@ -48,6 +49,7 @@ std::vector<std::unique_ptr<CliCommand>> commands()
     list.push_back(std::make_unique<NewBundleCommand>());
     list.push_back(std::make_unique<SelectPointsCommand>());
     list.push_back(std::make_unique<ValidateCommand>());
+    list.push_back(std::make_unique<ReportCommand>());
     return list;
 }
 
@@ -64,8 +66,8 @@ void usage(QTextStream &out, const std::vector<std::unique_ptr<CliCommand>> &lis
 
 int main(int argc, char **argv)
 {
-    // Rendering plots needs a QApplication; it never needs a display.
-    const bool gui = argc > 1 && qstrcmp(argv[1], "plot") == 0;
+    // Rendering plots (plot, report) needs a QApplication; it never needs a display.
+    const bool gui = argc > 1 && (qstrcmp(argv[1], "plot") == 0 || qstrcmp(argv[1], "report") == 0);
     if (gui && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM"))
         qputenv("QT_QPA_PLATFORM", "offscreen");
     std::unique_ptr<QCoreApplication> application =

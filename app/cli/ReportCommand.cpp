@@ -1,0 +1,72 @@
+#include "ReportCommand.h"
+
+#include "CliSupport.h"
+#include "ReportBuilder.h"
+#include "ReportTemplate.h"
+#include "ReportWriter.h"
+#include "SessionStore.h"
+
+#include <QCommandLineParser>
+#include <QElapsedTimer>
+#include <QFileInfo>
+
+namespace driftlab {
+
+QString ReportCommand::summary() const
+{
+    return QStringLiteral("Test report of a session as PDF or HTML (same content): metadata and sensors, the error and\n"
+                          "temperature figures, ISO 230-2/230-3 values, sensitive points, fitted models, diagnosis and\n"
+                          "compensation; sections without data are left out with one line saying why. --template DIR:\n"
+                          "a folder with template.json (lab_name, title, language, logo, headings; docs/report.md).");
+}
+
+int ReportCommand::run(const QStringList &args)
+{
+    QCommandLineParser p;
+    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
+    const QCommandLineOption out(QStringLiteral("out"), QStringLiteral("Output file: .pdf or .html."), QStringLiteral("file"));
+    const QCommandLineOption look(QStringLiteral("template"), QStringLiteral("Template folder (default: the built-in one)."),
+                                  QStringLiteral("dir"));
+    p.addOptions({db, out, look});
+    p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
+    if (!parse(p, args))
+        return 0;
+    if (p.positionalArguments().size() != 1)
+        throw UsageError(QStringLiteral("report: give exactly one session id"));
+    bool ok = false;
+    const qint64 session = p.positionalArguments().first().toLongLong(&ok);
+    if (!ok)
+        throw UsageError(QStringLiteral("report: '%1' is not a session id").arg(p.positionalArguments().first()));
+    if (!p.isSet(out))
+        throw UsageError(QStringLiteral("report: --out FILE.pdf|FILE.html is required"));
+    const QString file = p.value(out);
+    if (!ReportWriter::supportedSuffix(file))
+        throw UsageError(QStringLiteral("report: --out %1: use a .pdf or .html file").arg(file));
+    CliSupport::checkOutput(file, QStringLiteral("--out"), false);
+    ReportTemplate tmpl;
+    try {
+        tmpl = ReportTemplate::load(p.value(look));
+    } catch (const std::invalid_argument &e) {
+        throw UsageError(QStringLiteral("report: --template: %1").arg(QString::fromUtf8(e.what())));
+    }
+    const QString path = CliSupport::databasePath(p.value(db), QString(), true);
+    SessionStore store(path);
+    bool found = false;
+    for (const SessionInfo &s : store.sessions())
+        found = found || s.id == session;
+    if (!found)
+        throw UsageError(QStringLiteral("report: %1 has no session %2").arg(path).arg(session));
+    QElapsedTimer timer;
+    timer.start();
+    const ReportDocument doc = ReportBuilder(store, session, tmpl).build([](const QString &stage) {
+        CliSupport::progress(QStringLiteral("report: %1...").arg(stage));
+    });
+    ReportWriter(doc, tmpl).write(file);
+    CliSupport::progress(QStringLiteral("wrote %1 (report of session %2) in %3 s")
+                             .arg(QFileInfo(file).absoluteFilePath())
+                             .arg(session)
+                             .arg(timer.elapsed() / 1000.0, 0, 'f', 2));
+    return 0;
+}
+
+} // namespace driftlab

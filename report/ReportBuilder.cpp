@@ -1,0 +1,411 @@
+#include "ReportBuilder.h"
+
+#include "AnalysisPlots.h"
+#include "DataDrivenFit.h"
+#include "DataDrivenModelJson.h"
+#include "Iso230Report.h"
+#include "ReportTemplate.h"
+#include "ReviewWorkspace.h"
+#include "SessionStore.h"
+#include "TimeSeriesPlot.h"
+
+#include <QBuffer>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QSet>
+#include <QPainter>
+#include <QSvgGenerator>
+
+#include <qwt_plot.h>
+#include <qwt_plot_renderer.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace driftlab {
+
+namespace {
+
+const QSizeF kFigure_mm(174, 100);
+
+QString num(double v, int digits = 5)
+{
+    return std::isfinite(v) ? QString::number(v, 'g', digits) : QStringLiteral("-");
+}
+
+QString jsonText(const QJsonValue &v)
+{
+    if (v.isDouble())
+        return num(v.toDouble(), 6);
+    if (v.isString())
+        return v.toString();
+    if (v.isBool())
+        return v.toBool() ? QStringLiteral("yes") : QStringLiteral("no");
+    if (v.isNull() || v.isUndefined())
+        return QStringLiteral("-");
+    return QString::fromUtf8(QJsonDocument(v.isArray() ? QJsonDocument(v.toArray()) : QJsonDocument(v.toObject()))
+                                 .toJson(QJsonDocument::Compact));
+}
+
+// Numbers, strings and booleans of an object, nested objects as "a.b" (two levels).
+void flatten(const QJsonObject &o, const QString &prefix, QVector<QPair<QString, QString>> &out, int depth = 0)
+{
+    for (auto it = o.begin(); it != o.end(); ++it) {
+        const QString key = prefix.isEmpty() ? it.key() : prefix + QLatin1Char('.') + it.key();
+        if (it.value().isObject() && depth < 2)
+            flatten(it.value().toObject(), key, out, depth + 1);
+        else if (!it.value().isArray() && !it.value().isObject())
+            out.push_back({key, jsonText(it.value())});
+    }
+}
+
+QString hours(double t_s) { return QString::number(t_s / 3600.0, 'f', 2); }
+
+} // namespace
+
+ReportBuilder::ReportBuilder(const SessionStore &store, qint64 sessionId, const ReportTemplate &look)
+    : m_store(store), m_session(sessionId), m_look(look)
+{
+    m_store.session(sessionId); // throws StorageError naming the id
+}
+
+QByteArray ReportBuilder::svg(QwtPlot &plot, QSizeF size_mm)
+{
+    const double pxPerMm = 96.0 / 25.4;
+    const QSize size(qRound(size_mm.width() * pxPerMm), qRound(size_mm.height() * pxPerMm));
+    QBuffer buffer;
+    buffer.open(QIODevice::WriteOnly);
+    QSvgGenerator generator;
+    generator.setOutputDevice(&buffer);
+    generator.setResolution(96);
+    generator.setSize(size);
+    generator.setViewBox(QRect(QPoint(0, 0), size));
+    QPainter painter(&generator);
+    QwtPlotRenderer renderer;
+    renderer.setDiscardFlag(QwtPlotRenderer::DiscardBackground, false);
+    renderer.render(&plot, &painter, QRectF(QPointF(0, 0), size));
+    painter.end();
+    return buffer.data();
+}
+
+ReportDocument ReportBuilder::build(const Progress &progress) const
+{
+    ReportDocument doc;
+    doc.sessionName = m_store.session(m_session).name;
+    const auto stage = [&](const QString &s) {
+        if (progress)
+            progress(s);
+    };
+    stage(QStringLiteral("session and sensors"));
+    sessionSection(doc);
+    stage(QStringLiteral("figures"));
+    figureSection(doc);
+    stage(QStringLiteral("ISO 230"));
+    iso230Section(doc);
+    stage(QStringLiteral("sensitive points"));
+    sensitivePointSection(doc);
+    stage(QStringLiteral("fitted models"));
+    modelSection(doc);
+    diagnosisSection(doc);
+    compensationSection(doc);
+    return doc;
+}
+
+void ReportBuilder::sessionSection(ReportDocument &doc) const
+{
+    const SessionInfo info = m_store.session(m_session);
+    const QVector<ChannelInfo> channels = m_store.channels(m_session);
+    double t0 = INFINITY, t1 = -INFINITY;
+    QVector<QStringList> rows;
+    for (const ChannelInfo &c : channels) {
+        const qint64 n = m_store.sampleCount(c.id);
+        QString range = QStringLiteral("-");
+        if (n > 0) {
+            const DecimatedSeries d = m_store.decimated(c.id, -1e300, 1e300, 1);
+            if (!d.min.isEmpty()) {
+                t0 = std::min(t0, d.tFirst.front());
+                t1 = std::max(t1, d.tLast.back());
+                range = QStringLiteral("%1 .. %2").arg(num(*std::min_element(d.min.begin(), d.min.end()), 4),
+                                                       num(*std::max_element(d.max.begin(), d.max.end()), 4));
+            }
+        }
+        rows.push_back({c.key, c.kind, c.sensor, c.unit, c.location, c.role,
+                        c.screwPosition_m ? num(*c.screwPosition_m * 1000.0, 5) : QStringLiteral("-"), QString::number(n), range});
+    }
+    const QVector<InterferometerPoint> points = m_store.interferometerPoints(m_session);
+    QSet<int> runs;
+    for (const InterferometerPoint &p : points)
+        runs.insert(p.run);
+    const int frames = m_store.irFrames(m_session).size();
+
+    doc.heading(m_look.heading(QStringLiteral("session")));
+    QVector<QPair<QString, QString>> meta{
+        {QStringLiteral("Name"), info.name},
+        {QStringLiteral("Session id"), QString::number(info.id)},
+        {QStringLiteral("UUID"), info.uuid},
+        {QStringLiteral("Started (UTC)"), info.started},
+        {QStringLiteral("Operator"), info.operatorName.isEmpty() ? QStringLiteral("-") : info.operatorName},
+        {QStringLiteral("Duration"), std::isfinite(t0) ? QStringLiteral("%1 h").arg(hours(t1 - t0)) : QStringLiteral("-")},
+        {QStringLiteral("Recording complete"), info.complete ? QStringLiteral("yes") : QStringLiteral("no")},
+        {QStringLiteral("Interferometer"), QStringLiteral("%1 run(s), %2 point(s)").arg(runs.size()).arg(points.size())},
+        {QStringLiteral("Infrared frames"), QString::number(frames)}};
+    if (!info.contentSha256.isEmpty())
+        meta.push_back({QStringLiteral("Bundle content SHA-256"), info.contentSha256});
+    if (!info.notes.isEmpty())
+        meta.push_back({QStringLiteral("Notes"), info.notes});
+    QVector<QPair<QString, QString>> machine;
+    flatten(info.machine, QStringLiteral("machine"), machine);
+    doc.keyValues(meta + machine);
+
+    doc.heading(m_look.heading(QStringLiteral("sensors")));
+    if (channels.isEmpty())
+        doc.leftOut(QStringLiteral("the session has no channels"));
+    else
+        doc.table({QStringLiteral("Channel"), QStringLiteral("Kind"), QStringLiteral("Sensor"), QStringLiteral("Unit"),
+                   QStringLiteral("Location"), QStringLiteral("Role"), QStringLiteral("Screw position (mm)"),
+                   QStringLiteral("Samples"), QStringLiteral("Range")},
+                  rows);
+
+    const QVector<EventRecord> events = m_store.events(m_session);
+    if (!events.isEmpty()) {
+        doc.heading(m_look.heading(QStringLiteral("events")));
+        QVector<QStringList> ev;
+        for (const EventRecord &e : events)
+            ev.push_back({QString::number(e.t, 'f', 1), hours(e.t), e.label});
+        doc.table({QStringLiteral("t (s)"), QStringLiteral("t (h)"), QStringLiteral("Event")}, ev);
+    }
+}
+
+void ReportBuilder::figureSection(ReportDocument &doc) const
+{
+    doc.heading(m_look.heading(QStringLiteral("figures")));
+    ReviewWorkspace workspace;
+    workspace.resize(1600, 1000);
+    workspace.setSession(&m_store, m_session);
+    const QString noErrors = QStringLiteral("the session has no interferometer runs after the reference run, so no thermal errors");
+    const QString noFrames = QStringLiteral("the session has no infrared frames");
+    struct View {
+        const char *heading;
+        const char *name;
+        QString missing;
+    };
+    const View views[] = {{"error_time", "error-time", noErrors},
+                          {"error_position", "error-position", noErrors},
+                          {"error_surface", "error-surface", noErrors},
+                          {"temperatures_time", "timeseries", QStringLiteral("the session has no temperature channels")},
+                          {"temperatures_position", "ir-surface", noFrames},
+                          {"ir_profile", "ir-profile", noFrames}};
+    for (const View &v : views) {
+        const QString heading = m_look.heading(QLatin1String(v.heading));
+        QwtPlot *plot = nullptr;
+        if (QLatin1String(v.name) == QLatin1String("timeseries")) {
+            QVector<qint64> temperatures;
+            for (const ChannelInfo &c : m_store.channels(m_session))
+                if (c.kind == QLatin1String("temperature") && m_store.sampleCount(c.id) > 0)
+                    temperatures.push_back(c.id);
+            if (!temperatures.isEmpty()) {
+                workspace.showChannels(temperatures);
+                plot = workspace.plotForView(QLatin1String(v.name));
+            }
+        } else {
+            plot = workspace.plotForView(QLatin1String(v.name));
+        }
+        doc.subHeading(heading);
+        if (!plot) {
+            doc.leftOut(v.missing);
+            continue;
+        }
+        doc.figure(QStringLiteral("%1 (session %2)").arg(heading).arg(m_session), svg(*plot, kFigure_mm), kFigure_mm);
+    }
+}
+
+void ReportBuilder::iso230Section(ReportDocument &doc) const
+{
+    doc.heading(m_look.heading(QStringLiteral("iso230")));
+    std::unique_ptr<Iso230Report> iso;
+    try {
+        iso = std::make_unique<Iso230Report>(m_store, m_session);
+    } catch (const std::invalid_argument &e) {
+        doc.leftOut(QString::fromUtf8(e.what()));
+        return;
+    }
+    QVector<QStringList> rows;
+    QSet<QString> notes;
+    for (const Iso230Test &t : iso->tests()) {
+        QStringList runs;
+        for (int r : t.runs)
+            runs << QString::number(r);
+        // One direction (or none recorded): the values of that direction, as Iso230Report::text.
+        const Iso230Axis &a = t.axis;
+        const bool both = t.bidirectional;
+        rows.push_back({runs.join(QLatin1Char(',')), hours(t.time_s), QString::number(t.targets.size()),
+                        both ? QStringLiteral("both") : t.directionRecorded ? QStringLiteral("one") : QStringLiteral("not recorded"),
+                        QString::number(t.minApproaches), num(both ? a.accuracy_um : a.accuracyUp_um, 4),
+                        num(both ? a.systematic_um : a.systematicUp_um, 4), num(a.meanRange_um, 4),
+                        num(both ? a.repeat_um : a.repeatUp_um, 4), num(a.reversal_um, 4)});
+        for (const std::string &n : t.notes)
+            notes.insert(QString::fromStdString(n));
+    }
+    doc.paragraph(QStringLiteral("ISO 230-2 axis values per interferometer test, in um: A accuracy, E systematic "
+                                 "positioning error, M range of the mean positional deviation, R repeatability, "
+                                 "B reversal value; n = fewest approaches per target and direction."));
+    doc.table({QStringLiteral("Runs"), QStringLiteral("t (h)"), QStringLiteral("Targets"), QStringLiteral("Directions"),
+               QStringLiteral("n"), QStringLiteral("A"), QStringLiteral("E"), QStringLiteral("M"), QStringLiteral("R"), QStringLiteral("B")},
+              rows);
+    QStringList sorted = notes.values();
+    sorted.sort();
+    for (const QString &n : sorted)
+        doc.paragraph(QStringLiteral("Note: %1").arg(n));
+    const Iso230DriftSummary &d = iso->drift();
+    if (iso->tests().size() < 2) {
+        doc.leftOut(QStringLiteral("ISO 230-3 drift: the session has a single positioning test, so there is no drift"));
+        return;
+    }
+    doc.paragraph(QStringLiteral("ISO 230-3 drift against the reference run %1: largest drift %2 um at %3 mm (%4) in run %5, "
+                                 "%6 h after the start.")
+                      .arg(d.referenceRun)
+                      .arg(num(d.maxDrift_um, 4), num(d.maxDriftPosition_mm, 6),
+                           d.maxDriftDirection > 0 ? QStringLiteral("+") : d.maxDriftDirection < 0 ? QStringLiteral("-") : QStringLiteral("no direction"))
+                      .arg(d.maxDriftRun)
+                      .arg(hours(d.maxDriftTime_s)));
+    QVector<QStringList> drift;
+    for (const Iso230DriftSeries &s : d.series)
+        drift.push_back({num(s.position_mm, 6), s.direction > 0 ? QStringLiteral("+") : s.direction < 0 ? QStringLiteral("-") : QStringLiteral("?"),
+                         num(s.maxDrift_um, 4), hours(s.maxDriftTime_s), QString::number(s.maxDriftRun)});
+    doc.table({QStringLiteral("Target (mm)"), QStringLiteral("Direction"), QStringLiteral("Largest drift (um)"),
+               QStringLiteral("at t (h)"), QStringLiteral("Run")},
+              drift);
+}
+
+void ReportBuilder::sensitivePointSection(ReportDocument &doc) const
+{
+    doc.heading(m_look.heading(QStringLiteral("sensitive_points")));
+    const QJsonObject sel = m_store.latestAnalysisResult(m_session, AnalysisPlots::selectionResultKind());
+    if (sel.isEmpty()) {
+        doc.leftOut(QStringLiteral("no sensitive-point selection is stored with this session "
+                                   "(driftlab-cli select-points %1 --target CHANNEL)").arg(m_session));
+        return;
+    }
+    QStringList chosen;
+    for (const QJsonValue &v : sel.value(QStringLiteral("chosen")).toArray())
+        chosen << v.toString();
+    doc.paragraph(QStringLiteral("Target %1, k = %2 clusters over %3 samples; chosen points: %4. Rule: %5")
+                      .arg(sel.value(QStringLiteral("target")).toString())
+                      .arg(sel.value(QStringLiteral("k")).toInt())
+                      .arg(sel.value(QStringLiteral("samples")).toDouble())
+                      .arg(chosen.join(QStringLiteral(", ")), sel.value(QStringLiteral("rule")).toString()));
+    QVector<QStringList> rows;
+    for (const QJsonValue &v : sel.value(QStringLiteral("channels")).toArray()) {
+        const QJsonObject c = v.toObject();
+        rows.push_back({c.value(QStringLiteral("channel")).toString(), QString::number(c.value(QStringLiteral("cluster")).toInt()),
+                        num(c.value(QStringLiteral("grade")).toDouble(), 4), num(c.value(QStringLiteral("correlation")).toDouble(), 4),
+                        c.value(QStringLiteral("chosen")).toBool() ? QStringLiteral("yes") : QString()});
+    }
+    doc.table({QStringLiteral("Channel"), QStringLiteral("Cluster"), QStringLiteral("Grey grade"), QStringLiteral("Correlation"),
+               QStringLiteral("Chosen")},
+              rows);
+    try {
+        const auto plot = AnalysisPlots::selectionPlot(QStringLiteral("selection-grades"), sel, &m_store, m_session);
+        plot->resize(1600, 1000);
+        doc.figure(QStringLiteral("Grey relational grade per channel, coloured by cluster"), svg(*plot, kFigure_mm), kFigure_mm);
+    } catch (const std::exception &e) {
+        doc.leftOut(QStringLiteral("selection figure: %1").arg(QString::fromUtf8(e.what())));
+    }
+}
+
+void ReportBuilder::modelSection(ReportDocument &doc) const
+{
+    doc.heading(m_look.heading(QStringLiteral("models")));
+    const QVector<FittedModel> models = m_store.fittedModels(m_session);
+    if (models.isEmpty()) {
+        doc.leftOut(QStringLiteral("no model has been fitted to this session "
+                                   "(driftlab-cli fit %1 --model fdm, or --model mlr|ridge|exp|synthetic|dynamic)").arg(m_session));
+        return;
+    }
+    for (const FittedModel &m : models) {
+        doc.subHeading(QStringLiteral("%1 (fitted %2)").arg(m.model, m.created));
+        QVector<QStringList> rows;
+        const QJsonObject perParameter = m.uncertainties.value(QStringLiteral("parameters")).toObject();
+        const QJsonObject errors = m.uncertainties.value(QStringLiteral("standard_errors")).toObject();
+        if (!perParameter.isEmpty()) { // data-driven: {name: {value, standard_error}}
+            for (auto it = perParameter.begin(); it != perParameter.end(); ++it) {
+                const QJsonObject p = it.value().toObject();
+                rows.push_back({it.key(), jsonText(p.value(QStringLiteral("value"))), jsonText(p.value(QStringLiteral("standard_error")))});
+            }
+        } else { // physical: {name: value} with standard_errors {name: se or null = held}
+            for (auto it = m.parameters.begin(); it != m.parameters.end(); ++it)
+                if (it.value().isDouble())
+                    rows.push_back({it.key(), jsonText(it.value()),
+                                    errors.value(it.key()).isDouble() ? jsonText(errors.value(it.key())) : QStringLiteral("held")});
+        }
+        if (rows.isEmpty())
+            doc.leftOut(QStringLiteral("model %1 stores no scalar parameters").arg(m.id));
+        else
+            doc.table({QStringLiteral("Parameter"), QStringLiteral("Value"), QStringLiteral("Standard error")}, rows);
+        QVector<QPair<QString, QString>> metrics;
+        flatten(m.metrics, QString(), metrics);
+        if (!metrics.isEmpty())
+            doc.keyValues(metrics);
+        if (!m.model.startsWith(QLatin1String("driftlab-model/")))
+            continue;
+        // Data-driven: measured and predicted over this session.
+        try {
+            const DataDrivenModel model = DataDrivenModelJson::fromJson(m.parameters, QStringLiteral("stored model %1").arg(m.id));
+            const ValidationSeries series = DataDrivenFit(m_store).validate(model, m_session);
+            TimeSeriesPlot plot;
+            plot.resize(1600, 1000);
+            AnalysisPlots::showPrediction(plot, series, nullptr);
+            doc.figure(QStringLiteral("%1: measured and predicted over this session (RMSE %2 um)")
+                           .arg(m.model, num(series.metrics.rmse, 4)),
+                       svg(plot, kFigure_mm), kFigure_mm);
+        } catch (const std::exception &e) {
+            doc.leftOut(QStringLiteral("validation figure of model %1: %2").arg(m.id).arg(QString::fromUtf8(e.what())));
+        }
+    }
+}
+
+void ReportBuilder::diagnosisSection(ReportDocument &doc) const
+{
+    doc.heading(m_look.heading(QStringLiteral("diagnosis")));
+    const QJsonObject d = m_store.latestAnalysisResult(m_session, diagnosisResultKind());
+    if (d.isEmpty()) {
+        doc.leftOut(QStringLiteral("no diagnosis is stored with this session "
+                                   "(driftlab-cli diagnose --train %1 --validate OTHER --db DB --json FILE)").arg(m_session));
+        return;
+    }
+    const QString effect = d.value(QStringLiteral("effect")).toString();
+    doc.paragraph(QStringLiteral("Physics the model left out: %1. %2")
+                      .arg(effect, d.value(QStringLiteral("explanation")).toString()));
+    const QString where = d.value(QStringLiteral("location")).toObject().value(QStringLiteral("summary")).toString();
+    if (!where.isEmpty())
+        doc.paragraph(QStringLiteral("Where: %1").arg(where));
+    const QJsonObject base = d.value(QStringLiteral("baseline")).toObject(), corr = d.value(QStringLiteral("corrected")).toObject();
+    doc.table({QStringLiteral("Residual RMS (um)"), QStringLiteral("before (model as fitted)"), QStringLiteral("after (with the effect)")},
+              {{QStringLiteral("training"), jsonText(base.value(QStringLiteral("train_rms_um"))), jsonText(corr.value(QStringLiteral("train_rms_um")))},
+               {QStringLiteral("held-out recording"), jsonText(base.value(QStringLiteral("heldout_rms_um"))),
+                jsonText(corr.value(QStringLiteral("heldout_rms_um")))},
+               {QStringLiteral("cross-validated"), jsonText(base.value(QStringLiteral("cv_rms_um"))), jsonText(corr.value(QStringLiteral("cv_rms_um")))}});
+    QVector<QStringList> rows;
+    for (const QJsonValue &v : d.value(QStringLiteral("candidates")).toArray()) {
+        const QJsonObject c = v.toObject();
+        rows.push_back({c.value(QStringLiteral("effect")).toString(), jsonText(c.value(QStringLiteral("score"))),
+                        jsonText(c.value(QStringLiteral("heldout_rms_um"))), c.value(QStringLiteral("accepted")).toBool() ? QStringLiteral("yes") : QString()});
+    }
+    if (!rows.isEmpty())
+        doc.table({QStringLiteral("Candidate effect"), QStringLiteral("Score"), QStringLiteral("Held-out RMS (um)"), QStringLiteral("Accepted")}, rows);
+}
+
+void ReportBuilder::compensationSection(ReportDocument &doc) const
+{
+    doc.heading(m_look.heading(QStringLiteral("compensation")));
+    const QJsonObject c = m_store.latestAnalysisResult(m_session, compensationResultKind());
+    if (c.isEmpty()) {
+        doc.leftOut(QStringLiteral("no compensation loop was run on this session"));
+        return;
+    }
+    QVector<QPair<QString, QString>> values;
+    flatten(c, QString(), values);
+    doc.keyValues(values);
+}
+
+} // namespace driftlab

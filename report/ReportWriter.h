@@ -1,0 +1,35 @@
+#pragma once
+// Writes a ReportDocument as a self-contained HTML file (figures as inline SVG images) or
+// as a PDF (A4, text through QTextDocument, figures drawn as vectors from the same SVG),
+// with the template's lab name, logo and title on top and page numbers at the foot.
+
+#include <QByteArray>
+#include <QString>
+
+class QIODevice;
+
+namespace driftlab {
+
+class ReportDocument;
+class ReportTemplate;
+
+class ReportWriter {
+public:
+    ReportWriter(const ReportDocument &document, const ReportTemplate &look) : m_doc(document), m_look(look) {}
+
+    QByteArray html() const;
+    void writePdf(QIODevice *device) const;
+    // By suffix (.html/.htm or .pdf), through QSaveFile: the file appears whole or not at all.
+    // Throws std::invalid_argument for another suffix, std::runtime_error if it cannot be written.
+    void write(const QString &path) const;
+    static bool supportedSuffix(const QString &path);
+
+private:
+    QString headerHtml(bool forPdf) const;
+    static QString styleSheet();
+
+    const ReportDocument &m_doc;
+    const ReportTemplate &m_look;
+};
+
+} // namespace driftlab
