@@ -327,7 +327,23 @@ void ReportBuilder::modelSection(ReportDocument &doc) const
         QVector<QStringList> rows;
         const QJsonObject perParameter = m.uncertainties.value(QStringLiteral("parameters")).toObject();
         const QJsonObject errors = m.uncertainties.value(QStringLiteral("standard_errors")).toObject();
-        if (!perParameter.isEmpty()) { // data-driven: {name: {value, standard_error}}
+        const QJsonObject linear = m.parameters.value(QStringLiteral("linear")).toObject();
+        if (!linear.isEmpty()) { // linear data-driven models: coefficients of scaled, lagged inputs
+            rows.push_back({QStringLiteral("intercept (um)"), jsonText(linear.value(QStringLiteral("intercept"))),
+                            jsonText(linear.value(QStringLiteral("intercept_standard_error")))});
+            for (const QJsonValue &tv : linear.value(QStringLiteral("terms")).toArray()) {
+                const QJsonObject term = tv.toObject();
+                const QJsonArray coefficients = term.value(QStringLiteral("coefficients")).toArray();
+                const QJsonArray lags = term.value(QStringLiteral("lags_s")).toArray();
+                const QJsonArray errs = term.value(QStringLiteral("standard_errors")).toArray();
+                for (int k = 0; k < coefficients.size(); ++k)
+                    rows.push_back({QStringLiteral("%1: lag %2 s, x = ((u - %3) / %4)^%5")
+                                        .arg(term.value(QStringLiteral("channel")).toString(), jsonText(lags.at(k)),
+                                             jsonText(term.value(QStringLiteral("offset"))), jsonText(term.value(QStringLiteral("scale"))),
+                                             jsonText(term.value(QStringLiteral("power")))),
+                                    jsonText(coefficients.at(k)), jsonText(errs.at(k))});
+            }
+        } else if (!perParameter.isEmpty()) { // other data-driven models: {name: {value, standard_error}}
             for (auto it = perParameter.begin(); it != perParameter.end(); ++it) {
                 const QJsonObject p = it.value().toObject();
                 rows.push_back({it.key(), jsonText(p.value(QStringLiteral("value"))), jsonText(p.value(QStringLiteral("standard_error")))});

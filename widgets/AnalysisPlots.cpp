@@ -105,9 +105,12 @@ std::unique_ptr<QwtPlot> gradesPlot(const QJsonObject &selection, QWidget *paren
         byCluster[rows[i].cluster].push_back(QPointF(i, rows[i].grade));
         lo = std::min(lo, rows[i].grade);
     }
+    // Bars start at the axis minimum: outputs without clipping (SVG) draw them inside the canvas too.
+    const double yMin = std::max(0.0, std::floor(lo * 20.0 - 1.0) / 20.0);
     for (auto it = byCluster.begin(); it != byCluster.end(); ++it) {
         auto *bars = new QwtPlotBarChart(QObject::tr("cluster %1").arg(it.key()));
         bars->setSamples(it.value());
+        bars->setBaseline(yMin);
         auto *symbol = new QwtColumnSymbol(QwtColumnSymbol::Box);
         symbol->setFrameStyle(QwtColumnSymbol::Plain);
         symbol->setPalette(QPalette(clusterColours().at((it.key() - 1) % clusterColours().size())));
@@ -121,7 +124,7 @@ std::unique_ptr<QwtPlot> gradesPlot(const QJsonObject &selection, QWidget *paren
     plot->setAxisScaleDiv(QwtPlot::xBottom, channelDiv(rows.size(), 0.0));
     plot->axisScaleDraw(QwtPlot::xBottom)->setLabelRotation(-45.0);
     plot->axisScaleDraw(QwtPlot::xBottom)->setLabelAlignment(Qt::AlignLeft | Qt::AlignBottom);
-    plot->setAxisScale(QwtPlot::yLeft, std::max(0.0, std::floor(lo * 20.0 - 1.0) / 20.0), 1.0);
+    plot->setAxisScale(QwtPlot::yLeft, yMin, 1.0);
     plot->setAxisTitle(QwtPlot::yLeft, QObject::tr("grey relational grade (within cluster)"));
     plot->setTitle(QObject::tr("Grey relational grade to %1, K = %2 (chosen point marked *)")
                        .arg(selection.value(QStringLiteral("target")).toString())
