@@ -1,0 +1,301 @@
+// `driftlab-cli report` end to end on the example bundle (import, select-points, an MLR fit, a
+// stored diagnosis): the PDF's text (pdftotext) carries every section title, the sensors, the
+// fitted coefficients and standard errors of MODEL.json, the ISO 230-2 values of `iso230 --json`,
+// the stored diagnosis and a left-out line for what the session lacks; the HTML parses as XML
+// with the same headings and vector (SVG) figures; page 1 renders (pdftoppm); a lab template
+// changes lab name and headings; bad input exits 2 and leaves no file (and an old one intact).
+
+#include "SessionStore.h"
+
+#include <QImage>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QProcess>
+#include <QStandardPaths>
+#include <QTemporaryDir>
+#include <QXmlStreamReader>
+#include <QtTest>
+
+using namespace driftlab;
+
+class TestReportCli : public QObject {
+    Q_OBJECT
+private slots:
+    void initTestCase();
+    void pdfCarriesTheSessionsResults();
+    void htmlHasTheSameSectionsAndVectorFigures();
+    void pageRenders();
+    void labTemplateChangesTheLook();
+    void badInputExitsTwoAndWritesNothing();
+
+private:
+    struct Result {
+        int code = -1;
+        QByteArray out, err;
+    };
+    Result run(const QString &program, const QStringList &args);
+    Result cli(const QStringList &args) { return run(QStringLiteral(DRIFTLAB_CLI), args); }
+    QString pdfText(const QString &pdf);
+    QTemporaryDir m_dir;
+    QString m_db;
+    QJsonObject m_model;
+    QJsonObject m_iso;
+    QString m_pdf, m_html, m_text;
+};
+
+TestReportCli::Result TestReportCli::run(const QString &program, const QStringList &args)
+{
+    QProcess p;
+    p.start(program, args);
+    if (!p.waitForFinished(120000))
+        return {};
+    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(), p.readAllStandardError()};
+}
+
+QString TestReportCli::pdfText(const QString &pdf)
+{
+    const Result r = run(QStringLiteral("pdftotext"), {pdf, QStringLiteral("-")});
+    if (r.code != 0)
+        return QString();
+    // pdftotext turns "fi"/"fl" into ligature characters.
+    return QString::fromUtf8(r.out).replace(QChar(0xFB01), QLatin1String("fi")).replace(QChar(0xFB02), QLatin1String("fl"));
+}
+
+void TestReportCli::initTestCase()
+{
+    if (QStandardPaths::findExecutable(QStringLiteral("pdftotext")).isEmpty() ||
+        QStandardPaths::findExecutable(QStringLiteral("pdftoppm")).isEmpty())
+        QSKIP("pdftotext/pdftoppm (Debian poppler-utils) are not installed: scripts/setup-debian.sh installs them");
+    QVERIFY(m_dir.isValid());
+    m_db = m_dir.filePath(QStringLiteral("t.sqlite"));
+    Result r = cli({QStringLiteral("import"), QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/bundles/example.bundle"),
+                    QStringLiteral("--db"), m_db});
+    QVERIFY2(r.code == 0, r.err.constData());
+    r = cli({QStringLiteral("select-points"), QStringLiteral("1"), QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--db"), m_db});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const QString model = m_dir.filePath(QStringLiteral("model.json"));
+    r = cli({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--model"), QStringLiteral("mlr"), QStringLiteral("--target"),
+             QStringLiteral("S1"), QStringLiteral("--points"), QStringLiteral("T_nut,T_fixed_bearing"), QStringLiteral("--train-range"),
+             QStringLiteral("0:1"), QStringLiteral("--holdout-range"), QStringLiteral("1:1.5"), QStringLiteral("--out"), model,
+             QStringLiteral("--db"), m_db});
+    QVERIFY2(r.code == 0, r.err.constData());
+    QFile f(model);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    m_model = QJsonDocument::fromJson(f.readAll()).object();
+    r = cli({QStringLiteral("iso230"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--json"), QStringLiteral("-")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    m_iso = QJsonDocument::fromJson(r.out).object();
+    QVERIFY(!m_iso.isEmpty());
+    { // A diagnosis as `diagnose --train 1 --db` stores it (its run takes minutes; tst_diagnosis covers it).
+        SessionStore store(m_db);
+        store.addAnalysisResult(1, QStringLiteral("diagnosis"),
+                                QJsonObject{{QStringLiteral("effect"), QStringLiteral("motor_heat")},
+                                            {QStringLiteral("explanation"), QStringLiteral("heat from the motor enters the fixed end")},
+                                            {QStringLiteral("location"), QJsonObject{{QStringLiteral("summary"), QStringLiteral("largest near the fixed end while moving")}}},
+                                            {QStringLiteral("baseline"), QJsonObject{{QStringLiteral("heldout_rms_um"), 4.25}}},
+                                            {QStringLiteral("corrected"), QJsonObject{{QStringLiteral("heldout_rms_um"), 1.375}}}});
+    }
+    m_pdf = m_dir.filePath(QStringLiteral("report.pdf"));
+    m_html = m_dir.filePath(QStringLiteral("report.html"));
+    for (const QString &out : {m_pdf, m_html}) {
+        r = cli({QStringLiteral("report"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--out"), out});
+        QVERIFY2(r.code == 0, r.err.constData());
+        QVERIFY(r.err.contains("wrote"));
+    }
+    m_text = pdfText(m_pdf);
+    QVERIFY(!m_text.isEmpty());
+}
+
+static const QStringList kHeadings = {
+    QStringLiteral("Session"), QStringLiteral("Sensors"), QStringLiteral("Events"), QStringLiteral("Figures"),
+    QStringLiteral("ISO 230-2 positioning and ISO 230-3 drift"), QStringLiteral("Temperature-sensitive points"),
+    QStringLiteral("Fitted models"), QStringLiteral("Model mismatch diagnosis"), QStringLiteral("Compensation")};
+
+void TestReportCli::pdfCarriesTheSessionsResults()
+{
+    const QStringList lines = m_text.split(QRegularExpression(QStringLiteral("[\n\f]")));
+    for (const QString &h : kHeadings)
+        QVERIFY2(lines.contains(h), qPrintable(h));
+    QVERIFY(m_text.contains(QStringLiteral("Example: X-axis warm-up and cool-down")));
+    QVERIFY(m_text.contains(QStringLiteral("DriftLab thermal test laboratory")));
+    for (const char *channel : {"T_amb", "T_fixed_bearing", "T_nut", "T_free_bearing", "T_motor", "T_bed", "S1"})
+        QVERIFY2(m_text.contains(QLatin1String(channel)), channel);
+    // Every figure of the seed-002 set has its caption (the example has runs and frames).
+    for (const char *caption : {"Thermal error against time (session 1)", "Thermal error against position (session 1)",
+                                "Thermal error surface (session 1)", "Temperatures against time (session 1)",
+                                "Infrared temperature profile (session 1)"})
+        QVERIFY2(m_text.contains(QLatin1String(caption)), caption);
+    // The fitted coefficients and their standard errors, as MODEL.json has them.
+    const QJsonObject linear = m_model.value(QStringLiteral("linear")).toObject();
+    const auto g = [](double v) { return QString::number(v, 'g', 6); };
+    QVERIFY(m_text.contains(g(linear.value(QStringLiteral("intercept")).toDouble())));
+    QVERIFY(m_text.contains(g(linear.value(QStringLiteral("intercept_standard_error")).toDouble())));
+    const QJsonArray terms = linear.value(QStringLiteral("terms")).toArray();
+    QCOMPARE(terms.size(), 2);
+    for (const QJsonValue &t : terms) {
+        const QString c = g(t.toObject().value(QStringLiteral("coefficients")).toArray().at(0).toDouble());
+        const QString se = g(t.toObject().value(QStringLiteral("standard_errors")).toArray().at(0).toDouble());
+        QVERIFY2(m_text.contains(c), qPrintable(c));
+        QVERIFY2(m_text.contains(se), qPrintable(se));
+    }
+    const double holdout = m_model.value(QStringLiteral("metrics")).toObject().value(QStringLiteral("holdout")).toObject().value(QStringLiteral("rmse_um")).toDouble();
+    QVERIFY(holdout > 0);
+    QVERIFY(m_text.contains(QStringLiteral("holdout.rmse_um")));
+    QVERIFY(m_text.contains(g(holdout)));
+    // ISO 230-2: the systematic error E of every test and the largest drift, as `iso230 --json`.
+    const QJsonArray tests = m_iso.value(QStringLiteral("tests")).toArray();
+    QVERIFY(tests.size() >= 2);
+    int found = 0;
+    for (const QJsonValue &t : tests) {
+        const QJsonObject axis = t.toObject().value(QStringLiteral("axis")).toObject();
+        const QJsonValue e = axis.value(QStringLiteral("E_up_um")).isDouble() ? axis.value(QStringLiteral("E_up_um")) : axis.value(QStringLiteral("E_um"));
+        if (e.isDouble()) {
+            QVERIFY2(m_text.contains(QString::number(e.toDouble(), 'g', 4)), qPrintable(QString::number(e.toDouble(), 'g', 4)));
+            ++found;
+        }
+    }
+    QVERIFY(found >= 2);
+    // The stored diagnosis with its before/after held-out residuals.
+    QVERIFY(m_text.contains(QStringLiteral("motor_heat")));
+    QVERIFY(m_text.contains(QStringLiteral("4.25")));
+    QVERIFY(m_text.contains(QStringLiteral("1.375")));
+    // What the session lacks is left out with a reason, not shown empty.
+    QVERIFY(m_text.contains(QStringLiteral("Left out: no compensation loop was run on this session")));
+    QVERIFY(!m_text.contains(QStringLiteral("Left out: no model")));
+}
+
+void TestReportCli::htmlHasTheSameSectionsAndVectorFigures()
+{
+    QFile f(m_html);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    QByteArray bytes = f.readAll();
+    QVERIFY(bytes.startsWith("<!DOCTYPE html>"));
+    QXmlStreamReader xml(bytes.mid(bytes.indexOf('\n') + 1)); // well-formed XHTML after the doctype
+    QStringList h2;
+    int figures = 0, svgFigures = 0;
+    QString lang;
+    while (!xml.atEnd()) {
+        if (xml.readNext() != QXmlStreamReader::StartElement)
+            continue;
+        if (xml.name() == QLatin1String("html"))
+            lang = xml.attributes().value(QStringLiteral("lang")).toString();
+        else if (xml.name() == QLatin1String("h2"))
+            h2 << xml.readElementText();
+        else if (xml.name() == QLatin1String("figure"))
+            ++figures;
+        else if (xml.name() == QLatin1String("img")) {
+            const QString src = xml.attributes().value(QStringLiteral("src")).toString();
+            const QString prefix = QStringLiteral("data:image/svg+xml;base64,");
+            if (!src.startsWith(prefix))
+                continue;
+            const QByteArray svg = QByteArray::fromBase64(src.mid(prefix.size()).toLatin1());
+            if (svg.contains("<svg") && (svg.contains("<path") || svg.contains("<polyline")))
+                ++svgFigures;
+        }
+    }
+    QVERIFY2(!xml.hasError(), qPrintable(xml.errorString()));
+    QCOMPARE(lang, QStringLiteral("en"));
+    QCOMPARE(h2, kHeadings);
+    // Six of the seed-002 set, the selection grades, the model's prediction; all vector.
+    QCOMPARE(figures, 8);
+    QCOMPARE(svgFigures, 8 + 1); // and the logo
+    // Same figures in the PDF: one caption per figure.
+    QCOMPARE(m_text.count(QStringLiteral("(session 1)\n")), 6);
+}
+
+void TestReportCli::pageRenders()
+{
+    const QString prefix = m_dir.filePath(QStringLiteral("page"));
+    const Result r = run(QStringLiteral("pdftoppm"), {QStringLiteral("-r"), QStringLiteral("40"), QStringLiteral("-f"), QStringLiteral("3"),
+                                                      QStringLiteral("-l"), QStringLiteral("3"), QStringLiteral("-png"), m_pdf, prefix});
+    QCOMPARE(r.code, 0);
+    const QImage page(prefix + QStringLiteral("-3.png"));
+    QVERIFY(!page.isNull());
+    QCOMPARE(page.width(), qRound(210 / 25.4 * 40)); // A4
+    int coloured = 0; // a page of figures: plenty of coloured (not grey) pixels
+    for (int y = 0; y < page.height(); ++y)
+        for (int x = 0; x < page.width(); ++x) {
+            const QColor c = page.pixelColor(x, y);
+            coloured += std::max({c.red(), c.green(), c.blue()}) - std::min({c.red(), c.green(), c.blue()}) > 60;
+        }
+    QVERIFY2(coloured > page.width() * page.height() / 200, qPrintable(QString::number(coloured)));
+}
+
+void TestReportCli::labTemplateChangesTheLook()
+{
+    const QString dir = m_dir.filePath(QStringLiteral("lab"));
+    QVERIFY(QDir().mkpath(dir));
+    QImage logo(60, 20, QImage::Format_RGB32);
+    logo.fill(Qt::darkGreen);
+    QVERIFY(logo.save(dir + QStringLiteral("/logo.png")));
+    QFile t(dir + QStringLiteral("/template.json"));
+    QVERIFY(t.open(QIODevice::WriteOnly));
+    t.write(QJsonDocument(QJsonObject{{QStringLiteral("lab_name"), QStringLiteral("Prüflabor Nord")},
+                                      {QStringLiteral("language"), QStringLiteral("de")},
+                                      {QStringLiteral("title"), QStringLiteral("Prüfbericht")},
+                                      {QStringLiteral("logo"), QStringLiteral("logo.png")},
+                                      {QStringLiteral("headings"), QJsonObject{{QStringLiteral("sensors"), QStringLiteral("Sensoren")},
+                                                                              {QStringLiteral("compensation"), QStringLiteral("Kompensation")},
+                                                                              {QStringLiteral("left_out"), QStringLiteral("Entfällt")}}}})
+                .toJson());
+    t.close();
+    const QString pdf = m_dir.filePath(QStringLiteral("lab.pdf")), html = m_dir.filePath(QStringLiteral("lab.html"));
+    for (const QString &out : {pdf, html}) {
+        const Result r = cli({QStringLiteral("report"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--out"), out,
+                              QStringLiteral("--template"), dir});
+        QVERIFY2(r.code == 0, r.err.constData());
+    }
+    const QString text = pdfText(pdf);
+    const QStringList lines = text.split(QRegularExpression(QStringLiteral("[\n\f]")));
+    for (const char *s : {"Prüflabor Nord", "Prüfbericht", "Entfällt: no compensation loop"})
+        QVERIFY2(text.contains(QString::fromUtf8(s)), s);
+    for (const char *s : {"Sensoren", "Kompensation", "Fitted models"}) // headings the lab leaves out keep the default
+        QVERIFY2(lines.contains(QString::fromUtf8(s)), s);
+    QVERIFY(!lines.contains(QStringLiteral("Sensors")));
+    QFile h(html);
+    QVERIFY(h.open(QIODevice::ReadOnly));
+    const QString page = QString::fromUtf8(h.readAll());
+    QVERIFY(page.contains(QStringLiteral("<html lang=\"de\">")));
+    QVERIFY(page.contains(QStringLiteral("<h2>Sensoren</h2>")));
+    QVERIFY(page.contains(QStringLiteral("data:image/png;base64,")));
+}
+
+void TestReportCli::badInputExitsTwoAndWritesNothing()
+{
+    const QString out = m_dir.filePath(QStringLiteral("bad.pdf"));
+    const auto report = [&](const QStringList &extra, const QString &file) {
+        return cli(QStringList{QStringLiteral("report"), QStringLiteral("--db"), m_db, QStringLiteral("--out"), file} + extra);
+    };
+    Result r = report({QStringLiteral("7")}, out);
+    QCOMPARE(r.code, 2);
+    QVERIFY(r.err.contains("no session 7"));
+    QVERIFY(!QFile::exists(out));
+    r = report({QStringLiteral("1")}, m_dir.filePath(QStringLiteral("bad.docx")));
+    QCOMPARE(r.code, 2);
+    QVERIFY(r.err.contains(".pdf or .html"));
+    r = report({QStringLiteral("1")}, m_dir.filePath(QStringLiteral("no/such/folder/r.pdf")));
+    QCOMPARE(r.code, 2);
+    // A template with a misspelt heading names the file and the key; an old report stays as it was.
+    const QString dir = m_dir.filePath(QStringLiteral("typo"));
+    QVERIFY(QDir().mkpath(dir));
+    QFile t(dir + QStringLiteral("/template.json"));
+    QVERIFY(t.open(QIODevice::WriteOnly));
+    t.write(R"({"headings": {"sensor": "Sensoren"}})");
+    t.close();
+    QFile old(out);
+    QVERIFY(old.open(QIODevice::WriteOnly));
+    old.write("old report");
+    old.close();
+    r = report({QStringLiteral("1"), QStringLiteral("--template"), dir}, out);
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("template.json") && r.err.contains("'sensor'"), r.err.constData());
+    QVERIFY(old.open(QIODevice::ReadOnly));
+    QCOMPARE(old.readAll(), QByteArray("old report"));
+    r = report({QStringLiteral("1"), QStringLiteral("--template"), m_dir.filePath(QStringLiteral("missing"))}, out);
+    QCOMPARE(r.code, 2);
+    QVERIFY(r.err.contains("does not exist"));
+}
+
+QTEST_GUILESS_MAIN(TestReportCli)
+#include "tst_reportcli.moc"
