@@ -1,6 +1,7 @@
 // driftlab-cli: the headless face of DriftLab.
 
 #include "AnalyseCommand.h"
+#include "BatchCommand.h"
 #include "DiagnoseCommand.h"
 #include "ExportCommand.h"
 #include "FitCommand.h"
@@ -50,6 +51,7 @@ std::vector<std::unique_ptr<CliCommand>> commands()
     list.push_back(std::make_unique<SelectPointsCommand>());
     list.push_back(std::make_unique<ValidateCommand>());
     list.push_back(std::make_unique<ReportCommand>());
+    list.push_back(std::make_unique<BatchCommand>());
     return list;
 }
 
