@@ -17,6 +17,7 @@
 #include <QSvgGenerator>
 
 #include <qwt_plot.h>
+#include <qwt_plot_item.h>
 #include <qwt_plot_renderer.h>
 
 #include <algorithm>
@@ -60,6 +61,17 @@ void flatten(const QJsonObject &o, const QString &prefix, QVector<QPair<QString,
 }
 
 QString hours(double t_s) { return QString::number(t_s / 3600.0, 'f', 2); }
+
+// The figure size: taller when the legend wraps into many rows (about five entries a row),
+// so that the canvas keeps its height.
+QSizeF figureSize(const QwtPlot &plot)
+{
+    int entries = 0;
+    for (const QwtPlotItem *item : plot.itemList())
+        entries += item->testItemAttribute(QwtPlotItem::Legend);
+    const int rows = (entries + 4) / 5;
+    return QSizeF(kFigure_mm.width(), kFigure_mm.height() + 6.0 * std::max(0, rows - 2));
+}
 
 } // namespace
 
@@ -215,7 +227,8 @@ void ReportBuilder::figureSection(ReportDocument &doc) const
             doc.leftOut(v.missing);
             continue;
         }
-        doc.figure(QStringLiteral("%1 (session %2)").arg(heading).arg(m_session), svg(*plot, kFigure_mm), kFigure_mm);
+        const QSizeF size = figureSize(*plot);
+        doc.figure(QStringLiteral("%1 (session %2)").arg(heading).arg(m_session), svg(*plot, size), size);
     }
 }
 
