@@ -135,21 +135,8 @@ void ReportWriter::writePdf(QIODevice *device) const
     };
     auto drawText = [&](const QString &fragment, double keepWithNext) {
         QTextDocument d;
-        if (!m_look.logo().isEmpty() && fragment.contains(QLatin1String("src=\"logo\""))) {
-            QImage logo;
-            if (m_look.logoMimeType() == QLatin1String("image/svg+xml")) {
-                QSvgRenderer svg(m_look.logo());
-                const QSize size = svg.defaultSize().scaled(600, 200, Qt::KeepAspectRatio);
-                logo = QImage(size, QImage::Format_ARGB32);
-                logo.fill(Qt::transparent);
-                QPainter lp(&logo);
-                svg.render(&lp);
-            } else {
-                logo.loadFromData(m_look.logo());
-            }
-            d.addResource(QTextDocument::ImageResource, QUrl(QStringLiteral("logo")),
-                          logo.scaledToHeight(40 * 3, Qt::SmoothTransformation));
-        }
+        if (fragment.contains(QLatin1String("src=\"logo\"")))
+            addLogo(d);
         const double h = textDocument(fragment, d);
         if (y > 0 && y + std::min(h + keepWithNext, height) > height)
             newPage();
@@ -212,6 +199,46 @@ void ReportWriter::writePdf(QIODevice *device) const
     }
     drawFooter();
     painter.end();
+}
+
+void ReportWriter::addLogo(QTextDocument &doc) const
+{
+    if (m_look.logo().isEmpty())
+        return;
+    QImage logo;
+    if (m_look.logoMimeType() == QLatin1String("image/svg+xml")) {
+        QSvgRenderer svg(m_look.logo());
+        logo = QImage(svg.defaultSize().scaled(600, 200, Qt::KeepAspectRatio), QImage::Format_ARGB32);
+        logo.fill(Qt::transparent);
+        QPainter lp(&logo);
+        svg.render(&lp);
+    } else {
+        logo.loadFromData(m_look.logo());
+    }
+    doc.addResource(QTextDocument::ImageResource, QUrl(QStringLiteral("logo")), logo.scaledToHeight(40 * 3, Qt::SmoothTransformation));
+}
+
+void ReportWriter::fillPreview(QTextDocument &doc, int figureWidth_px) const
+{
+    doc.setDefaultStyleSheet(styleSheet());
+    addLogo(doc);
+    QString s = headerHtml(true);
+    for (int i = 0; i < m_doc.blocks.size(); ++i) {
+        const ReportBlock &b = m_doc.blocks[i];
+        if (b.kind == ReportBlock::Kind::Figure) {
+            const QSize size(figureWidth_px, qRound(figureWidth_px * b.size_mm.height() / b.size_mm.width()));
+            QImage image(size, QImage::Format_RGB32);
+            image.fill(Qt::white);
+            QPainter painter(&image);
+            QSvgRenderer(b.svg).render(&painter, QRectF(QPointF(0, 0), size));
+            painter.end();
+            const QString name = QStringLiteral("figure%1").arg(i);
+            doc.addResource(QTextDocument::ImageResource, QUrl(name), image);
+            s += QStringLiteral("<p><img src=\"%1\" width=\"%2\" height=\"%3\"/></p>").arg(name).arg(size.width()).arg(size.height());
+        }
+        s += blockHtml(b, m_look);
+    }
+    doc.setHtml(s);
 }
 
 bool ReportWriter::supportedSuffix(const QString &path)

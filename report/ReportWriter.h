@@ -7,6 +7,7 @@
 #include <QString>
 
 class QIODevice;
+class QTextDocument;
 
 namespace driftlab {
 
@@ -18,6 +19,9 @@ public:
     ReportWriter(const ReportDocument &document, const ReportTemplate &look) : m_doc(document), m_look(look) {}
 
     QByteArray html() const;
+    // The report in a QTextDocument (for an on-screen preview): figures as images
+    // `figureWidth_px` wide, drawn from the same SVG.
+    void fillPreview(QTextDocument &doc, int figureWidth_px) const;
     void writePdf(QIODevice *device) const;
     // By suffix (.html/.htm or .pdf), through QSaveFile: the file appears whole or not at all.
     // Throws std::invalid_argument for another suffix, std::runtime_error if it cannot be written.
@@ -26,6 +30,7 @@ public:
 
 private:
     QString headerHtml(bool forPdf) const;
+    void addLogo(QTextDocument &doc) const;
     static QString styleSheet();
 
     const ReportDocument &m_doc;

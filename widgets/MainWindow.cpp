@@ -181,6 +181,9 @@ void MainWindow::buildMenus()
     file->addAction(tr("&Export session as bundle..."), this, &MainWindow::exportSession, QKeySequence(Qt::CTRL + Qt::Key_E));
     file->addAction(tr("Export current &view (PNG, SVG, PDF)..."), this, &MainWindow::exportView,
                     QKeySequence(Qt::CTRL + Qt::SHIFT + Qt::Key_E));
+    m_reportAction = file->addAction(tr("Test &report (PDF, HTML)..."));
+    m_reportAction->setObjectName(QStringLiteral("ReportAction"));
+    m_reportAction->setShortcut(QKeySequence(Qt::CTRL + Qt::Key_R));
     file->addSeparator();
     file->addAction(tr("&Quit"), this, &QWidget::close, QKeySequence::Quit);
 

@@ -73,6 +73,8 @@ public:
     QUndoStack *undoStack() const { return m_undo; }
     const SessionStore *store() const { return m_store.get(); }
     qint64 currentSession() const { return m_sessionId; }
+    // File > Test report: the application connects it to the report dialog (report/ sits above widgets/).
+    QAction *reportAction() const { return m_reportAction; }
     QString lastError() const { return m_lastError; }
     QStringList recentDatabases() const;
 
@@ -114,6 +116,7 @@ private:
     AnalysisPanel *m_analysis;
     QMenu *m_recentMenu = nullptr;
     QMenu *m_viewMenu = nullptr;
+    QAction *m_reportAction = nullptr;
     QAction *m_viewDocksEnd = nullptr;
     qint64 m_sessionId = 0;
     QString m_lastError;

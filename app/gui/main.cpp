@@ -6,9 +6,11 @@
 #include "DiagnosisPanel.h"
 #include "MainWindow.h"
 #include "ModelsPanel.h"
+#include "ReportDialog.h"
 #include "ReviewWorkspace.h"
 #include "SessionStore.h"
 
+#include <QAction>
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QDir>
@@ -16,6 +18,7 @@
 #include <QFileInfo>
 #include <QImage>
 #include <QScreen>
+#include <QStatusBar>
 #include <QStandardPaths>
 #include <QTextStream>
 #include <QTimer>
@@ -123,6 +126,14 @@ int main(int argc, char **argv)
 
     MainWindow window;
     window.setDocumentationDirectory(QStringLiteral(DRIFTLAB_DOCS_DIR));
+    QObject::connect(window.reportAction(), &QAction::triggered, &window, [&window] {
+        if (!window.store() || window.currentSession() <= 0) {
+            window.statusBar()->showMessage(QObject::tr("Test report: choose a session first"), 5000);
+            return;
+        }
+        ReportDialog dialog(window.store(), window.currentSession(), &window);
+        dialog.exec();
+    });
     if (QFileInfo::exists(path)) {
         if (!window.openDatabase(path))
             return usageError(window.lastError());
