@@ -8,7 +8,7 @@ shift || true
 # are hashed relative to the checkout so that clones in other folders share the cache.
 launcher=()
 if command -v ccache >/dev/null && [[ " $* " != *COMPILER_LAUNCHER* ]]; then
-  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$src}"
+  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$src}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-1}"
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 fi
 cmake -S "$src" -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" "$@" >&2
