@@ -90,17 +90,30 @@ ElongationCheck SessionAnalysis::checkElongation(const FdmParameters &parameters
     check.geometry = geometry();
     const ScrewDrive d = drive();
     const TimeSeries probe = channelByRole(QStringLiteral("screw_elongation"));
-    // Table 1's dt (0.1 s), shortened where the parameters (e.g. a fitted large lambda) need it
-    // for the explicit scheme to stay stable at the recording's fastest feed.
-    FdmSettings settings;
-    double maxFeed = 0.0;
-    for (double f : d.feed_mm_min.v)
-        maxFeed = std::max(maxFeed, std::fabs(f));
-    settings.dt_s = std::min(settings.dt_s, 0.9 * FdmScrewModel(check.geometry, parameters, settings).maxStableTimeStep(maxFeed));
-    FdmSimulation sim(check.geometry, parameters, settings);
+    FdmSimulation sim(check.geometry, parameters, stableSettings(check.geometry, parameters, d));
     check.comparison = sim.compareElongation(d, probe);
     check.duration_s = probe.empty() ? 0.0 : probe.t.back() - probe.t.front();
     return check;
+}
+
+FdmSettings SessionAnalysis::stableSettings(const ScrewGeometry &geometry, const FdmParameters &parameters, const ScrewDrive &drive)
+{
+    FdmSettings settings;
+    double maxFeed = 0.0;
+    for (double f : drive.feed_mm_min.v)
+        maxFeed = std::max(maxFeed, std::fabs(f));
+    settings.dt_s = std::min(settings.dt_s, 0.9 * FdmScrewModel(geometry, parameters, settings).maxStableTimeStep(maxFeed));
+    return settings;
+}
+
+std::vector<double> SessionAnalysis::predictedElongation(const FdmParameters &parameters, TimeSeries &probe) const
+{
+    const ScrewDrive d = drive();
+    probe = channelByRole(QStringLiteral("screw_elongation"));
+    if (probe.empty())
+        throw std::runtime_error("the session has no screw_elongation probe samples to compare with");
+    const ScrewGeometry g = geometry();
+    return FdmSimulation(g, parameters, stableSettings(g, parameters, d)).elongationAt(d, probe.t);
 }
 
 QJsonObject SessionAnalysis::toJson(const ElongationCheck &check)

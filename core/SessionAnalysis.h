@@ -48,9 +48,17 @@ public:
 
     // Runs the model with `parameters` over the session and compares with the probe.
     ElongationCheck checkElongation(const FdmParameters &parameters) const;
+    // The model's free-end elongation (um) at the probe's times, from cold at the first drive
+    // time (the series checkElongation compares); `probe` receives the screw_elongation channel.
+    // Throws std::runtime_error for a missing drive or probe channel.
+    std::vector<double> predictedElongation(const FdmParameters &parameters, TimeSeries &probe) const;
     static QJsonObject toJson(const ElongationCheck &check);
 
 private:
+    // Table 1's dt (0.1 s), shortened where the parameters (e.g. a fitted large lambda) need it
+    // for the explicit scheme to stay stable at the drive's fastest feed.
+    static FdmSettings stableSettings(const ScrewGeometry &geometry, const FdmParameters &parameters, const ScrewDrive &drive);
+
     const SessionStore &m_store;
     qint64 m_sessionId;
     SessionInfo m_info;

@@ -6,6 +6,7 @@
 #include "Iso230Report.h"
 #include "ReportTemplate.h"
 #include "ReviewWorkspace.h"
+#include "SessionAnalysis.h"
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
 
@@ -375,6 +376,10 @@ void ReportBuilder::modelSection(ReportDocument &doc) const
         flatten(m.metrics, QString(), metrics);
         if (!metrics.isEmpty())
             doc.keyValues(metrics);
+        if (m.model == QLatin1String("fdm-seed000")) {
+            fdmFigure(doc, m);
+            continue;
+        }
         if (!m.model.startsWith(QLatin1String("driftlab-model/")))
             continue;
         // Data-driven: measured and predicted over this session.
@@ -390,6 +395,46 @@ void ReportBuilder::modelSection(ReportDocument &doc) const
         } catch (const std::exception &e) {
             doc.leftOut(QStringLiteral("validation figure of model %1: %2").arg(m.id).arg(QString::fromUtf8(e.what())));
         }
+    }
+}
+
+void ReportBuilder::fdmFigure(ReportDocument &doc, const FittedModel &m) const
+{
+    // The fitted seed-000 model run over this session against the screw-end probe.
+    try {
+        const SessionAnalysis session(m_store, m_session);
+        FdmParameters p = session.defaultParameters();
+        const std::pair<const char *, double *> fields[] = {{"k1", &p.k1}, {"k2", &p.k2}, {"k3", &p.k3}, {"k4", &p.k4},
+                                                            {"lambda_W_mK", &p.conductivity_W_mK},
+                                                            {"fixed_end_position_mm", &p.fixedEndPosition_mm}};
+        for (const auto &f : fields)
+            if (m.parameters.value(QLatin1String(f.first)).isDouble())
+                *f.second = m.parameters.value(QLatin1String(f.first)).toDouble();
+        TimeSeries probe;
+        const std::vector<double> predicted = session.predictedElongation(p, probe);
+        const std::size_t stride = std::max<std::size_t>(1, probe.t.size() / 4000);
+        QVector<double> t, measured, model;
+        double sum2 = 0.0;
+        for (std::size_t i = 0; i < probe.t.size(); ++i) {
+            sum2 += (predicted[i] - probe.v[i]) * (predicted[i] - probe.v[i]);
+            if (i % stride == 0) {
+                t.push_back(probe.t[i]);
+                measured.push_back(probe.v[i]);
+                model.push_back(predicted[i]);
+            }
+        }
+        TimeSeriesPlot plot;
+        plot.resize(1600, 1000);
+        plot.addCurve(QStringLiteral("measured (screw_elongation)"), t, measured, false);
+        plot.addCurve(QStringLiteral("fdm-seed000 as fitted"), t, model, false);
+        plot.setTitle(QStringLiteral("Screw-end elongation (um): measured and the fitted model"));
+        plot.replot();
+        doc.figure(QStringLiteral("fdm-seed000 run over this session against the probe (RMS %1 um over %2 samples)")
+                       .arg(num(std::sqrt(sum2 / static_cast<double>(probe.t.size())), 4))
+                       .arg(probe.t.size()),
+                   svg(plot, kFigure_mm), kFigure_mm);
+    } catch (const std::exception &e) {
+        doc.leftOut(QStringLiteral("validation figure of model %1: %2").arg(m.id).arg(QString::fromUtf8(e.what())));
     }
 }
 

@@ -21,6 +21,7 @@ class QwtPlot;
 namespace driftlab {
 
 class ReportTemplate;
+struct FittedModel;
 class SessionStore;
 
 class ReportBuilder {
@@ -44,6 +45,7 @@ private:
     void iso230Section(ReportDocument &doc) const;
     void sensitivePointSection(ReportDocument &doc) const;
     void modelSection(ReportDocument &doc) const;
+    void fdmFigure(ReportDocument &doc, const FittedModel &model) const;
     void diagnosisSection(ReportDocument &doc) const;
     void compensationSection(ReportDocument &doc) const;
 

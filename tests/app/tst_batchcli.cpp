@@ -72,7 +72,6 @@ void TestBatchCli::brokenBundleFailsAlone()
                               {QStringLiteral("output"), QStringLiteral("out")},
                               {QStringLiteral("steps"),
                                QJsonArray{QJsonObject{{QStringLiteral("step"), QStringLiteral("import")}},
-                                          QJsonObject{{QStringLiteral("step"), QStringLiteral("select-points")}, {QStringLiteral("target"), QStringLiteral("S1")}},
                                           QJsonObject{{QStringLiteral("step"), QStringLiteral("fit")}, {QStringLiteral("model"), QStringLiteral("mlr")},
                                                       {QStringLiteral("target"), QStringLiteral("S1")}, {QStringLiteral("points"), QStringLiteral("auto")}},
                                           QJsonObject{{QStringLiteral("step"), QStringLiteral("plot")}, {QStringLiteral("view"), QStringLiteral("error-surface")}},
@@ -82,7 +81,7 @@ void TestBatchCli::brokenBundleFailsAlone()
     QCOMPARE(r.code, 1);
     // One progress line per step and recording.
     const QStringList progress = QString::fromUtf8(r.err).split(QLatin1Char('\n')).filter(QRegularExpression(QStringLiteral("^\\[\\d/3 [abc]\\] ")));
-    QCOMPARE(progress.size(), 15);
+    QCOMPARE(progress.size(), 12);
     QVERIFY(progress.filter(QStringLiteral("[2/3 b] import: failed (exit 2)")).size() == 1);
     QVERIFY(progress.filter(QStringLiteral("channels.csv: line 5")).size() == 1);
 
@@ -93,20 +92,20 @@ void TestBatchCli::brokenBundleFailsAlone()
     QVERIFY(copy.open(QIODevice::ReadOnly));
     QCOMPARE(copy.readAll(), bytes);
     const QJsonObject summary = QJsonDocument::fromJson(bytes).object();
-    QCOMPARE(summary.value(QStringLiteral("steps_ok")).toInt(), 10);
-    QCOMPARE(summary.value(QStringLiteral("steps_not_ok")).toInt(), 5);
+    QCOMPARE(summary.value(QStringLiteral("steps_ok")).toInt(), 8);
+    QCOMPARE(summary.value(QStringLiteral("steps_not_ok")).toInt(), 4);
     const QJsonArray recordings = summary.value(QStringLiteral("recordings")).toArray();
     QCOMPARE(recordings.size(), 3);
     for (const QJsonValue &v : recordings) {
         const QJsonObject rec = v.toObject();
         const QString label = rec.value(QStringLiteral("label")).toString();
         const QJsonArray steps = rec.value(QStringLiteral("steps")).toArray();
-        QCOMPARE(steps.size(), 5);
+        QCOMPARE(steps.size(), 4);
         if (label == QLatin1String("b")) {
             QCOMPARE(steps[0].toObject().value(QStringLiteral("status")).toString(), QStringLiteral("failed"));
             QCOMPARE(steps[0].toObject().value(QStringLiteral("exit_code")).toInt(), 2);
             QVERIFY(steps[0].toObject().value(QStringLiteral("message")).toString().contains(QStringLiteral("channels.csv: line 5")));
-            for (int i = 1; i < 5; ++i)
+            for (int i = 1; i < 4; ++i)
                 QCOMPARE(steps[i].toObject().value(QStringLiteral("status")).toString(), QStringLiteral("skipped"));
             QVERIFY(!QFile::exists(m_dir.filePath(QStringLiteral("out/b/report.html"))));
             continue;
@@ -130,7 +129,7 @@ void TestBatchCli::brokenBundleFailsAlone()
         const QByteArray page = html.readAll();
         QVERIFY(page.contains("<h2>Fitted models</h2>"));
         QVERIFY(page.contains("driftlab-model/mlr"));
-        QVERIFY(page.contains("<h2>Temperature-sensitive points</h2>"));
+        QVERIFY(page.contains("<h2>ISO 230-2 positioning and ISO 230-3 drift</h2>"));
     }
 }
 

@@ -41,6 +41,7 @@ private:
     QString m_db;
     QJsonObject m_model;
     QJsonObject m_iso;
+    QJsonObject m_analyse;
     QString m_pdf, m_html, m_text;
 };
 
@@ -87,8 +88,20 @@ void TestReportCli::initTestCase()
     QVERIFY2(r.code == 0, r.err.constData());
     m_iso = QJsonDocument::fromJson(r.out).object();
     QVERIFY(!m_iso.isEmpty());
-    { // A diagnosis as `diagnose --train 1 --db` stores it (its run takes minutes; tst_diagnosis covers it).
+    // The seed-000 model with Table-3 parameters: `analyse` compares it with the probe (its own code path).
+    r = cli({QStringLiteral("analyse"), QStringLiteral("--session"), QStringLiteral("1"), QStringLiteral("--parameters"),
+             QStringLiteral("default"), QStringLiteral("--db"), m_db, QStringLiteral("--json"), QStringLiteral("-")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    m_analyse = QJsonDocument::fromJson(r.out).object();
+    QVERIFY(m_analyse.value(QStringLiteral("elongation_rms_error_um")).toDouble() > 1.0);
+    { // Stored as `fit --model fdm` stores a fit (a fit takes too long for CI); and a diagnosis as
+      // `diagnose --train 1 --db` stores it (its run takes minutes; tst_diagnosis covers it).
         SessionStore store(m_db);
+        FittedModel fdm;
+        fdm.model = QStringLiteral("fdm-seed000");
+        fdm.parameters = m_analyse.value(QStringLiteral("parameters")).toObject();
+        fdm.uncertainties = QJsonObject{{QStringLiteral("standard_errors"), QJsonObject{{QStringLiteral("k2"), 0.8125}}}};
+        store.addFittedModel(1, fdm);
         store.addAnalysisResult(1, QStringLiteral("diagnosis"),
                                 QJsonObject{{QStringLiteral("effect"), QStringLiteral("motor_heat")},
                                             {QStringLiteral("explanation"), QStringLiteral("heat from the motor enters the fixed end")},
@@ -143,6 +156,16 @@ void TestReportCli::pdfCarriesTheSessionsResults()
     QVERIFY(holdout > 0);
     QVERIFY(m_text.contains(QStringLiteral("holdout.rmse_um")));
     QVERIFY(m_text.contains(g(holdout)));
+    // The physical model's parameters (held ones marked) and its run against the probe.
+    QVERIFY(m_text.contains(QStringLiteral("fdm-seed000 (fitted")));
+    QVERIFY(m_text.contains(QStringLiteral("26.034")));
+    QVERIFY(m_text.contains(QStringLiteral("0.8125")));
+    QVERIFY(m_text.contains(QStringLiteral("held")));
+    const QString rms = QString::number(m_analyse.value(QStringLiteral("elongation_rms_error_um")).toDouble(), 'g', 4);
+    QVERIFY2(m_text.contains(QStringLiteral("against the probe (RMS %1 um over %2 samples)")
+                                 .arg(rms)
+                                 .arg(m_analyse.value(QStringLiteral("samples")).toInt())),
+             qPrintable(rms));
     // ISO 230-2: the systematic error E of every test and the largest drift, as `iso230 --json`.
     const QJsonArray tests = m_iso.value(QStringLiteral("tests")).toArray();
     QVERIFY(tests.size() >= 2);
@@ -197,9 +220,9 @@ void TestReportCli::htmlHasTheSameSectionsAndVectorFigures()
     QVERIFY2(!xml.hasError(), qPrintable(xml.errorString()));
     QCOMPARE(lang, QStringLiteral("en"));
     QCOMPARE(h2, kHeadings);
-    // Six of the seed-002 set, the selection grades, the model's prediction; all vector.
-    QCOMPARE(figures, 8);
-    QCOMPARE(svgFigures, 8 + 1); // and the logo
+    // Six of the seed-002 set, the selection grades, the two models' predictions; all vector.
+    QCOMPARE(figures, 9);
+    QCOMPARE(svgFigures, 9 + 1); // and the logo
     // Same figures in the PDF: one caption per figure.
     QCOMPARE(m_text.count(QStringLiteral("(session 1)\n")), 6);
 }
