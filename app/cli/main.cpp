@@ -3,6 +3,7 @@
 #include "AnalyseCommand.h"
 #include "DiagnoseCommand.h"
 #include "ExportCommand.h"
+#include "ExportModelCommand.h"
 #include "FitCommand.h"
 #include "ImportCommand.h"
 #include "ImportCsvCommand.h"
@@ -48,6 +49,7 @@ std::vector<std::unique_ptr<CliCommand>> commands()
     list.push_back(std::make_unique<NewBundleCommand>());
     list.push_back(std::make_unique<SelectPointsCommand>());
     list.push_back(std::make_unique<ValidateCommand>());
+    list.push_back(std::make_unique<ExportModelCommand>());
     return list;
 }
 
