@@ -115,9 +115,26 @@ std::string CompensationLaw::number(double v, int digits)
     return buf;
 }
 
+std::string CompensationLaw::plain(double v, int digits)
+{
+    if (v == 0.0 || !std::isfinite(v))
+        return "0";
+    const int exponent = static_cast<int>(std::floor(std::log10(std::fabs(v))));
+    const int decimals = std::max(0, digits - 1 - exponent);
+    char buf[512];
+    std::snprintf(buf, sizeof buf, "%.*f", std::min(decimals, 300), v);
+    std::string s = buf;
+    if (s.find('.') != std::string::npos) {
+        s.erase(s.find_last_not_of('0') + 1);
+        if (s.back() == '.')
+            s.pop_back();
+    }
+    return s == "-0" ? "0" : s;
+}
+
 std::string CompensationLaw::signedTerm(double v, int digits)
 {
-    return (v < 0 ? " - " : " + ") + number(std::fabs(v), digits);
+    return (v < 0 ? " - " : " + ") + plain(std::fabs(v), digits);
 }
 
 namespace {
@@ -129,22 +146,22 @@ std::string group(const FormulaSyntax &s, const std::string &inner)
 
 } // namespace
 
-std::string CompensationLaw::offsetFormula(const FormulaSyntax &s, double factor) const
+std::string CompensationLaw::compensationOffsetFormula(const FormulaSyntax &s) const
 {
     if (m_model.kind == "synthetic")
         return "0";
-    std::string sum = number(m_model.intercept, s.digits);
+    std::string sum = plain(m_model.intercept, s.digits);
     for (std::size_t i = 0; i < m_model.terms.size(); ++i) {
         const ModelTerm &t = m_model.terms[i];
         const std::string z = group(s, group(s, s.inputs.at(static_cast<std::size_t>(t.input)) +
                                                     signedTerm(-t.offset, s.digits)) +
-                                           "/" + number(t.scale, s.digits));
+                                           "/" + plain(t.scale, s.digits));
         sum += signedTerm(m_coefficients[i], s.digits) + "*" + z + (t.power == 2 ? "*" + z : std::string());
     }
-    return number(factor, s.digits) + "*" + group(s, sum);
+    return "-" + group(s, sum) + "/1000";
 }
 
-std::string CompensationLaw::slopeFormula(const FormulaSyntax &s, double factor) const
+std::string CompensationLaw::compensationSlopeFormula(const FormulaSyntax &s) const
 {
     if (m_model.kind != "synthetic")
         return "0";
@@ -153,12 +170,14 @@ std::string CompensationLaw::slopeFormula(const FormulaSyntax &s, double factor)
     for (std::size_t k = 0; k < l.temperatures.size(); ++k)
         mean += (k ? " + " : "") + s.inputs.at(static_cast<std::size_t>(l.temperatures[k]));
     const std::string temperature =
-        group(s, group(s, mean) + "/" + number(static_cast<double>(l.temperatures.size()), s.digits));
-    const std::string g = number(l.c, s.digits) + signedTerm(l.a, s.digits) + "*" +
-                          group(s, s.exp + group(s, number(l.b_perK, s.digits) + "*" +
-                                                        group(s, temperature + signedTerm(-l.t0_C, s.digits))) +
+        group(s, group(s, mean) + "/" + std::to_string(l.temperatures.size()));
+    const std::string g = plain(l.c, s.digits) + signedTerm(l.a, s.digits) + "*" +
+                          group(s, s.exp + group(s, plain(l.b_perK, s.digits) + "*" +
+                                                       group(s, temperature + signedTerm(-l.t0_C, s.digits))) +
                                        " - 1");
-    return number(factor / (l.pRef_mm - l.p0_mm), s.digits) + "*" + group(s, g);
+    // -g / (1000 (P_ref - P0)) with a positive divisor.
+    const double divisor = 1000.0 * (l.pRef_mm - l.p0_mm);
+    return (divisor > 0 ? "-" : "") + group(s, g) + "/" + plain(std::fabs(divisor), s.digits);
 }
 
 } // namespace driftlab

@@ -41,12 +41,14 @@ public:
     // Default position range: synthetic P0 .. P_ref, else 0 .. 1000 mm.
     ExportRange defaultPositions() const;
 
-    // factor * offset(u) and factor * slope(u) as controller text.
-    std::string offsetFormula(const FormulaSyntax &syntax, double factor) const;
-    std::string slopeFormula(const FormulaSyntax &syntax, double factor) const;
+    // The compensation in mm, -offset(u) / 1000 and -slope(u) / 1000 (mm per mm), as controller
+    // text: plain decimals (no exponent), no operator followed by a sign.
+    std::string compensationOffsetFormula(const FormulaSyntax &syntax) const;
+    std::string compensationSlopeFormula(const FormulaSyntax &syntax) const;
 
-    static std::string number(double value, int digits);
-    // " + |v|" or " - |v|": no operator is ever followed by a sign.
+    static std::string number(double value, int digits); // printf %g
+    static std::string plain(double value, int digits);  // fixed point, `digits` significant
+    // " + |v|" or " - |v|" in plain digits.
     static std::string signedTerm(double value, int digits);
 
 private:

@@ -35,7 +35,7 @@ ExportResult FanucExporter::exportModel(const ExportableModel &model, const Expo
     FormulaSyntax s;
     s.open = '[';
     s.close = ']';
-    s.digits = 10;
+    s.digits = 8; // a longer constant raises alarm PS0003 (too many digits)
     for (std::size_t i = 0; i < m.inputs.size(); ++i)
         s.inputs.push_back("#" + std::to_string(first + static_cast<int>(i)));
     std::ostringstream p;
@@ -44,8 +44,8 @@ ExportResult FanucExporter::exportModel(const ExportableModel &model, const Expo
     for (std::size_t i = 0; i < m.inputs.size(); ++i)
         p << "(" << s.inputs[i] << " = INPUT " << i << ", DEGC, SET BY PMC)\n";
     p << "#1=#" << machinePositionVariable(o.axis) << "\n"
-      << "#2=" << law.offsetFormula(s, -1e-3) << "\n"
-      << "#3=" << law.slopeFormula(s, -1e-3) << "\n"
+      << "#2=" << law.compensationOffsetFormula(s) << "\n"
+      << "#3=" << law.compensationSlopeFormula(s) << "\n"
       << "#4=#2+#3*[#1" << CompensationLaw::signedTerm(-law.referencePosition_mm(), s.digits) << "]\n"
       << "G10 L2 P0 " << o.axis << "#4\n"
       << "M99\n%\n";
@@ -53,7 +53,7 @@ ExportResult FanucExporter::exportModel(const ExportableModel &model, const Expo
     r.files.push_back({o.baseName + ".nc", p.str()});
     r.notes.push_back("inputs are macro variables " + s.inputs.front() + ".. (degC) the PMC keeps current; call O9100 "
                       "periodically: the external offset is exact for the model at that moment");
-    r.notes.push_back("constants written with 10 significant digits");
+    r.notes.push_back("constants written with 8 significant digits (the macro limit)");
     return r;
 }
 

@@ -36,7 +36,7 @@ ExportResult HeidenhainExporter::exportModel(const ExportableModel &model, const
           << ": compensation in mm = -E / 1000\n";
         for (std::size_t i = 0; i < m.inputs.size(); ++i)
             f << "; " << s.inputs[i] << " = " << m.inputs[i].id << " (degC)\n";
-        f << "TEMPCOMP = " << law.offsetFormula(s, -1e-3) << "\n";
+        f << "TEMPCOMP = " << law.compensationOffsetFormula(s) << "\n";
         r.files.push_back({o.baseName + "_tempcomp.txt", f.str()});
         r.notes.push_back("TEMPCOMP formula on PLC words " + s.inputs.front() + ".. (every other word), exact");
         if (!law.scalarTemperature())

@@ -53,9 +53,9 @@ ExportResult Siemens840dExporter::exportModel(const ExportableModel &model, cons
         << "; inputs written by the PLC (degC):\n";
     for (std::size_t i = 0; i < m.inputs.size(); ++i)
         mpf << ";   " << syntax.inputs[i] << " = " << m.inputs[i].id << " (" << m.inputs[i].unit << ")\n";
-    mpf << "$SA_TEMP_COMP_REF_POSITION[" << ax << "]=" << CompensationLaw::number(law.referencePosition_mm(), 12) << "\n"
-        << "IDS=1 WHENEVER TRUE DO $SA_TEMP_COMP_ABS_VALUE[" << ax << "]=" << law.offsetFormula(syntax, -1e-3)
-        << " $SA_TEMP_COMP_SLOPE[" << ax << "]=" << law.slopeFormula(syntax, -1e-3) << "\n"
+    mpf << "$SA_TEMP_COMP_REF_POSITION[" << ax << "]=" << CompensationLaw::plain(law.referencePosition_mm(), 12) << "\n"
+        << "IDS=1 WHENEVER TRUE DO $SA_TEMP_COMP_ABS_VALUE[" << ax << "]=" << law.compensationOffsetFormula(syntax)
+        << " $SA_TEMP_COMP_SLOPE[" << ax << "]=" << law.compensationSlopeFormula(syntax) << "\n"
         << "M30\n";
     r.files.push_back({o.baseName + ".mpf", mpf.str()});
     r.notes.push_back("inputs are R parameters " + syntax.inputs.front() + ".. filled by the PLC in degC");
@@ -78,7 +78,7 @@ ExportResult Siemens840dExporter::exportModel(const ExportableModel &model, cons
             const std::vector<double> ut = law.inputsAt(T);
             table << CompensationLaw::number(T, 12) << ';' << CompensationLaw::number(-1e-3 * law.offset_um(ut.data()), 12)
                   << ';' << CompensationLaw::number(-1e-3 * law.slope_um_per_mm(ut.data()), 12) << ';'
-                  << CompensationLaw::number(law.referencePosition_mm(), 12) << '\n';
+                  << CompensationLaw::plain(law.referencePosition_mm(), 12) << '\n';
         }
         r.files.push_back({o.baseName + "_sd_table.csv", table.str()});
         r.approximationError_um = t.interpolationError_um;
