@@ -1,5 +1,6 @@
 #include "CCodeExporter.h"
 
+#include "CompensationLaw.h"
 #include "DataDrivenPredictor.h"
 #include "FdmScrewModel.h"
 
@@ -112,8 +113,9 @@ ExportResult CCodeExporter::exportModel(const ExportableModel &model, const Expo
     ExportResult r;
     r.files.push_back({p + ".c", source});
     r.files.push_back({p + ".h", h.str()});
-    r.notes.push_back(model.physics ? "explicit seed-000 scheme, dx " + num(model.grid.dx_m) + " m, dt " +
-                                          num(model.grid.dt_s) + " s: identical to FdmScrewModel"
+    r.notes.push_back(model.physics ? "explicit seed-000 scheme, dx " + CompensationLaw::number(model.grid.dx_m, 6) +
+                                          " m, dt " + CompensationLaw::number(model.grid.dt_s, 6) +
+                                          " s: identical to FdmScrewModel; step() returns -2 at a feed where dt is unstable"
                                     : "identical to DataDrivenPredictor (same recursion, constants to 17 digits)");
     return r;
 }

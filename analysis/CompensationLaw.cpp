@@ -29,7 +29,7 @@ CompensationLaw CompensationLaw::from(const ExportableModel &model)
     if (model.physics)
         throw ExportRefused("fdm-seed000: the screw model's error comes from a temperature field driven by the "
                             "feed and position history, not from temperatures the controller measures; export "
-                            "it as C code (--target c) to run it in the controller, or as JSON");
+                            "it as C code (--target c) to run it in the controller");
     const DataDrivenModel &m = model.dataDriven;
     DataDrivenPredictor check(m); // throws std::invalid_argument for an inconsistent model
     CompensationLaw law(m);

@@ -1,6 +1,7 @@
 #include "ExportableModelJson.h"
 
 #include "DataDrivenModelJson.h"
+#include "FdmScrewModel.h"
 
 #include <QFile>
 #include <QFileInfo>
@@ -13,6 +14,8 @@
 namespace driftlab {
 
 namespace {
+
+constexpr double kMaxFeed_mm_min = 60000.0;
 
 [[noreturn]] void fail(const QString &source, const QString &field, const QString &what)
 {
@@ -82,8 +85,18 @@ ExportableModel ExportableModelJson::parse(const QByteArray &bytes, const QStrin
     g.density_kg_m3 = number(screw, source, sp, "density_kg_m3", false, g.density_kg_m3);
     g.specificHeat_J_kgK = number(screw, source, sp, "specific_heat_J_kgK", false, g.specificHeat_J_kgK);
     g.expansion_per_K = number(screw, source, sp, "expansion_per_K", false, g.expansion_per_K);
-    // The cells of the fit; the explicit step of seed 000 (Table 1, 0.1 s) for the controller.
+    // The cells of the fit, and for the controller the explicit step of seed 000 (Table 1,
+    // 0.1 s) or the largest shorter one that is stable up to 60 m/min.
     m.grid.dx_m = number(o.value(QStringLiteral("grid")).toObject(), source, QStringLiteral("grid"), "dx_m", false, m.grid.dx_m);
+    try {
+        for (double dt : {0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001}) {
+            m.grid.dt_s = dt;
+            if (FdmScrewModel(m.geometry, m.parameters, m.grid).maxStableTimeStep(kMaxFeed_mm_min) >= dt)
+                break;
+        }
+    } catch (const std::invalid_argument &e) {
+        fail(source, QStringLiteral("screw"), QString::fromUtf8(e.what()));
+    }
     return m;
 }
 
