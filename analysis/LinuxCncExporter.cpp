@@ -10,6 +10,10 @@
 
 namespace driftlab {
 
+namespace {
+constexpr std::size_t kMaxPoints = 256; // motion's compensation table size (LinuxCNC 2.9)
+} // namespace
+
 std::string LinuxCncExporter::description() const
 {
     return "LinuxCNC COMP_FILE (types 0 and 1) at one temperature, INI and HAL settings for external offsets";
@@ -25,6 +29,9 @@ ExportResult LinuxCncExporter::exportModel(const ExportableModel &model, const E
 {
     const CompensationLaw law = CompensationLaw::from(model);
     const CompensationTable table = CompensationTable::build(law, o, name());
+    if (table.positions_mm.size() > kMaxPoints)
+        throw ExportRefused("linuxcnc: a COMP_FILE holds at most " + std::to_string(kMaxPoints) + " points, the position grid has " +
+                            std::to_string(table.positions_mm.size()) + " (use a larger --positions step)");
     const double T = CompensationTable::singleTemperature(o);
     const std::vector<double> u = law.inputsAt(T);
     static const std::string order = "XYZABC";
