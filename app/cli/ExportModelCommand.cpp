@@ -2,13 +2,12 @@
 
 #include "CliSupport.h"
 #include "ExportableModelJson.h"
+#include "ModelExportWriter.h"
 #include "ModelExporterRegistry.h"
 
 #include <QCommandLineParser>
-#include <QDir>
 #include <QJsonArray>
 #include <QJsonObject>
-#include <QSaveFile>
 #include <QTextStream>
 
 #include <cmath>
@@ -134,17 +133,16 @@ int ExportModelCommand::run(const QStringList &args)
 
     // Everything is in memory: only now touch the file system.
     const QString dir = p.value(out);
-    if (!QDir().mkpath(dir))
-        throw std::runtime_error(QStringLiteral("export-model: cannot create folder %1").arg(dir).toStdString());
-    QJsonArray files;
-    for (const ExportFile &f : result.files) {
-        const QString path = QDir(dir).filePath(QString::fromStdString(f.name));
-        QSaveFile file(path);
-        const QByteArray bytes = QByteArray::fromStdString(f.content);
-        if (!file.open(QIODevice::WriteOnly) || file.write(bytes) != bytes.size() || !file.commit())
-            throw std::runtime_error(QStringLiteral("export-model: cannot write %1: %2").arg(path, file.errorString()).toStdString());
-        files.append(QJsonObject{{QStringLiteral("path"), path}, {QStringLiteral("bytes"), bytes.size()}});
+    QStringList paths;
+    try {
+        paths = ModelExportWriter::write(result, dir);
+    } catch (const std::runtime_error &e) {
+        throw std::runtime_error("export-model: " + std::string(e.what()));
     }
+    QJsonArray files;
+    for (int i = 0; i < paths.size(); ++i)
+        files.append(QJsonObject{{QStringLiteral("path"), paths[i]},
+                                 {QStringLiteral("bytes"), static_cast<qint64>(result.files[static_cast<std::size_t>(i)].content.size())}});
     QJsonArray notes;
     for (const std::string &n : result.notes)
         notes.append(QString::fromStdString(n));
