@@ -5,7 +5,6 @@
 
 #include <QFile>
 #include <QFileInfo>
-#include <QJsonDocument>
 #include <QJsonObject>
 
 #include <cmath>
@@ -41,14 +40,7 @@ double number(const QJsonObject &o, const QString &source, const QString &path, 
 
 ExportableModel ExportableModelJson::parse(const QByteArray &bytes, const QString &source)
 {
-    QJsonParseError error;
-    const QJsonDocument doc = QJsonDocument::fromJson(bytes, &error);
-    if (error.error != QJsonParseError::NoError)
-        throw std::invalid_argument(
-            QStringLiteral("%1: not JSON at byte %2: %3").arg(source).arg(error.offset).arg(error.errorString()).toStdString());
-    if (!doc.isObject())
-        throw std::invalid_argument(QStringLiteral("%1: expected a JSON object").arg(source).toStdString());
-    const QJsonObject o = doc.object();
+    const QJsonObject o = DataDrivenModelJson::object(bytes, source);
     ExportableModel m;
     m.source = QFileInfo(source).fileName().toStdString();
     if (o.contains(QStringLiteral("format"))) {
