@@ -4,5 +4,12 @@ set -euo pipefail
 src="$(cd "$(dirname "$0")/.." && pwd)"
 dir="${1:-$src/build}"
 shift || true
-cmake -S "$src" -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@" >&2
+# ccache (when installed) makes rebuilds and fresh clones on the same machine cheap; paths
+# are hashed relative to the checkout so that clones in other folders share the cache.
+launcher=()
+if command -v ccache >/dev/null && [[ " $* " != *COMPILER_LAUNCHER* ]]; then
+  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$src}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-1}"
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+fi
+cmake -S "$src" -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" "$@" >&2
 cmake --build "$dir" -j"$(nproc)" >&2

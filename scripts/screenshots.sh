@@ -22,4 +22,5 @@ for size in 1366x768 1920x1080; do
   shot acquisition --show-session 2 --dock acquisition
   shot models --fit 1:2
   shot diagnosis --diagnose 1:2
+  shot analysis --analysis 1:S1:2
 done

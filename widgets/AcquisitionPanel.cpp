@@ -90,10 +90,17 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     m_plot = new TimeSeriesPlot(this);
     m_plot->setAxisTitles(tr("temperature (°C)"), tr("elongation (µm)"));
     m_plot->setMinimumHeight(180);
+    // Before the first readings: a room-temperature scale rather than Qwt's 0..1000.
+    m_plot->setAxisScale(QwtPlot::yLeft, 15.0, 35.0);
+    m_plot->setAxisScale(QwtPlot::yRight, -5.0, 50.0);
+    m_plot->setAxisScale(QwtPlot::xBottom, 0.0, 60.0);
     m_devices->setMinimumHeight(120);
 
     auto *form = new QFormLayout;
-    form->addRow(tr("Rig"), m_rig);
+    auto *rigRow = new QHBoxLayout; // the rig and, beside it, where its devices are set up
+    rigRow->addWidget(m_rig, 1);
+    rigRow->addWidget(m_setup);
+    form->addRow(tr("Rig"), rigRow);
     form->addRow(tr("Records into"), m_db);
     form->addRow(tr("Name"), m_name);
     form->addRow(tr("Operator"), m_operator);
@@ -104,13 +111,15 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     for (QWidget *w : {static_cast<QWidget *>(m_start), static_cast<QWidget *>(m_pause), static_cast<QWidget *>(m_marker),
                        static_cast<QWidget *>(m_stop)})
         buttons->addWidget(w);
-    buttons->addWidget(m_setup);
-    buttons->addWidget(m_run);
     buttons->addStretch();
-    buttons->addWidget(m_elapsed);
+    auto *during = new QHBoxLayout; // what a running recording offers, and how far it is
+    during->addWidget(m_run);
+    during->addStretch();
+    during->addWidget(m_elapsed);
     auto *layout = new QVBoxLayout(this);
     layout->addLayout(form);
     layout->addLayout(buttons);
+    layout->addLayout(during);
     layout->addWidget(m_message);
     layout->addWidget(m_devices, 1);
     layout->addWidget(m_plot, 3);
@@ -230,6 +239,8 @@ bool AcquisitionPanel::startRecording(const QString &rigNameOrPath, const QStrin
             m_devices->setItem(i, c, new QTableWidgetItem);
     }
     m_plot->clearCurves();
+    for (int axis : {QwtPlot::yLeft, QwtPlot::yRight, QwtPlot::xBottom})
+        m_plot->setAxisAutoScale(axis, true);
     m_plotRefreshes = 0;
     m_lastPlot_ms = 0;
     m_timer->start();

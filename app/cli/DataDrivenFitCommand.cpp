@@ -138,6 +138,10 @@ int DataDrivenFitCommand::run(const QStringList &args)
     q.session = sessionArg(store, p.positionalArguments().first(), QStringLiteral("SESSION"), cmd);
     if (p.isSet(holdout))
         q.holdoutSession = sessionArg(store, p.value(holdout), QStringLiteral("--holdout"), cmd);
+    if (q.holdoutSession == q.session)
+        throw UsageError(QStringLiteral("fit: --holdout %1 is the training session; held-out data must be a session the "
+                                        "model was not fitted to (or use --holdout-range)")
+                             .arg(q.holdoutSession));
     DataDrivenFitResult r;
     try {
         if (p.isSet(train))

@@ -232,6 +232,10 @@ void TestDataDriven::badInputExitsTwo()
     expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("ridge"),
              QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--train-range"), QStringLiteral("50:60"), QStringLiteral("--out"), out},
             "training samples");
+    // The training session cannot be its own held-out data (issue 14: same rule as diagnose).
+    expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("mlr"),
+             QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--holdout"), QStringLiteral("1"), QStringLiteral("--out"), out},
+            "training session");
     QVERIFY(!QFile::exists(out)); // nothing half-written
     // A model file of a newer format version, and a model whose input the session lacks.
     QFile m(m_dir.filePath(QStringLiteral("ridge.json")));
