@@ -271,7 +271,7 @@ DataDrivenModel DataDrivenModelJson::fromJson(const QJsonObject &o, const QStrin
     return m;
 }
 
-DataDrivenModel DataDrivenModelJson::parse(const QByteArray &bytes, const QString &source, QJsonObject *document)
+QJsonObject DataDrivenModelJson::object(const QByteArray &bytes, const QString &source)
 {
     QJsonParseError error;
     const QJsonDocument doc = QJsonDocument::fromJson(bytes, &error);
@@ -280,9 +280,15 @@ DataDrivenModel DataDrivenModelJson::parse(const QByteArray &bytes, const QStrin
             QStringLiteral("%1: not JSON at byte %2: %3").arg(source).arg(error.offset).arg(error.errorString()).toStdString());
     if (!doc.isObject())
         throw std::invalid_argument(QStringLiteral("%1: expected a JSON object").arg(source).toStdString());
+    return doc.object();
+}
+
+DataDrivenModel DataDrivenModelJson::parse(const QByteArray &bytes, const QString &source, QJsonObject *document)
+{
+    const QJsonObject o = object(bytes, source);
     if (document)
-        *document = doc.object();
-    return fromJson(doc.object(), source);
+        *document = o;
+    return fromJson(o, source);
 }
 
 DataDrivenModel DataDrivenModelJson::read(const QString &path, QJsonObject *document)

@@ -25,6 +25,8 @@ public:
     static QJsonObject toJson(const DataDrivenModel &model);
     static DataDrivenModel fromJson(const QJsonObject &object, const QString &source);
     static DataDrivenModel parse(const QByteArray &bytes, const QString &source, QJsonObject *document = nullptr);
+    // The top-level JSON object of bytes (std::invalid_argument naming the source and byte).
+    static QJsonObject object(const QByteArray &bytes, const QString &source);
     // Reads and parses a file (std::invalid_argument names the file for every failure).
     static DataDrivenModel read(const QString &path, QJsonObject *document = nullptr);
     // Writes atomically (QSaveFile); throws std::runtime_error naming the file.

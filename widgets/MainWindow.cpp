@@ -7,6 +7,7 @@
 #include "DiagnosisPanel.h"
 #include "DuplicateSessionError.h"
 #include "ErrorSurface3D.h"
+#include "ModelExportDialog.h"
 #include "ModelsPanel.h"
 #include "PlotExporter.h"
 #include "ReviewWorkspace.h"
@@ -179,6 +180,8 @@ void MainWindow::buildMenus()
     file->addAction(tr("&Import recording bundle..."), this, &MainWindow::chooseBundle, QKeySequence(Qt::CTRL + Qt::Key_I));
     file->addAction(tr("Import &CSV table..."), this, &MainWindow::importCsv)->setObjectName(QStringLiteral("ImportCsvAction"));
     file->addAction(tr("&Export session as bundle..."), this, &MainWindow::exportSession, QKeySequence(Qt::CTRL + Qt::Key_E));
+    file->addAction(tr("Export &model to controller..."), this, [this] { ModelExportDialog(this).exec(); })
+        ->setObjectName(QStringLiteral("ExportModelAction"));
     file->addAction(tr("Export current &view (PNG, SVG, PDF)..."), this, &MainWindow::exportView,
                     QKeySequence(Qt::CTRL + Qt::SHIFT + Qt::Key_E));
     m_reportAction = file->addAction(tr("Test &report (PDF, HTML)..."));

@@ -4,6 +4,7 @@
 #include "BatchCommand.h"
 #include "DiagnoseCommand.h"
 #include "ExportCommand.h"
+#include "ExportModelCommand.h"
 #include "FitCommand.h"
 #include "ImportCommand.h"
 #include "ImportCsvCommand.h"
@@ -52,6 +53,7 @@ std::vector<std::unique_ptr<CliCommand>> commands()
     list.push_back(std::make_unique<ValidateCommand>());
     list.push_back(std::make_unique<ReportCommand>());
     list.push_back(std::make_unique<BatchCommand>());
+    list.push_back(std::make_unique<ExportModelCommand>());
     return list;
 }
 

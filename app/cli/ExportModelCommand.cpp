@@ -1,0 +1,170 @@
+#include "ExportModelCommand.h"
+
+#include "CliSupport.h"
+#include "ExportableModelJson.h"
+#include "ModelExportWriter.h"
+#include "ModelExporterRegistry.h"
+
+#include <QCommandLineParser>
+#include <QJsonArray>
+#include <QJsonObject>
+#include <QTextStream>
+
+#include <cmath>
+
+namespace driftlab {
+
+namespace {
+
+ExportRange range(const QString &text, const QString &option)
+{
+    const QStringList parts = text.split(QLatin1Char(':'));
+    bool ok[3] = {false, false, false};
+    if (parts.size() == 3) {
+        const ExportRange r{parts[0].toDouble(&ok[0]), parts[1].toDouble(&ok[1]), parts[2].toDouble(&ok[2])};
+        if (ok[0] && ok[1] && ok[2] && std::isfinite(r.from) && r.to > r.from && r.step > 0 &&
+            (r.to - r.from) / r.step <= 100000)
+            return r;
+    }
+    throw UsageError(QStringLiteral("export-model: %1 must be FROM:TO:STEP with FROM < TO, STEP > 0 and at most "
+                                    "100000 steps, got '%2'")
+                         .arg(option, text));
+}
+
+double finite(const QString &text, const QString &option)
+{
+    bool ok = false;
+    const double v = text.toDouble(&ok);
+    if (!ok || !std::isfinite(v))
+        throw UsageError(QStringLiteral("export-model: %1 must be a number, got '%2'").arg(option, text));
+    return v;
+}
+
+} // namespace
+
+QString ExportModelCommand::summary() const
+{
+    return QStringLiteral(
+        "Write a fitted model (MODEL.json from 'fit --json') for a CNC controller: 840d, fanuc, heidenhain,\n"
+        "linuxcnc, twincat, m80, c (portable C99), csv, json. Prints what it wrote, the notes (units, inputs)\n"
+        "and the approximation error where the target cannot hold the model exactly; a model the target\n"
+        "cannot express is refused with the reason (exit 2) and nothing is written. See docs/export.md.");
+}
+
+int ExportModelCommand::run(const QStringList &args)
+{
+    const ModelExporterRegistry registry;
+    QCommandLineParser p;
+    const QString targets = QString::fromStdString(registry.names());
+    const QCommandLineOption target(QStringLiteral("target"), QStringLiteral("Format: %1.").arg(targets), QStringLiteral("name"));
+    const QCommandLineOption out(QStringLiteral("out"), QStringLiteral("Folder to write into (created if missing)."),
+                                 QStringLiteral("dir"));
+    const QCommandLineOption axis(QStringLiteral("axis"), QStringLiteral("Axis letter (default X)."), QStringLiteral("X"),
+                                  QStringLiteral("X"));
+    const QCommandLineOption base(QStringLiteral("name"), QStringLiteral("Base name of the files (default driftlab_comp)."),
+                                  QStringLiteral("name"), QStringLiteral("driftlab_comp"));
+    const QCommandLineOption positions(QStringLiteral("positions"),
+                                       QStringLiteral("Table positions, mm (default: the model's range)."),
+                                       QStringLiteral("from:to:step"));
+    const QCommandLineOption temperatures(QStringLiteral("temperatures"),
+                                          QStringLiteral("Table temperatures, degC (default 15:40:1)."),
+                                          QStringLiteral("from:to:step"), QStringLiteral("15:40:1"));
+    const QCommandLineOption temperature(QStringLiteral("temperature"),
+                                         QStringLiteral("Temperature of single-temperature files (linuxcnc, twincat "
+                                                        "parameters), degC (default: middle of --temperatures)."),
+                                         QStringLiteral("degC"));
+    const QCommandLineOption first(QStringLiteral("first-variable"),
+                                   QStringLiteral("First controller variable of the inputs (840d R, fanuc #, heidenhain W)."),
+                                   QStringLiteral("n"));
+    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
+                                  QStringLiteral("file"));
+    const QCommandLineOption list(QStringLiteral("list-targets"), QStringLiteral("List the targets and their sources."));
+    p.addOptions({target, out, axis, base, positions, temperatures, temperature, first, json, list});
+    p.addPositionalArgument(QStringLiteral("MODEL.json"), QStringLiteral("Fitted model."));
+    if (!parse(p, args))
+        return 0;
+    QTextStream o(stdout);
+    if (p.isSet(list)) {
+        for (const auto &e : registry.exporters())
+            o << QString::fromStdString(e->name()).leftJustified(12) << QString::fromStdString(e->description()) << "\n"
+              << QString(12, QLatin1Char(' ')) << "source: " << QString::fromStdString(e->reference()) << '\n';
+        return 0;
+    }
+    if (p.positionalArguments().size() != 1)
+        throw UsageError(QStringLiteral("export-model: give exactly one MODEL.json"));
+    if (!p.isSet(target))
+        throw UsageError(QStringLiteral("export-model: --target is required (%1)").arg(targets));
+    const ModelExporter *exporter = registry.find(p.value(target).toStdString());
+    if (!exporter)
+        throw UsageError(QStringLiteral("export-model: --target: unknown target '%1' (known: %2)").arg(p.value(target), targets));
+    if (!p.isSet(out))
+        throw UsageError(QStringLiteral("export-model: --out DIR is required"));
+    if (p.isSet(json))
+        CliSupport::checkOutput(p.value(json), QStringLiteral("--json"), false);
+
+    ExportOptions options;
+    options.axis = p.value(axis).toUpper().toStdString();
+    options.baseName = p.value(base).toStdString();
+    if (options.baseName.empty() || p.value(base).contains(QLatin1Char('/')))
+        throw UsageError(QStringLiteral("export-model: --name must be a plain file name, got '%1'").arg(p.value(base)));
+    if (p.isSet(positions))
+        options.positions = range(p.value(positions), QStringLiteral("--positions"));
+    options.temperatures = range(p.value(temperatures), QStringLiteral("--temperatures"));
+    if (p.isSet(temperature))
+        options.temperature = finite(p.value(temperature), QStringLiteral("--temperature"));
+    if (p.isSet(first)) {
+        bool ok = false;
+        options.firstVariable = p.value(first).toInt(&ok);
+        if (!ok || options.firstVariable < 0)
+            throw UsageError(QStringLiteral("export-model: --first-variable must be an integer >= 0, got '%1'").arg(p.value(first)));
+    }
+
+    const QString modelPath = p.positionalArguments().front();
+    ExportResult result;
+    ExportableModel model;
+    try {
+        model = ExportableModelJson::read(modelPath);
+        result = exporter->exportModel(model, options);
+    } catch (const std::invalid_argument &e) {
+        throw UsageError(QStringLiteral("export-model: %1").arg(QString::fromUtf8(e.what())));
+    } catch (const ExportRefused &e) {
+        throw UsageError(QStringLiteral("export-model: %1 refused: %2").arg(modelPath, QString::fromUtf8(e.what())));
+    }
+
+    // Everything is in memory: only now touch the file system.
+    const QString dir = p.value(out);
+    QStringList paths;
+    try {
+        paths = ModelExportWriter::write(result, dir);
+    } catch (const std::runtime_error &e) {
+        throw std::runtime_error("export-model: " + std::string(e.what()));
+    }
+    QJsonArray files;
+    for (int i = 0; i < paths.size(); ++i)
+        files.append(QJsonObject{{QStringLiteral("path"), paths[i]},
+                                 {QStringLiteral("bytes"), static_cast<qint64>(result.files[static_cast<std::size_t>(i)].content.size())}});
+    QJsonArray notes;
+    for (const std::string &n : result.notes)
+        notes.append(QString::fromStdString(n));
+    if (p.isSet(json))
+        CliSupport::writeJson(QJsonDocument(QJsonObject{{QStringLiteral("model"), modelPath},
+                                                        {QStringLiteral("kind"), QString::fromStdString(model.kind())},
+                                                        {QStringLiteral("target"), QString::fromStdString(exporter->name())},
+                                                        {QStringLiteral("source"), QString::fromStdString(exporter->reference())},
+                                                        {QStringLiteral("files"), files},
+                                                        {QStringLiteral("notes"), notes},
+                                                        {QStringLiteral("approximation_error_um"), result.approximationError_um}}),
+                              p.value(json));
+    if (!p.isSet(json) || p.value(json) != QLatin1String("-")) {
+        o << QString::fromStdString(model.kind()) << " -> " << QString::fromStdString(exporter->name()) << ": "
+          << files.size() << " file(s) in " << dir << ", approximation error "
+          << QString::number(result.approximationError_um, 'g', 4) << " um\n";
+        for (const QJsonValue &f : files)
+            o << "  " << f.toObject().value(QStringLiteral("path")).toString() << '\n';
+        for (const std::string &n : result.notes)
+            o << "  note: " << QString::fromStdString(n) << '\n';
+    }
+    return 0;
+}
+
+} // namespace driftlab

@@ -1,0 +1,103 @@
+#include "ExportableModelJson.h"
+
+#include "DataDrivenModelJson.h"
+#include "FdmScrewModel.h"
+
+#include <QFile>
+#include <QFileInfo>
+#include <QJsonObject>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace driftlab {
+
+namespace {
+
+constexpr double kMaxFeed_mm_min = 60000.0;
+
+[[noreturn]] void fail(const QString &source, const QString &field, const QString &what)
+{
+    throw std::invalid_argument(QStringLiteral("%1: %2: %3").arg(source, field, what).toStdString());
+}
+
+double number(const QJsonObject &o, const QString &source, const QString &path, const char *key, bool required,
+              double fallback)
+{
+    const QString field = path + QLatin1Char('.') + QLatin1String(key);
+    const QJsonValue v = o.value(QLatin1String(key));
+    if (v.isUndefined()) {
+        if (required)
+            fail(source, field, QStringLiteral("missing"));
+        return fallback;
+    }
+    if (!v.isDouble() || !std::isfinite(v.toDouble()))
+        fail(source, field, QStringLiteral("expected a number"));
+    return v.toDouble();
+}
+
+} // namespace
+
+ExportableModel ExportableModelJson::parse(const QByteArray &bytes, const QString &source)
+{
+    const QJsonObject o = DataDrivenModelJson::object(bytes, source);
+    ExportableModel m;
+    m.source = QFileInfo(source).fileName().toStdString();
+    if (o.contains(QStringLiteral("format"))) {
+        m.dataDriven = DataDrivenModelJson::fromJson(o, source);
+        return m;
+    }
+    const QJsonValue kind = o.value(QStringLiteral("model"));
+    if (kind.isUndefined())
+        fail(source, QStringLiteral("model"), QStringLiteral("missing (expected \"fdm-seed000\" or a \"format\": \"driftlab-model\" file)"));
+    if (kind.toString() != QLatin1String("fdm-seed000"))
+        fail(source, QStringLiteral("model"),
+             QStringLiteral("'%1' is not a model this DriftLab exports (fdm-seed000, or \"format\": \"driftlab-model\")")
+                 .arg(kind.toVariant().toString()));
+    m.physics = true;
+    if (!o.value(QStringLiteral("parameters")).isObject())
+        fail(source, QStringLiteral("parameters"), QStringLiteral("missing or not an object"));
+    const QJsonObject par = o.value(QStringLiteral("parameters")).toObject();
+    const QString pp = QStringLiteral("parameters");
+    m.parameters.k1 = number(par, source, pp, "k1", true, 0);
+    m.parameters.k2 = number(par, source, pp, "k2", true, 0);
+    m.parameters.k3 = number(par, source, pp, "k3", true, 0);
+    m.parameters.k4 = number(par, source, pp, "k4", true, 0);
+    m.parameters.conductivity_W_mK = number(par, source, pp, "lambda_W_mK", true, 0);
+    m.parameters.fixedEndPosition_mm = number(par, source, pp, "fixed_end_position_mm", true, 0);
+    if (!(m.parameters.conductivity_W_mK > 0))
+        fail(source, QStringLiteral("parameters.lambda_W_mK"), QStringLiteral("must be > 0"));
+    const QJsonObject screw = o.value(QStringLiteral("screw")).toObject();
+    const QString sp = QStringLiteral("screw");
+    ScrewGeometry &g = m.geometry;
+    g.length_m = number(screw, source, sp, "length_m", false, g.length_m);
+    g.diameter_m = number(screw, source, sp, "diameter_m", false, g.diameter_m);
+    g.nutLength_m = number(screw, source, sp, "nut_length_m", false, g.nutLength_m);
+    g.fixedBearingLength_m = number(screw, source, sp, "fixed_bearing_length_m", false, g.fixedBearingLength_m);
+    g.density_kg_m3 = number(screw, source, sp, "density_kg_m3", false, g.density_kg_m3);
+    g.specificHeat_J_kgK = number(screw, source, sp, "specific_heat_J_kgK", false, g.specificHeat_J_kgK);
+    g.expansion_per_K = number(screw, source, sp, "expansion_per_K", false, g.expansion_per_K);
+    // The cells of the fit, and for the controller the explicit step of seed 000 (Table 1,
+    // 0.1 s) or the largest shorter one that is stable up to 60 m/min.
+    m.grid.dx_m = number(o.value(QStringLiteral("grid")).toObject(), source, QStringLiteral("grid"), "dx_m", false, m.grid.dx_m);
+    try {
+        for (double dt : {0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001}) {
+            m.grid.dt_s = dt;
+            if (FdmScrewModel(m.geometry, m.parameters, m.grid).maxStableTimeStep(kMaxFeed_mm_min) >= dt)
+                break;
+        }
+    } catch (const std::invalid_argument &e) {
+        fail(source, QStringLiteral("screw"), QString::fromUtf8(e.what()));
+    }
+    return m;
+}
+
+ExportableModel ExportableModelJson::read(const QString &path)
+{
+    QFile f(path);
+    if (!f.open(QIODevice::ReadOnly))
+        throw std::invalid_argument(QStringLiteral("%1: cannot read: %2").arg(path, f.errorString()).toStdString());
+    return parse(f.readAll(), path);
+}
+
+} // namespace driftlab

@@ -1,0 +1,193 @@
+#include "ModelExportDialog.h"
+
+#include "ExportableModelJson.h"
+#include "ModelExportWriter.h"
+
+#include <QComboBox>
+#include <QDialogButtonBox>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFontDatabase>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPlainTextEdit>
+#include <QPushButton>
+#include <QTabWidget>
+#include <QVBoxLayout>
+
+namespace driftlab {
+
+ModelExportDialog::ModelExportDialog(QWidget *parent) : QDialog(parent)
+{
+    setWindowTitle(tr("Export model to controller"));
+    m_model = new QLineEdit(this);
+    m_model->setPlaceholderText(tr("MODEL.json from a fit"));
+    auto *browseModel = new QPushButton(tr("Browse..."), this);
+    auto *modelRow = new QHBoxLayout;
+    modelRow->addWidget(m_model, 1);
+    modelRow->addWidget(browseModel);
+    m_target = new QComboBox(this);
+    for (const auto &e : m_registry.exporters())
+        m_target->addItem(QStringLiteral("%1 - %2").arg(QString::fromStdString(e->name()), QString::fromStdString(e->description())),
+                          QString::fromStdString(e->name()));
+    m_axis = new QComboBox(this);
+    m_axis->addItems({QStringLiteral("X"), QStringLiteral("Y"), QStringLiteral("Z")});
+    m_name = new QLineEdit(QStringLiteral("driftlab_comp"), this);
+    m_folder = new QLineEdit(this);
+    m_folder->setPlaceholderText(tr("folder to write into"));
+    auto *browseFolder = new QPushButton(tr("Browse..."), this);
+    auto *folderRow = new QHBoxLayout;
+    folderRow->addWidget(m_folder, 1);
+    folderRow->addWidget(browseFolder);
+    auto *form = new QFormLayout;
+    form->addRow(tr("Model:"), modelRow);
+    form->addRow(tr("Target:"), m_target);
+    form->addRow(tr("Axis:"), m_axis);
+    form->addRow(tr("File name:"), m_name);
+    form->addRow(tr("Folder:"), folderRow);
+    m_message = new QLabel(this);
+    m_message->setWordWrap(true);
+    m_message->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    m_preview = new QTabWidget(this);
+    auto *buttons = new QDialogButtonBox(QDialogButtonBox::Close, this);
+    m_export = buttons->addButton(tr("&Export"), QDialogButtonBox::AcceptRole);
+    auto *layout = new QVBoxLayout(this);
+    layout->addLayout(form);
+    layout->addWidget(m_message);
+    layout->addWidget(m_preview, 1);
+    layout->addWidget(buttons);
+    resize(900, 640);
+
+    connect(browseModel, &QPushButton::clicked, this, &ModelExportDialog::browseModel);
+    connect(browseFolder, &QPushButton::clicked, this, &ModelExportDialog::browseFolder);
+    connect(m_model, &QLineEdit::editingFinished, this, &ModelExportDialog::refresh);
+    connect(m_target, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &ModelExportDialog::refresh);
+    connect(m_axis, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &ModelExportDialog::refresh);
+    connect(m_name, &QLineEdit::editingFinished, this, &ModelExportDialog::refresh);
+    connect(m_folder, &QLineEdit::textChanged, this, [this] { m_export->setEnabled(canExport()); });
+    connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
+    connect(m_export, &QPushButton::clicked, this, [this] {
+        if (exportFiles())
+            accept();
+    });
+    refresh();
+}
+
+void ModelExportDialog::setModelPath(const QString &path)
+{
+    m_model->setText(path);
+    refresh();
+}
+
+void ModelExportDialog::setTarget(const QString &name)
+{
+    m_target->setCurrentIndex(m_target->findData(name));
+    refresh();
+}
+
+void ModelExportDialog::setFolder(const QString &folder)
+{
+    m_folder->setText(folder);
+}
+
+void ModelExportDialog::browseModel()
+{
+    const QString path = QFileDialog::getOpenFileName(this, tr("Fitted model"), m_model->text(), tr("Model JSON (*.json)"));
+    if (!path.isEmpty())
+        setModelPath(path);
+}
+
+void ModelExportDialog::browseFolder()
+{
+    const QString dir = QFileDialog::getExistingDirectory(this, tr("Export into"), m_folder->text());
+    if (!dir.isEmpty())
+        setFolder(dir);
+}
+
+void ModelExportDialog::refresh()
+{
+    m_preview->clear();
+    m_ok = false;
+    m_result = ExportResult{};
+    const ModelExporter *exporter = m_registry.find(m_target->currentData().toString().toStdString());
+    if (m_model->text().isEmpty() || !exporter) {
+        m_message->setText(tr("Choose a fitted model (MODEL.json)."));
+        m_export->setEnabled(false);
+        return;
+    }
+    ExportOptions options;
+    options.axis = m_axis->currentText().toStdString();
+    options.baseName = m_name->text().trimmed().toStdString();
+    try {
+        const ExportableModel model = ExportableModelJson::read(m_model->text());
+        m_result = exporter->exportModel(model, options);
+        m_ok = true;
+        QStringList lines{tr("%1 -> %2: %n file(s), approximation error %3 um", nullptr, static_cast<int>(m_result.files.size()))
+                              .arg(QString::fromStdString(model.kind()), QString::fromStdString(exporter->name()))
+                              .arg(m_result.approximationError_um, 0, 'g', 4)};
+        for (const std::string &n : m_result.notes)
+            lines << QStringLiteral("- ") + QString::fromStdString(n);
+        lines << tr("Source: %1").arg(QString::fromStdString(exporter->reference()));
+        m_message->setStyleSheet(QString());
+        m_message->setText(lines.join(QLatin1Char('\n')));
+        for (const ExportFile &f : m_result.files) {
+            auto *text = new QPlainTextEdit(QString::fromStdString(f.content), m_preview);
+            text->setReadOnly(true);
+            text->setLineWrapMode(QPlainTextEdit::NoWrap);
+            text->setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
+            m_preview->addTab(text, QString::fromStdString(f.name));
+        }
+    } catch (const ExportRefused &e) {
+        m_message->setStyleSheet(QStringLiteral("color: #b00020"));
+        m_message->setText(tr("%1 refuses this model: %2").arg(QString::fromStdString(exporter->name()), QString::fromUtf8(e.what())));
+    } catch (const std::exception &e) {
+        m_message->setStyleSheet(QStringLiteral("color: #b00020"));
+        m_message->setText(QString::fromUtf8(e.what()));
+    }
+    m_export->setEnabled(canExport());
+}
+
+QStringList ModelExportDialog::previewFileNames() const
+{
+    QStringList names;
+    for (int i = 0; i < m_preview->count(); ++i)
+        names << m_preview->tabText(i);
+    return names;
+}
+
+QString ModelExportDialog::previewText(const QString &fileName) const
+{
+    for (int i = 0; i < m_preview->count(); ++i)
+        if (m_preview->tabText(i) == fileName)
+            return static_cast<QPlainTextEdit *>(m_preview->widget(i))->toPlainText();
+    return QString();
+}
+
+QString ModelExportDialog::message() const
+{
+    return m_message->text();
+}
+
+bool ModelExportDialog::canExport() const
+{
+    return m_ok && !m_folder->text().trimmed().isEmpty();
+}
+
+bool ModelExportDialog::exportFiles()
+{
+    if (!canExport())
+        return false;
+    try {
+        const QStringList paths = ModelExportWriter::write(m_result, m_folder->text().trimmed());
+        m_message->setText(tr("Wrote %1").arg(paths.join(QStringLiteral(", "))));
+        return true;
+    } catch (const std::exception &e) {
+        m_message->setStyleSheet(QStringLiteral("color: #b00020"));
+        m_message->setText(QString::fromUtf8(e.what()));
+        return false;
+    }
+}
+
+} // namespace driftlab

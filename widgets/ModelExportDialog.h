@@ -1,0 +1,55 @@
+#pragma once
+// File > Export model to controller: pick a MODEL.json (fit --json, fit --model ... --out, or
+// the Analysis dock's "save MODEL.json"), a target from the export registry, axis and base
+// name; the preview shows exactly the files that will be written (one tab each), the notes and
+// the approximation error, or why the target refuses the model. Export writes them into a
+// folder through ModelExportWriter, as 'driftlab-cli export-model' does.
+
+#include "ModelExporterRegistry.h"
+
+#include <QDialog>
+
+class QComboBox;
+class QLabel;
+class QLineEdit;
+class QPushButton;
+class QTabWidget;
+
+namespace driftlab {
+
+class ModelExportDialog : public QDialog {
+    Q_OBJECT
+
+public:
+    explicit ModelExportDialog(QWidget *parent = nullptr);
+
+    void setModelPath(const QString &path);
+    void setTarget(const QString &name);
+    void setFolder(const QString &folder);
+    // What the preview currently shows (for tests): file names and contents, or the error.
+    QStringList previewFileNames() const;
+    QString previewText(const QString &fileName) const;
+    QString message() const;
+    bool canExport() const;
+    // Writes the previewed files into the folder; false (and message() says why) on failure.
+    bool exportFiles();
+
+private:
+    void browseModel();
+    void browseFolder();
+    void refresh();
+
+    ModelExporterRegistry m_registry;
+    ExportResult m_result;
+    bool m_ok = false;
+    QLineEdit *m_model = nullptr;
+    QComboBox *m_target = nullptr;
+    QComboBox *m_axis = nullptr;
+    QLineEdit *m_name = nullptr;
+    QLineEdit *m_folder = nullptr;
+    QLabel *m_message = nullptr;
+    QTabWidget *m_preview = nullptr;
+    QPushButton *m_export = nullptr;
+};
+
+} // namespace driftlab
