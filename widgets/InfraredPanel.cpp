@@ -47,6 +47,7 @@ InfraredPanel::InfraredPanel(QWidget *parent)
     split->addWidget(top);
     split->addWidget(bottom);
     layout->addWidget(split);
+    m_profile->setTimeAxis(false); // x is the position along the screw
     m_profile->setAxisTitle(QwtPlot::xBottom, tr("axial position from the fixed end (m)"));
     m_profile->setAxisTitles(tr("screw temperature (°C)"), QString());
     m_profile->enableAxis(QwtPlot::yRight, false);

@@ -148,6 +148,8 @@ void TestReviewWorkspace::surfaceHoldsThermalErrors()
     QCOMPARE(ws.timeSeriesPlot()->eventMarkerCount(), 2);
     for (const QString &view : ReviewWorkspace::viewNames())
         QVERIFY2(ws.plotForView(view), qPrintable(view));
+    // The profile's x axis is the position along the screw, not time (it was titled "time (s)").
+    QVERIFY(ws.plotForView(QStringLiteral("ir-profile"))->axisTitle(QwtPlot::xBottom).text().contains(QStringLiteral("position")));
 }
 
 void TestReviewWorkspace::infraredProfileFollowsTruthAwayFromNut()
