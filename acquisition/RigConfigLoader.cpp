@@ -469,6 +469,13 @@ void bind(Binder &b, RigConfig &c)
         bindNode(b, "nut_housing", t.nutHousing);
         bindNode(b, "motor", t.motor);
         bindNode(b, "bed", t.bed);
+        b.object("hydraulic_unit", [&] {
+            b.nonNegative("rise_K", t.unitRise_K);
+            b.positive("period_s", t.unitPeriod_s);
+            b.num("duty", t.unitDuty, 0.0, 1.0);
+            b.positive("time_constant_s", t.unitTimeConstant_s);
+            b.num("phase_s", t.unitPhase_s);
+        });
     });
     b.object("effects", [&] {
         RigEffects &e = c.effects;
@@ -513,6 +520,16 @@ void bind(Binder &b, RigConfig &c)
             b.num("mean_C", e.coolantMean_C, -50.0, 150.0);
             b.nonNegative("amplitude_K", e.coolantAmplitude_K);
             b.positive("period_s", e.coolantPeriod_s);
+        });
+        b.object("ambient_gradient", [&] {
+            b.boolean("enabled", e.ambientGradient);
+            b.num("fraction", e.gradientFraction, 0.0, 1.0);
+        });
+        b.object("neighbour_radiation", [&] {
+            b.boolean("enabled", e.neighbourRadiation);
+            b.nonNegative("conductance_W_mK", e.radiationConductance_W_mK);
+            b.nonNegative("start_m", e.radiationStart_m);
+            b.nonNegative("end_m", e.radiationEnd_m);
         });
     });
     bindSensors(b, c);

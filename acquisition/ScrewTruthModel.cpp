@@ -122,8 +122,10 @@ ScrewTruthModel::ScrewTruthModel(const RigScrew &screw, const RigThermal &therma
         m_nodeCapacity[k] = m_nodeParams[k].capacity_J_K;
     }
     requirePositive(m_nodeParams[Bed].toAmbient_W_K, "thermal.bed.to_ambient_W_K");
+    if (effects.neighbourRadiation && !(effects.radiationEnd_m > effects.radiationStart_m && effects.radiationEnd_m <= L))
+        throw std::invalid_argument("truth model: effects.neighbour_radiation: start_m < end_m <= screw.length_m required");
 
-    for (auto *v : {&m_diag, &m_cprime, &m_denom, &m_rhs, &m_z0, &m_conv, &m_cool, &m_src})
+    for (auto *v : {&m_diag, &m_cprime, &m_denom, &m_rhs, &m_z0, &m_conv, &m_cool, &m_src, &m_air, &m_rad})
         v->assign(m_n, 0.0);
     for (int k = 0; k < NodeCount; ++k) {
         m_couple[k].assign(m_n, 0.0);
@@ -166,7 +168,8 @@ void ScrewTruthModel::solveTridiagonal(const std::vector<double> &rhs, std::vect
         x[i] -= m_cprime[i] * x[i + 1];
 }
 
-void ScrewTruthModel::step(double dt, const std::vector<double> &nutCentres, double feed, double Ta, double Tc)
+void ScrewTruthModel::step(double dt, const std::vector<double> &nutCentres, double feed, double Ta, double Tc,
+                           double Tu)
 {
     if (!(dt > 0.0))
         throw std::invalid_argument("truth model: step dt must be > 0");
@@ -217,16 +220,23 @@ void ScrewTruthModel::step(double dt, const std::vector<double> &nutCentres, dou
 
     const double h = m_thermal.convectionH0_W_m2K + m_thermal.convectionH1_W_m2K_per_mm_min * v;
     const double coolPerM = e.coolant ? e.coolant_W_mK : 0.0;
+    // The neighbouring unit: air warmer towards the free end (linear in x), radiation onto a
+    // section (a conductance per metre to the unit's temperature).
+    const double unitRise = std::isfinite(Tu) ? Tu - Ta : 0.0;
+    std::fill(m_rad.begin(), m_rad.end(), 0.0);
+    if (e.neighbourRadiation)
+        addOverlap(e.radiationStart_m, e.radiationEnd_m, e.radiationConductance_W_mK, m_rad);
     for (int i = 0; i < m_n; ++i) {
         const double uncovered = std::max(0.0, m_width[i] - m_conv[i]);
         m_conv[i] = h * m_perimeter_m * uncovered;
         m_cool[i] = coolPerM * m_width[i];
+        m_air[i] = Ta + (e.ambientGradient ? e.gradientFraction * unitRise * m_centres[i] / L : 0.0);
     }
     m_conv[m_n - 1] += h * m_area_m2; // free-end face
 
     // Screw block A (tridiagonal, off-diagonals -axialG) and right-hand side.
     for (int i = 0; i < m_n; ++i) {
-        double d = m_capacity[i] / dt + m_conv[i] + m_cool[i];
+        double d = m_capacity[i] / dt + m_conv[i] + m_cool[i] + m_rad[i];
         if (i > 0)
             d += m_axialG[i - 1];
         if (i + 1 < m_n)
@@ -234,7 +244,8 @@ void ScrewTruthModel::step(double dt, const std::vector<double> &nutCentres, dou
         for (int k = 0; k < NodeCount; ++k)
             d += m_couple[k][i];
         m_diag[i] = d;
-        m_rhs[i] = m_capacity[i] / dt * m_T[i] + m_conv[i] * Ta + m_cool[i] * Tc + m_src[i];
+        m_rhs[i] = m_capacity[i] / dt * m_T[i] + m_conv[i] * m_air[i] + m_cool[i] * Tc + m_rad[i] * (Ta + unitRise) +
+                   m_src[i];
     }
     // Thomas factorisation: denom[i], cprime[i] = upper / denom.
     m_denom[0] = m_diag[0];
@@ -300,7 +311,7 @@ void ScrewTruthModel::step(double dt, const std::vector<double> &nutCentres, dou
     double in = qB + qN + qE + qM + qHold + m_thermal.bedHeat_W;
     double out = 0.0;
     for (int i = 0; i < m_n; ++i)
-        out += m_conv[i] * (m_T[i] - Ta) + m_cool[i] * (m_T[i] - Tc);
+        out += m_conv[i] * (m_T[i] - m_air[i]) + m_cool[i] * (m_T[i] - Tc) + m_rad[i] * (m_T[i] - Ta - unitRise);
     for (int k = 0; k < NodeCount; ++k)
         out += m_nodeParams[k].toAmbient_W_K * (m_node[k] - Ta);
     m_heatIn_J += in * dt;

@@ -12,10 +12,14 @@
 // nut friction (linear or superlinear in feed), optional free-bearing friction, motor
 // losses, optional holding heat at standstill. Heat enters the screw directly or,
 // with the heat-path-lag effect, through the housing node and its contact conductance.
+// Two effects no diagnosis candidate models, both driven by a neighbouring unit's
+// temperature (the caller's unit_C): an axial ambient gradient (the air around the screw
+// warmer towards the free end) and radiation from the unit onto a section of the screw.
 
 #include "RigConfig.h"
 
 #include <array>
+#include <limits>
 #include <vector>
 
 namespace driftlab {
@@ -33,9 +37,10 @@ public:
     // One backward-Euler step of dt. nutCentres_m: nut centre (m from the fixed end)
     // sampled evenly within the step (heat is spread over them; empty = no nut on the
     // screw: no nut heat, no cover, no housing contact); feed in mm/min (0 =
-    // standstill); ambient and coolant temperatures at the end of the step.
+    // standstill); ambient, coolant and neighbouring-unit temperatures at the end of the step
+    // (unit: NaN = no unit, the ambient).
     void step(double dt_s, const std::vector<double> &nutCentres_m, double feed_mm_min, double ambient_C,
-              double coolant_C);
+              double coolant_C, double unit_C = std::numeric_limits<double>::quiet_NaN());
 
     int cellCount() const { return m_n; }
     const std::vector<double> &cellEdges_m() const { return m_edges; }
@@ -80,7 +85,7 @@ private:
     double m_lastNut_W = 0.0;
     double m_lastBearing_W = 0.0;
     // Work arrays (no allocation per step after the first).
-    mutable std::vector<double> m_diag, m_cprime, m_denom, m_rhs, m_z0, m_conv, m_cool, m_src;
+    mutable std::vector<double> m_diag, m_cprime, m_denom, m_rhs, m_z0, m_conv, m_cool, m_src, m_air, m_rad;
     std::array<std::vector<double>, NodeCount> m_couple, m_Z;
 };
 

@@ -128,7 +128,8 @@ SimulatedRig::SimulatedRig(const RigConfig &config)
     for (const Pt100Config &p : c.pt100) {
         static const QStringList roles{QStringLiteral("ambient"), QStringLiteral("fixed_bearing"),
                                        QStringLiteral("free_bearing"), QStringLiteral("nut"), QStringLiteral("motor"),
-                                       QStringLiteral("bed"), QStringLiteral("coolant"), QStringLiteral("screw")};
+                                       QStringLiteral("bed"), QStringLiteral("coolant"), QStringLiteral("screw"),
+                                       QStringLiteral("hydraulic_unit")};
         if (!roles.contains(p.location))
             throw std::invalid_argument(
                 QStringLiteral("rig: sensors.pt100 '%1': unknown location '%2'").arg(p.id, p.location).toStdString());
@@ -244,7 +245,15 @@ void SimulatedRig::stepModel(double dt)
         m_walk_K = a * m_walk_K + th.ambientRandomWalk_K * std::sqrt(1.0 - a * a) * m_unit(m_rngAmbient);
     }
     m_ambient_C = ambientTarget(t0 + dt);
-    m_model.step(dt, m_nutSamples, feed, m_ambient_C, coolant_C(t0 + dt));
+    // Neighbouring unit: first-order lag of rise_K while on (exact for the step's state).
+    if (th.unitRise_K > 0.0) {
+        const double inCycle = std::fmod(t0 + 0.5 * dt + th.unitPhase_s, th.unitPeriod_s);
+        const double target = (inCycle < 0 ? inCycle + th.unitPeriod_s : inCycle) < th.unitDuty * th.unitPeriod_s
+                                  ? th.unitRise_K
+                                  : 0.0;
+        m_unitRise_K = target + (m_unitRise_K - target) * std::exp(-dt / th.unitTimeConstant_s);
+    }
+    m_model.step(dt, m_nutSamples, feed, m_ambient_C, coolant_C(t0 + dt), m_ambient_C + m_unitRise_K);
 }
 
 void SimulatedRig::sampleDue(double t, QVector<SampleBlock> &blocks)
@@ -281,6 +290,8 @@ void SimulatedRig::sampleDue(double t, QVector<SampleBlock> &blocks)
                 T = c.effects.coolant ? coolant_C(ts) : m_ambient_C;
             else if (loc == QLatin1String("screw"))
                 T = m_model.screwTemperatureAt_C(p.screwPosition_m);
+            else if (loc == QLatin1String("hydraulic_unit"))
+                T = m_ambient_C + m_unitRise_K;
             blocks[ch].t.push_back(ts);
             blocks[ch].v.push_back(std::round((T + p.noise_K * m_unit(m_rngSensors)) * 100.0) / 100.0); // 0.01 K steps
         }

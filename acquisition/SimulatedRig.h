@@ -77,6 +77,7 @@ private:
     long long m_steps = 0;
     double m_sampled_s = 0.0;
     double m_walk_K = 0.0;
+    double m_unitRise_K = 0.0; // neighbouring unit above ambient
     double m_ambient_C = 20.0;
     double m_bed0_C = 20.0;
     QVector<double> m_nextPt100;

@@ -13,6 +13,7 @@
 #include <QLabel>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QSignalBlocker>
 #include <QTableWidget>
 #include <QVBoxLayout>
 
@@ -69,6 +70,9 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
             m_stage->setText(m_lastError);
     });
     connect(m_cancel, &QPushButton::clicked, this, &DiagnosisPanel::cancel);
+    // Choosing another pair than the one on screen says so above the result.
+    for (QComboBox *box : {m_train, m_validate})
+        connect(box, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &DiagnosisPanel::updateHeading);
 }
 
 DiagnosisPanel::~DiagnosisPanel()
@@ -83,19 +87,61 @@ void DiagnosisPanel::joinWorker()
         m_thread.join();
 }
 
+namespace {
+void selectSession(QComboBox *box, qint64 id)
+{
+    const int index = box->findData(id);
+    if (index >= 0)
+        box->setCurrentIndex(index);
+}
+} // namespace
+
 void DiagnosisPanel::setStore(const SessionStore *store)
 {
+    if (store != m_store) { // another database: the result on screen is not about it
+        m_resultTrain = m_resultValidate = 0;
+        m_resultText.clear();
+        m_answer->clear();
+    }
     m_store = store;
+    const QSignalBlocker blockTrain(m_train), blockValidate(m_validate);
     m_train->clear();
     m_validate->clear();
-    if (!store)
+    if (!store) {
+        updateHeading();
         return;
+    }
     for (const SessionInfo &s : store->sessions()) {
         const QString label = QStringLiteral("#%1  %2").arg(s.id).arg(s.name);
         m_train->addItem(label, s.id);
         m_validate->addItem(label, s.id);
     }
     m_validate->setCurrentIndex(m_validate->count() - 1);
+    // A refresh of the same database keeps showing the pair of the result on screen.
+    if (m_resultTrain) {
+        selectSession(m_train, m_resultTrain);
+        selectSession(m_validate, m_resultValidate);
+    }
+    updateHeading();
+}
+
+void DiagnosisPanel::updateHeading()
+{
+    if (!m_resultTrain) {
+        m_heading.clear();
+        return;
+    }
+    m_heading = tr("Result for training #%1 and validation #%2").arg(m_resultTrain).arg(m_resultValidate);
+    const qint64 train = m_train->currentData().toLongLong(), validate = m_validate->currentData().toLongLong();
+    QString html = QStringLiteral("<b>%1</b>").arg(m_heading.toHtmlEscaped());
+    if (train != m_resultTrain || validate != m_resultValidate) {
+        const QString warning = tr("The boxes select #%1 and #%2, which have not been diagnosed: press Diagnose to run them.")
+                                    .arg(train)
+                                    .arg(validate);
+        m_heading += QStringLiteral(". ") + warning;
+        html += QStringLiteral("<br><span style='color:#c05000'>%1</span>").arg(warning.toHtmlEscaped());
+    }
+    m_answer->setText(html + QStringLiteral("<br>") + m_resultText);
 }
 
 bool DiagnosisPanel::start(qint64 trainSession, qint64 validationSession)
@@ -113,6 +159,13 @@ bool DiagnosisPanel::start(qint64 trainSession, qint64 validationSession)
         return false;
     }
     joinWorker();
+    {
+        const QSignalBlocker blockTrain(m_train), blockValidate(m_validate);
+        selectSession(m_train, trainSession);
+        selectSession(m_validate, validationSession);
+    }
+    m_runTrain = trainSession;
+    m_runValidate = validationSession;
     DiagnosisRecording train, validate;
     ScrewGeometry geometry;
     DiagnosisOptions options;
@@ -208,12 +261,15 @@ void DiagnosisPanel::finish(bool ok, const QString &error)
     }
     m_progress->setValue(100);
     const DiagnosisReport &r = m_report;
-    m_answer->setText(tr("<b>%1</b> — %2<br>Held-out RMS %3 µm → %4 µm (%5 s).<br>%6")
+    m_resultTrain = m_runTrain;
+    m_resultValidate = m_runValidate;
+    m_resultText = (tr("<b>%1</b> — %2<br>Held-out RMS %3 µm → %4 µm (%5 s).<br>%6")
                           .arg(QString::fromStdString(r.effect), QString::fromStdString(r.explanation).toHtmlEscaped())
                           .arg(r.baseline.heldoutRms_um, 0, 'f', 2)
                           .arg(r.corrected.heldoutRms_um, 0, 'f', 2)
                           .arg(r.wallTime_s, 0, 'f', 1)
                           .arg(QString::fromStdString(r.location.summary).toHtmlEscaped()));
+    updateHeading();
     m_candidates->setRowCount(static_cast<int>(r.candidates.size()));
     for (int i = 0; i < static_cast<int>(r.candidates.size()); ++i) {
         const CandidateOutcome &c = r.candidates[static_cast<size_t>(i)];

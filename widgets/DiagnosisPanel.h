@@ -29,7 +29,13 @@ public:
     ~DiagnosisPanel() override;
 
     void setStore(const SessionStore *store);
+    // Selects the pair in the session boxes and diagnoses it.
     bool start(qint64 trainSession, qint64 validationSession);
+    // The sessions the result on screen belongs to (0: no result), and the heading that says
+    // so (with a warning when the boxes select another pair than the one diagnosed).
+    qint64 resultTrainSession() const { return m_resultTrain; }
+    qint64 resultValidationSession() const { return m_resultValidate; }
+    QString resultHeading() const { return m_heading; }
     void cancel();
     bool running() const { return m_thread.joinable() && !m_finished; }
     QString lastError() const { return m_lastError; }
@@ -58,6 +64,10 @@ private:
     QProgressBar *m_progress;
     QLabel *m_stage;
     QLabel *m_answer;
+    qint64 m_runTrain = 0, m_runValidate = 0;       // the pair being diagnosed
+    qint64 m_resultTrain = 0, m_resultValidate = 0; // the pair the result belongs to
+    QString m_resultText, m_heading;
+    void updateHeading();
     QTableWidget *m_candidates;
     ErrorSurfacePlot *m_before;
     ErrorSurfacePlot *m_after;

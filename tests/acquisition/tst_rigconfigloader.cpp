@@ -7,6 +7,8 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include <algorithm>
+
 using namespace driftlab;
 
 namespace {
@@ -58,7 +60,8 @@ void TestRigConfigLoader::baselinePresetIsTheBuiltInDefault()
     QVERIFY2(d2.isEmpty(), qPrintable(d2.join(QStringLiteral(", "))));
     const RigConfig c;
     QVERIFY(!c.effects.motorCoupling && !c.effects.freeBearingHeat && !c.effects.superlinearHeat && !c.effects.heatPathLag &&
-            !c.effects.holdingHeat && !c.effects.structureOffset && !c.effects.structureLinear && !c.effects.coolant);
+            !c.effects.holdingHeat && !c.effects.structureOffset && !c.effects.structureLinear && !c.effects.coolant &&
+            !c.effects.ambientGradient && !c.effects.neighbourRadiation && c.thermal.unitRise_K == 0.0);
 }
 
 void TestRigConfigLoader::effectPresetsSwitchOnExactlyTheirEffect()
@@ -72,6 +75,31 @@ void TestRigConfigLoader::effectPresetsSwitchOnExactlyTheirEffect()
         d.removeAll(QStringLiteral("name"));
         if (name == QLatin1String("baseline") || name.startsWith(QLatin1String("seed002")))
             continue;
+        // The effects no diagnosis candidate models are driven by a neighbouring hydraulic unit:
+        // their presets also switch the unit on and record its temperature.
+        if (name == QLatin1String("ambient-gradient") || name == QLatin1String("neighbour-radiation")) {
+            QVERIFY2(d.contains(QStringLiteral("thermal.hydraulic_unit.rise_K")), qPrintable(d.join(QStringLiteral(", "))));
+            d.erase(std::remove_if(d.begin(), d.end(),
+                                   [](const QString &k) {
+                                       return k.startsWith(QLatin1String("thermal.hydraulic_unit.")) ||
+                                              k.startsWith(QLatin1String("sensors.pt100"));
+                                   }),
+                    d.end());
+        }
+        // Besides the switch, an effect preset may set what makes its effect visible to the
+        // diagnosis (issue 14 item 1: every effect preset is named): the effect's own
+        // parameters, a programme with several feeds or standstills, the housings of a heat-path
+        // lag, the PT100 that records a coolant. Nothing else of the baseline changes.
+        const QString own = QStringLiteral("effects.%1.").arg(QString(name).replace(QLatin1Char('-'), QLatin1Char('_')));
+        d.erase(std::remove_if(d.begin(), d.end(),
+                               [&](const QString &k) {
+                                   return (k.startsWith(own) && !k.endsWith(QLatin1String(".enabled"))) ||
+                                          k.startsWith(QLatin1String("programme.")) ||
+                                          (name == QLatin1String("heat-path-lag") && k.startsWith(QLatin1String("thermal.")) &&
+                                           k.contains(QLatin1String("_housing."))) ||
+                                          (name == QLatin1String("coolant") && k.startsWith(QLatin1String("sensors.pt100")));
+                               }),
+                d.end());
         QCOMPARE(d.size(), 1);
         const QString key = name;
         QCOMPARE(d.first(), QStringLiteral("effects.%1.enabled").arg(QString(key).replace(QLatin1Char('-'), QLatin1Char('_'))));
@@ -79,8 +107,12 @@ void TestRigConfigLoader::effectPresetsSwitchOnExactlyTheirEffect()
     }
     covered.sort();
     QStringList all = effects;
+    // Physics no diagnosis candidate models (a rig file can switch them on) get presets with
+    // the second-level diagnosis that answers them "unexplained" (issue 18), not before.
+    all.removeAll(QStringLiteral("ambient_gradient"));
+    all.removeAll(QStringLiteral("neighbour_radiation"));
     all.sort();
-    QCOMPARE(covered, all); // one preset per effect
+    QCOMPARE(covered, all); // one preset per library effect
 }
 
 void TestRigConfigLoader::everyPresetBuildsARig()

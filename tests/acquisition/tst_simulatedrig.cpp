@@ -228,6 +228,7 @@ void TestSimulatedRig::infraredFrameShowsScrewAndNut()
     c.infrared.enabled = true;
     c.infrared.noise_K = 0.0;
     c.infrared.interval_s = 1000.0;
+    c.thermal.nutHousing.toScrew_W_K = 0.5; // a housing the screw warms (the baseline's is near-adiabatic)
     SimulatedRig rig(c);
     QVector<SampleBlock> b;
     rig.advance(kWarm - 60.0, b);

@@ -77,6 +77,11 @@ void TestDataDriven::initTestCase()
     const QJsonObject rig{{QStringLiteral("format"), QStringLiteral("driftlab-rig")},
                           {QStringLiteral("version"), 1},
                           {QStringLiteral("name"), QStringLiteral("groups")},
+                          // The nut housing warms with the screw under it (the baseline's
+                          // housings are near-adiabatic, 0.05 W/K, so the housing would follow
+                          // the ambient and the nut group would merge with it).
+                          {QStringLiteral("thermal"),
+                           QJsonObject{{QStringLiteral("nut_housing"), QJsonObject{{QStringLiteral("to_screw_W_K"), 0.5}}}}},
                           {QStringLiteral("sensors"),
                            QJsonObject{{QStringLiteral("pt100"), pt100},
                                        {QStringLiteral("infrared"), QJsonObject{{QStringLiteral("enabled"), false}}},

@@ -9,6 +9,7 @@
 #include "SessionStore.h"
 #include "SimulatedRig.h"
 
+#include <QComboBox>
 #include <QSignalSpy>
 #include <QTableWidget>
 #include <QTemporaryDir>
@@ -29,7 +30,7 @@ private slots:
 private:
     QTemporaryDir m_dir;
     std::unique_ptr<SessionStore> m_store;
-    qint64 m_train = 0, m_validate = 0;
+    qint64 m_train = 0, m_validate = 0, m_other = 0;
 };
 
 void TestDiagnosisPanel::initTestCase()
@@ -46,6 +47,12 @@ void TestDiagnosisPanel::initTestCase()
     {
         SimulatedRig rig(config);
         m_validate = RigRecorder(*m_store, rig).record(QStringLiteral("validate"), 3 * 3600.0);
+    }
+    // A third session, so that the boxes' default pair (first, last) is not the pair diagnosed.
+    config.seed += 1;
+    {
+        SimulatedRig rig(config);
+        m_other = RigRecorder(*m_store, rig).record(QStringLiteral("other"), 1800.0);
     }
 }
 
@@ -85,6 +92,25 @@ void TestDiagnosisPanel::namesTheConcealedEffect()
     QVERIFY(x.size() >= 5 && y.size() >= 3);
     QVERIFY(rms(after) < 0.75 * rms(before));
     QVERIFY(std::fabs(panel.correctedResiduals()->valueAt(x[2], y[1]) - after[1 * x.size() + 2]) < 1e-9);
+
+    // Issue 14 item 6: the panel shows the sessions its result belongs to. start() selected
+    // the pair in the boxes (their default was #train / #other) ...
+    auto *train = panel.findChild<QComboBox *>(), *validate = panel.findChildren<QComboBox *>().value(1);
+    QVERIFY(train && validate);
+    QCOMPARE(train->currentData().toLongLong(), m_train);
+    QCOMPARE(validate->currentData().toLongLong(), m_validate);
+    QCOMPARE(panel.resultTrainSession(), m_train);
+    QCOMPARE(panel.resultValidationSession(), m_validate);
+    const QString heading = QStringLiteral("Result for training #%1 and validation #%2").arg(m_train).arg(m_validate);
+    QCOMPARE(panel.resultHeading(), heading);
+    // ... choosing another pair warns that it has not been diagnosed ...
+    validate->setCurrentIndex(validate->findData(m_other));
+    QVERIFY2(panel.resultHeading().startsWith(heading) && panel.resultHeading().contains(QStringLiteral("not been diagnosed")),
+             qPrintable(panel.resultHeading()));
+    // ... and a refresh of the same database shows the diagnosed pair again.
+    panel.setStore(m_store.get());
+    QCOMPARE(validate->currentData().toLongLong(), m_validate);
+    QCOMPARE(panel.resultHeading(), heading);
 }
 
 void TestDiagnosisPanel::cancelStops()
