@@ -61,6 +61,12 @@ public:
                 r.steps.push_back(s);
                 continue;
             }
+            if (!step.source.isEmpty() && !succeeded(r, step.source)) {
+                s.message = QStringLiteral("not run: %1 did not write the model").arg(step.source);
+                report(s);
+                r.steps.push_back(s);
+                continue;
+            }
             QStringList options;
             QString format;
             for (int i = 0; i < step.options.size(); i += 2) {
@@ -89,6 +95,9 @@ public:
                      << output(step.label + QStringLiteral(".json"));
             } else if (step.name == QLatin1String("diagnose")) {
                 args << QStringLiteral("--train") << id << options << QStringLiteral("--json") << output(QStringLiteral("diagnosis.json"));
+            } else if (step.name == QLatin1String("export-model")) {
+                args << dir.filePath(step.source + QStringLiteral(".json")) << options << QStringLiteral("--out")
+                     << output(step.label) << QStringLiteral("--json") << output(step.label + QStringLiteral(".json"));
             } else if (step.name == QLatin1String("plot")) {
                 args << id << options << QStringLiteral("--out")
                      << output(step.label + QLatin1Char('.') + (format.isEmpty() ? QStringLiteral("svg") : format));
@@ -96,7 +105,8 @@ public:
                 args << id << options << QStringLiteral("--out")
                      << output(QStringLiteral("report.") + (format.isEmpty() ? QStringLiteral("pdf") : format));
             }
-            args << QStringLiteral("--db") << r.database;
+            if (step.name != QLatin1String("export-model")) // reads only its MODEL.json
+                args << QStringLiteral("--db") << r.database;
             execute(args, dir, s);
             if (step.name == QLatin1String("import") && s.status == QLatin1String("ok")) {
                 QFile f(dir.filePath(QStringLiteral("import.json")));
@@ -116,6 +126,14 @@ public:
     }
 
 private:
+    static bool succeeded(const InputResult &r, const QString &label)
+    {
+        for (const StepResult &s : r.steps)
+            if (s.label == label)
+                return s.status == QLatin1String("ok");
+        return false;
+    }
+
     void execute(const QStringList &args, const QDir &dir, StepResult &s)
     {
         QElapsedTimer timer;
@@ -199,7 +217,7 @@ QJsonObject summaryJson(const BatchJob &job, const QVector<InputResult> &results
 
 QString BatchCommand::summary() const
 {
-    return QStringLiteral("Run steps (import, select-points, fit, diagnose, plot, report) on many recordings from a job\n"
+    return QStringLiteral("Run steps (import, select-points, fit, diagnose, export-model, plot, report) on many recordings from a job\n"
                           "file (docs/batch.md), recordings in parallel over the cores; one progress line per step;\n"
                           "OUTPUT/summary.json lists every step's result. Exit 1 if any step failed (the rest still run).");
 }

@@ -16,7 +16,7 @@ namespace driftlab {
 QStringList BatchJob::stepNames()
 {
     return {QStringLiteral("import"), QStringLiteral("select-points"), QStringLiteral("fit"), QStringLiteral("diagnose"),
-            QStringLiteral("plot"), QStringLiteral("report")};
+            QStringLiteral("export-model"), QStringLiteral("plot"), QStringLiteral("report")};
 }
 
 BatchJob BatchJob::read(const QString &path)
@@ -159,10 +159,25 @@ BatchJob BatchJob::read(const QString &path)
                 value = base.absoluteFilePath(value); // paths relative to the job file
             if (it.key() == QLatin1String("model") || it.key() == QLatin1String("view"))
                 step.label += QStringLiteral("-") + value;
+            if (step.name == QLatin1String("export-model") && it.key() == QLatin1String("model")) {
+                // Not an option of export-model: names the fit step whose MODEL.json it exports.
+                step.source = QStringLiteral("fit-") + value;
+                if (value == QLatin1String("fdm") && !stepLabels.contains(step.source))
+                    step.source = QStringLiteral("fit"); // {"step": "fit"} fits the physics model
+                if (!stepLabels.contains(step.source))
+                    throw fail(field + QStringLiteral(".model"),
+                               QStringLiteral("no earlier {\"step\": \"fit\", \"model\": \"%1\"} step writes the model to export").arg(value));
+                continue;
+            }
+            if (step.name == QLatin1String("export-model") && it.key() == QLatin1String("target"))
+                step.label += QStringLiteral("-") + value;
             step.options << QStringLiteral("--") + it.key() << value;
         }
         if (step.name == QLatin1String("diagnose") && !s.contains(QStringLiteral("validate")))
             throw fail(field + QStringLiteral(".validate"), QStringLiteral("required: the held-out recording (bundle path or session id)"));
+        if (step.name == QLatin1String("export-model") && (step.source.isEmpty() || !s.contains(QStringLiteral("target"))))
+            throw fail(field + (step.source.isEmpty() ? QStringLiteral(".model") : QStringLiteral(".target")),
+                       QStringLiteral("required: export-model needs the fitted 'model' (of an earlier fit step) and the controller 'target'"));
         if (step.name == QLatin1String("plot") && !s.contains(QStringLiteral("view")))
             throw fail(field + QStringLiteral(".view"), QStringLiteral("required (plot --help lists the views)"));
         if (stepLabels.contains(step.label))

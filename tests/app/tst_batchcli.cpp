@@ -14,6 +14,8 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include <cmath>
+
 class TestBatchCli : public QObject {
     Q_OBJECT
 private slots:
@@ -74,6 +76,8 @@ void TestBatchCli::brokenBundleFailsAlone()
                                QJsonArray{QJsonObject{{QStringLiteral("step"), QStringLiteral("import")}},
                                           QJsonObject{{QStringLiteral("step"), QStringLiteral("fit")}, {QStringLiteral("model"), QStringLiteral("mlr")},
                                                       {QStringLiteral("target"), QStringLiteral("S1")}, {QStringLiteral("points"), QStringLiteral("auto")}},
+                                          QJsonObject{{QStringLiteral("step"), QStringLiteral("export-model")}, {QStringLiteral("model"), QStringLiteral("mlr")},
+                                                      {QStringLiteral("target"), QStringLiteral("840d")}},
                                           QJsonObject{{QStringLiteral("step"), QStringLiteral("plot")}, {QStringLiteral("view"), QStringLiteral("error-surface")}},
                                           QJsonObject{{QStringLiteral("step"), QStringLiteral("report")}, {QStringLiteral("format"), QStringLiteral("html")}}}}});
     const QString summaryCopy = m_dir.filePath(QStringLiteral("summary-copy.json"));
@@ -81,7 +85,7 @@ void TestBatchCli::brokenBundleFailsAlone()
     QCOMPARE(r.code, 1);
     // One progress line per step and recording.
     const QStringList progress = QString::fromUtf8(r.err).split(QLatin1Char('\n')).filter(QRegularExpression(QStringLiteral("^\\[\\d/3 [abc]\\] ")));
-    QCOMPARE(progress.size(), 12);
+    QCOMPARE(progress.size(), 15);
     QVERIFY(progress.filter(QStringLiteral("[2/3 b] import: failed (exit 2)")).size() == 1);
     QVERIFY(progress.filter(QStringLiteral("channels.csv: line 5")).size() == 1);
 
@@ -92,20 +96,20 @@ void TestBatchCli::brokenBundleFailsAlone()
     QVERIFY(copy.open(QIODevice::ReadOnly));
     QCOMPARE(copy.readAll(), bytes);
     const QJsonObject summary = QJsonDocument::fromJson(bytes).object();
-    QCOMPARE(summary.value(QStringLiteral("steps_ok")).toInt(), 8);
-    QCOMPARE(summary.value(QStringLiteral("steps_not_ok")).toInt(), 4);
+    QCOMPARE(summary.value(QStringLiteral("steps_ok")).toInt(), 10);
+    QCOMPARE(summary.value(QStringLiteral("steps_not_ok")).toInt(), 5);
     const QJsonArray recordings = summary.value(QStringLiteral("recordings")).toArray();
     QCOMPARE(recordings.size(), 3);
     for (const QJsonValue &v : recordings) {
         const QJsonObject rec = v.toObject();
         const QString label = rec.value(QStringLiteral("label")).toString();
         const QJsonArray steps = rec.value(QStringLiteral("steps")).toArray();
-        QCOMPARE(steps.size(), 4);
+        QCOMPARE(steps.size(), 5);
         if (label == QLatin1String("b")) {
             QCOMPARE(steps[0].toObject().value(QStringLiteral("status")).toString(), QStringLiteral("failed"));
             QCOMPARE(steps[0].toObject().value(QStringLiteral("exit_code")).toInt(), 2);
             QVERIFY(steps[0].toObject().value(QStringLiteral("message")).toString().contains(QStringLiteral("channels.csv: line 5")));
-            for (int i = 1; i < 4; ++i)
+            for (int i = 1; i < 5; ++i)
                 QCOMPARE(steps[i].toObject().value(QStringLiteral("status")).toString(), QStringLiteral("skipped"));
             QVERIFY(!QFile::exists(m_dir.filePath(QStringLiteral("out/b/report.html"))));
             continue;
@@ -121,6 +125,19 @@ void TestBatchCli::brokenBundleFailsAlone()
         QVERIFY(model.open(QIODevice::ReadOnly));
         QCOMPARE(QJsonDocument::fromJson(model.readAll()).object().value(QStringLiteral("target")).toObject().value(QStringLiteral("channel")).toString(),
                  QStringLiteral("S1"));
+        // The export step wrote the fitted model's 840D law: its intercept, as fitted.
+        const double intercept = QJsonDocument::fromJson([&] {
+                                     QFile m(dir + QStringLiteral("/fit-mlr.json"));
+                                     return m.open(QIODevice::ReadOnly) ? m.readAll() : QByteArray();
+                                 }())
+                                     .object().value(QStringLiteral("linear")).toObject().value(QStringLiteral("intercept")).toDouble();
+        QFile mpf(dir + QStringLiteral("/export-model-mlr-840d/driftlab_comp.mpf"));
+        QVERIFY(mpf.open(QIODevice::ReadOnly));
+        const QByteArray law = mpf.readAll();
+        const QRegularExpressionMatch first = QRegularExpression(QStringLiteral("ABS_VALUE\\[X\\]=-\\(([-0-9.e]+) ")).match(QString::fromLatin1(law));
+        QVERIFY2(first.hasMatch(), law.constData());
+        QVERIFY(intercept != 0.0);
+        QVERIFY(std::abs(first.captured(1).toDouble() - intercept) <= 1e-9 * std::abs(intercept));
         QFile svg(dir + QStringLiteral("/plot-error-surface.svg"));
         QVERIFY(svg.open(QIODevice::ReadOnly));
         QVERIFY(svg.readAll().contains("<svg"));
@@ -144,6 +161,17 @@ void TestBatchCli::badJobFileExitsTwo()
     Result r = batch({job});
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("steps[1].step") && r.err.contains("'fitt'"), r.err.constData());
+    // export-model needs a fit step before it that writes the model.
+    writeJob(job, QJsonObject{{QStringLiteral("bundles"), QJsonArray{QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/bundles/example.bundle")}},
+                              {QStringLiteral("output"), QStringLiteral("out2")},
+                              {QStringLiteral("steps"), QJsonArray{QJsonObject{{QStringLiteral("step"), QStringLiteral("import")}},
+                                                                   QJsonObject{{QStringLiteral("step"), QStringLiteral("export-model")},
+                                                                               {QStringLiteral("model"), QStringLiteral("ridge")},
+                                                                               {QStringLiteral("target"), QStringLiteral("c")}}}}});
+    r = batch({job});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("steps[1].model") && r.err.contains("\"model\": \"ridge\"") && !QFileInfo::exists(m_dir.filePath(QStringLiteral("out2"))),
+             r.err.constData());
     QVERIFY(!QFileInfo::exists(m_dir.filePath(QStringLiteral("bad-out"))));
     writeJob(job, QJsonObject{{QStringLiteral("bundles"), QJsonArray{QStringLiteral("missing.bundle")}},
                               {QStringLiteral("output"), QStringLiteral("bad-out")},
