@@ -14,6 +14,8 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include "../support/CliRunner.h"
+
 #include <cmath>
 
 class TestBatchCli : public QObject {
@@ -23,18 +25,8 @@ private slots:
     void badJobFileExitsTwo();
 
 private:
-    struct Result {
-        int code = -1;
-        QByteArray out, err;
-    };
-    static Result batch(const QStringList &args)
-    {
-        QProcess p;
-        p.start(QStringLiteral(DRIFTLAB_CLI), QStringList{QStringLiteral("batch")} + args);
-        if (!p.waitForFinished(180000))
-            return {};
-        return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(), p.readAllStandardError()};
-    }
+    using Result = clirunner::Result;
+    static Result batch(const QStringList &args) { return clirunner::run(QStringList{QStringLiteral("batch")} + args, QString(), 180000); }
     static bool copyDir(const QString &from, const QString &to)
     {
         if (!QDir().mkpath(to))

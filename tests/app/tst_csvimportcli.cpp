@@ -13,6 +13,8 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include "../support/CliRunner.h"
+
 #include <cmath>
 
 using namespace driftlab;
@@ -28,27 +30,13 @@ private slots:
     void usageErrorsExitTwo();
 
 private:
-    struct Result {
-        int code = -1;
-        QByteArray out, err;
-    };
-    Result run(const QStringList &args);
+    using Result = clirunner::Result;
+    Result run(const QStringList &args) { return clirunner::run(args, m_dir.filePath(QStringLiteral("data"))); }
     QString write(const QString &name, const QByteArray &bytes);
     QTemporaryDir m_dir;
     const QString m_map = QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/maps/fl_thermal.json");
 };
 
-TestCsvImportCli::Result TestCsvImportCli::run(const QStringList &args)
-{
-    QProcess p;
-    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-    env.insert(QStringLiteral("XDG_DATA_HOME"), m_dir.filePath(QStringLiteral("data")));
-    p.setProcessEnvironment(env);
-    p.start(QStringLiteral(DRIFTLAB_CLI), args);
-    if (!p.waitForFinished(120000))
-        return {};
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(), p.readAllStandardError()};
-}
 
 QString TestCsvImportCli::write(const QString &name, const QByteArray &bytes)
 {

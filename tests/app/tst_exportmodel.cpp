@@ -12,6 +12,8 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include "../support/CliRunner.h"
+
 namespace {
 
 const char *kSynthetic = R"({"format": "driftlab-model", "version": 1, "model": "synthetic",
@@ -31,26 +33,12 @@ private slots:
     void badInputWritesNothing();
 
 private:
-    struct Result {
-        int code = -1;
-        QByteArray out, err;
-    };
-    Result run(const QStringList &args);
+    using Result = clirunner::Result;
+    Result run(const QStringList &args) { return clirunner::run(args, m_dir.filePath(QStringLiteral("data"))); }
     QString write(const QString &name, const QByteArray &bytes);
     QTemporaryDir m_dir;
 };
 
-TestExportModel::Result TestExportModel::run(const QStringList &args)
-{
-    QProcess p;
-    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-    env.insert(QStringLiteral("XDG_DATA_HOME"), m_dir.filePath(QStringLiteral("data")));
-    p.setProcessEnvironment(env);
-    p.start(QStringLiteral(DRIFTLAB_CLI), args);
-    if (!p.waitForFinished(120000))
-        return {};
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(), p.readAllStandardError()};
-}
 
 QString TestExportModel::write(const QString &name, const QByteArray &bytes)
 {

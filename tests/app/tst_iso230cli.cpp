@@ -14,6 +14,8 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include "../support/CliRunner.h"
+
 #include <cmath>
 #include <map>
 
@@ -27,25 +29,14 @@ private slots:
     void badInputExitsTwo();
 
 private:
-    struct Result {
-        int code = -1;
-        QByteArray out, err;
-    };
-    Result run(const QStringList &args);
+    using Result = clirunner::Result;
+    Result run(const QStringList &args) { return clirunner::run(args); }
     QTemporaryDir m_dir;
     QString m_db;
     QJsonObject m_report;
     QByteArray m_text;
 };
 
-TestIso230Cli::Result TestIso230Cli::run(const QStringList &args)
-{
-    QProcess p;
-    p.start(QStringLiteral(DRIFTLAB_CLI), args);
-    if (!p.waitForFinished(120000))
-        return {};
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(), p.readAllStandardError()};
-}
 
 void TestIso230Cli::initTestCase()
 {

@@ -15,6 +15,8 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include "../support/CliRunner.h"
+
 class TestRealDevicesCli : public QObject {
     Q_OBJECT
 private slots:
@@ -22,25 +24,11 @@ private slots:
     void recordRealRigThenImportRtl();
 
 private:
-    struct Result {
-        int code = -1;
-        QByteArray out, err;
-    };
-    Result run(const QStringList &args, int timeout_ms = 60000);
+    using Result = clirunner::Result;
+    Result run(const QStringList &args, int timeout_ms = 60000) { return clirunner::run(args, m_dir.filePath(QStringLiteral("data")), timeout_ms); }
     QTemporaryDir m_dir;
 };
 
-TestRealDevicesCli::Result TestRealDevicesCli::run(const QStringList &args, int timeout_ms)
-{
-    QProcess p;
-    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-    env.insert(QStringLiteral("XDG_DATA_HOME"), m_dir.filePath(QStringLiteral("data")));
-    p.setProcessEnvironment(env);
-    p.start(QStringLiteral(DRIFTLAB_CLI), args);
-    if (!p.waitForFinished(timeout_ms))
-        return {};
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(), p.readAllStandardError()};
-}
 
 void TestRealDevicesCli::initTestCase()
 {
