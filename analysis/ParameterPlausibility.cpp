@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace driftlab {
@@ -83,6 +84,23 @@ std::vector<PlausibilityFlag> ParameterPlausibility::poorlyIdentified(const Iden
                            " %): the data do not pin it down (correlated with another parameter, or too little excitation)"});
     }
     return out;
+}
+
+std::string ParameterPlausibility::feedCoverageNote(const std::vector<ScrewRecording> &recordings)
+{
+    double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+    for (const ScrewRecording &r : recordings)
+        for (double v : r.drive.feed_mm_min.v)
+            if (v > 1.0) { // mm/min: moving
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+    if (!(hi > 0.0) || hi > 1.05 * lo)
+        return {};
+    return "every fitted recording moves at one feed rate (" + fmt(hi, 0) +
+           " mm/min): one feed cannot separate the feed laws (h = k1 v + k2, Q = k v) from lambda and P_f, which "
+           "then absorb whatever the model lacks; identify on several feeds fitted together (seed 000 Table 2: "
+           "3000, 6000 and 9000 mm/min, e.g. record --feed 3000/6000/9000)";
 }
 
 } // namespace driftlab

@@ -37,6 +37,13 @@ public:
     // Fitted parameters of result.all whose standard error exceeds kMaxRelativeStandardError
     // of |value| (parameters already at zero or at a bound are left to implausible()).
     static std::vector<PlausibilityFlag> poorlyIdentified(const IdentificationResult &result);
+    // A note when the recordings cannot separate the parameters: every moving sample at one
+    // feed rate (within 5 %) leaves h = k1 v + k2 and the feed-linear heat laws free to trade
+    // with lambda and P_f (seed 000 identifies on 3000, 6000 and 9000 mm/min together). On the
+    // simulated baseline a single 6000 mm/min recording gave lambda 86-128 W/(m K) and P_f
+    // 35-80 mm off, three feeds fitted together lambda 60 and P_f within 20 mm. Empty when the
+    // feeds differ or nothing moves.
+    static std::string feedCoverageNote(const std::vector<ScrewRecording> &recordings);
 };
 
 } // namespace driftlab

@@ -183,6 +183,7 @@ bool ModelsPanel::startFit(const QVector<qint64> &training, qint64 heldOut)
         }, Qt::QueuedConnection);
         return !m_cancelRequested.load();
     };
+    m_feedNote = QString::fromStdString(ParameterPlausibility::feedCoverageNote(recordings));
     m_thread = std::thread([this, geometry, options, recordings = std::move(recordings),
                             validation = std::move(validation)]() mutable {
         IdentificationResult result;
@@ -287,6 +288,8 @@ void ModelsPanel::finish(bool ok, const QString &error)
         m_status->setText(m_status->text() +
                           tr(" %n parameter(s) flagged (implausible or poorly identified): see the table's check column.",
                              nullptr, flagged));
+    if (!m_feedNote.isEmpty())
+        m_status->setText(m_status->text() + tr(" Note: %1.").arg(m_feedNote));
     m_show->blockSignals(true);
     m_show->clear();
     m_show->addItems(m_recordingNames);

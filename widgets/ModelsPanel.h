@@ -79,6 +79,7 @@ private:
     QStringList m_recordingNames;
     IdentificationOptions m_options;       // of the last fit (bounds for the plausibility check)
     double m_drawingFixedEnd_mm = 0.0;      // the first training session's drawing P_f (NaN: none)
+    QString m_feedNote;                     // ParameterPlausibility::feedCoverageNote of the training sessions
 };
 
 } // namespace driftlab

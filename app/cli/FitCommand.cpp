@@ -83,6 +83,8 @@ QString FitCommand::summary() const
         "Parameters are flagged IMPLAUSIBLE outside physical ranges (lambda 22.5-90 W/(m K), k2 8-150\n"
         "W/(m^2 K), P_f within 30 mm of the drawing) or at a bound (k3 = 0, k4 = 0, ...), and POORLY\n"
         "IDENTIFIED when the standard error exceeds a third of the value (the same rules as 'diagnose').\n"
+        "Sessions that all move at one feed rate get a note: one feed cannot separate the feed laws from\n"
+        "lambda and P_f (seed 000 identifies on 3000, 6000 and 9000 mm/min fitted together).\n"
         "Data-driven models: --model mlr|ridge|exp|synthetic|dynamic (see 'fit --model dynamic --help').");
 }
 
@@ -205,10 +207,12 @@ int FitCommand::run(const QStringList &args)
     const std::vector<PlausibilityFlag> implausible =
         ParameterPlausibility::implausible(result, options, first.drawingFixedEnd_mm());
     const std::vector<PlausibilityFlag> poorlyIdentified = ParameterPlausibility::poorlyIdentified(result);
+    const QString feedNote = QString::fromStdString(ParameterPlausibility::feedCoverageNote(recs));
     out.insert(QStringLiteral("plausibility"),
                QJsonObject{{QStringLiteral("implausible"), flagsJson(implausible)},
                            {QStringLiteral("poorly_identified"), flagsJson(poorlyIdentified)},
-                           {QStringLiteral("max_relative_standard_error"), ParameterPlausibility::kMaxRelativeStandardError}});
+                           {QStringLiteral("max_relative_standard_error"), ParameterPlausibility::kMaxRelativeStandardError},
+                           {QStringLiteral("note"), feedNote}});
     QJsonArray sessionList;
     for (qint64 id : ids)
         sessionList.append(static_cast<double>(id));
@@ -271,6 +275,8 @@ int FitCommand::run(const QStringList &args)
                 o << "  warning: " << QString::fromStdString(f.message) << '\n';
         if (implausible.empty() && poorlyIdentified.empty())
             o << "  every parameter physically plausible and identified to better than a third of its value\n";
+        if (!feedNote.isEmpty())
+            o << "  note: " << feedNote << '\n';
         o << "  fit: " << statsLine(result.fit) << '\n';
         if (holdoutId >= 0)
             o << "  held-out session " << holdoutId << ": " << statsLine(validation) << '\n';

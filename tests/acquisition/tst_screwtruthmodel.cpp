@@ -25,7 +25,8 @@ RigThermal finThermal()
 
 // Steady state of the continuous problem: [0, LB] uniform source Q, no convection
 // (covered by the bearing), adiabatic face; [LB, L-LE] fin with convection h;
-// [L-LE, L] no lateral convection, convective end face. Returns theta(x) and
+// [L-LE, L] no lateral convection (covered by the free bearing, which the rig fits only
+// with the free_bearing_heat effect; LE = 0 without it), convective end face. Returns theta(x) and
 // alpha * integral(theta).
 struct FinSolution {
     double theta0, thetaB, a, b, m, qPrime, lambdaA, LB, LE, L, S, h, lambda, thetaL;
@@ -48,12 +49,12 @@ struct FinSolution {
     }
 };
 
-FinSolution finSolution(const RigScrew &s, double h, double Q)
+FinSolution finSolution(const RigScrew &s, double h, double Q, bool freeBearing)
 {
     FinSolution f{};
     f.L = s.length_m;
     f.LB = s.fixedBearingLength_m;
-    f.LE = s.freeBearingLength_m;
+    f.LE = freeBearing ? s.freeBearingLength_m : 0.0;
     f.h = h;
     f.lambda = s.conductivity_W_mK;
     const double A = kPi * s.diameter_m * s.diameter_m / 4, P = kPi * s.diameter_m;
@@ -89,28 +90,35 @@ void TestScrewTruthModel::steadyStateMatchesAnalyticFin_data()
 {
     QTest::addColumn<double>("conductivity");
     QTest::addColumn<double>("dt");
-    QTest::newRow("steel, dt 5 s") << 45.0 << 5.0;
-    QTest::newRow("seed-000 lambda, dt 20 s") << 566.3 << 20.0;
+    QTest::addColumn<bool>("freeBearing"); // free_bearing_heat on at 0 W: the bearing covers the screw
+    QTest::newRow("steel, dt 5 s") << 45.0 << 5.0 << false;
+    QTest::newRow("seed-000 lambda, dt 20 s") << 566.3 << 20.0 << false;
+    QTest::newRow("steel, free bearing, dt 5 s") << 45.0 << 5.0 << true;
+    QTest::newRow("seed-000 lambda, free bearing, dt 20 s") << 566.3 << 20.0 << true;
 }
 
 void TestScrewTruthModel::steadyStateMatchesAnalyticFin()
 {
     QFETCH(double, conductivity);
     QFETCH(double, dt);
+    QFETCH(bool, freeBearing);
     RigScrew screw;
     screw.conductivity_W_mK = conductivity;
     screw.cells = 160;
     const RigThermal thermal = finThermal();
     const double feed = 6000.0;
     const double Q = thermal.fixedBearingHeat_W_per_mm_min * feed;
-    ScrewTruthModel model(screw, thermal, RigEffects{});
+    RigEffects effects;
+    effects.freeBearingHeat = freeBearing;
+    effects.freeBearingHeat_W_per_mm_min = 0.0;
+    ScrewTruthModel model(screw, thermal, effects);
     model.reset(20.0);
     const std::vector<double> nut; // no nut on the screw
     for (double t = 0; t < 40000.0; t += dt)
         model.step(dt, nut, feed, 20.0, 20.0);
 
     // The analytic solution's own check: the flux at LB equals Q (derivative numerically).
-    const FinSolution f = finSolution(screw, thermal.convectionH0_W_m2K, Q);
+    const FinSolution f = finSolution(screw, thermal.convectionH0_W_m2K, Q, freeBearing);
     const double eps = 1e-6;
     const double flux = -f.lambdaA * (f.at(f.LB + eps) - f.at(f.LB - eps)) / (2 * eps);
     QVERIFY2(std::fabs(flux - Q) < 1e-3 * Q, qPrintable(QStringLiteral("analytic flux %1 vs Q %2").arg(flux).arg(Q)));

@@ -5,17 +5,25 @@
 // Tolerances (stated and asserted): the paper's criterion is a fit residual within 15 % of
 // the measured peak-to-valley; we require 10 % on the training data and 10 % on the
 // held-out session, for both the interferometer thermal errors and the screw-end probe.
+//
+// Two implementations, one physics: the rig's truth model (acquisition/ScrewTruthModel: its
+// own grid, implicit step, housings) with everything the seed-000 model leaves out switched
+// off and its sensors noise-free must be identified as the parameters it was given.
 
+#include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QProcess>
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include <cmath>
+
 class TestFitRig : public QObject {
     Q_OBJECT
 private slots:
     void identifiesAndPredictsHeldOut();
+    void recoversTheParametersOfAnExactRig();
 
 private:
     int run(const QStringList &args, QByteArray *err = nullptr);
@@ -55,6 +63,8 @@ void TestFitRig::identifiesAndPredictsHeldOut()
     QVERIFY(f.open(QIODevice::ReadOnly));
     const QJsonObject model = QJsonDocument::fromJson(f.readAll()).object();
     QVERIFY(model.value(QStringLiteral("converged")).toBool());
+    // Three feeds: no note that one feed cannot separate the feed laws.
+    QVERIFY(model.value(QStringLiteral("plausibility")).toObject().value(QStringLiteral("note")).toString().isEmpty());
     for (const char *part : {"fit", "validation"}) {
         const QJsonObject s = model.value(QLatin1String(part)).toObject();
         const double pv = s.value(QStringLiteral("interferometer_peak_to_valley_um")).toDouble();
@@ -66,6 +76,82 @@ void TestFitRig::identifiesAndPredictsHeldOut()
         QVERIFY2(rms < 0.10 * pv, part);
         QVERIFY2(erms < 0.10 * peak, part);
         QVERIFY(s.value(QStringLiteral("interferometer_points")).toInt() >= 50);
+    }
+}
+
+void TestFitRig::recoversTheParametersOfAnExactRig()
+{
+    QTemporaryDir dir;
+    QFile preset(QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/rigs/baseline.json"));
+    QVERIFY(preset.open(QIODevice::ReadOnly));
+    QJsonObject rig = QJsonDocument::fromJson(preset.readAll()).object();
+    // Seed-000 physics exactly: adiabatic housings, a steady ambient, noise-free sensors.
+    QJsonObject thermal = rig.value(QStringLiteral("thermal")).toObject();
+    for (const char *housing : {"fixed_bearing_housing", "free_bearing_housing", "nut_housing"}) {
+        QJsonObject h = thermal.value(QLatin1String(housing)).toObject();
+        h.insert(QStringLiteral("to_screw_W_K"), 0.0);
+        thermal.insert(QLatin1String(housing), h);
+    }
+    QJsonObject ambient = thermal.value(QStringLiteral("ambient")).toObject();
+    ambient.insert(QStringLiteral("drift_amplitude_K"), 0.0);
+    ambient.insert(QStringLiteral("random_walk_K"), 0.0);
+    thermal.insert(QStringLiteral("ambient"), ambient);
+    rig.insert(QStringLiteral("thermal"), thermal);
+    QJsonObject sensors = rig.value(QStringLiteral("sensors")).toObject();
+    for (const char *instrument : {"interferometer", "probe"}) {
+        QJsonObject s = sensors.value(QLatin1String(instrument)).toObject();
+        s.insert(QStringLiteral("noise_um"), 0.0);
+        sensors.insert(QLatin1String(instrument), s);
+    }
+    QJsonArray pt100;
+    for (const QJsonValue &v : sensors.value(QStringLiteral("pt100")).toArray()) {
+        QJsonObject s = v.toObject();
+        s.insert(QStringLiteral("noise_K"), 0.0);
+        s.insert(QStringLiteral("dropout_probability"), 0.0);
+        pt100.append(s);
+    }
+    sensors.insert(QStringLiteral("pt100"), pt100);
+    rig.insert(QStringLiteral("sensors"), sensors);
+    const QString rigFile = dir.filePath(QStringLiteral("exact.json"));
+    QFile out(rigFile);
+    QVERIFY(out.open(QIODevice::WriteOnly));
+    out.write(QJsonDocument(rig).toJson());
+    out.close();
+
+    const QString db = dir.filePath(QStringLiteral("exact.sqlite")), json = dir.filePath(QStringLiteral("model.json"));
+    QByteArray err;
+    QVERIFY2(run({QStringLiteral("record"), QStringLiteral("--rig"), rigFile, QStringLiteral("--duration"), QStringLiteral("2:48:00"),
+                  QStringLiteral("--out"), db},
+                 &err) == 0,
+             err.constData());
+    QVERIFY2(run({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--model"), QStringLiteral("fdm"), QStringLiteral("--db"), db,
+                  QStringLiteral("--json"), json},
+                 &err) == 0,
+             err.constData());
+    QVERIFY2(!err.contains("IMPLAUSIBLE") && !err.contains("warning"), err.constData());
+    QFile f(json);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QJsonObject model = QJsonDocument::fromJson(f.readAll()).object();
+    const QJsonObject fitted = model.value(QStringLiteral("parameters")).toObject();
+    // One feed: exact data identify the model all the same, and the note says what one feed cannot do.
+    const QString note = model.value(QStringLiteral("plausibility")).toObject().value(QStringLiteral("note")).toString();
+    QVERIFY2(note.contains(QStringLiteral("one feed rate (6000 mm/min)")), qPrintable(note));
+    const struct {
+        const char *name;
+        double truth, tolerance; // relative, or mm for P_f
+    } expected[] = {
+        {"k1", thermal.value(QStringLiteral("convection")).toObject().value(QStringLiteral("h1_W_m2K_per_mm_min")).toDouble(), 0.01},
+        {"k2", thermal.value(QStringLiteral("convection")).toObject().value(QStringLiteral("h0_W_m2K")).toDouble(), 0.01},
+        {"k3", thermal.value(QStringLiteral("fixed_bearing_heat_W_per_mm_min")).toDouble(), 0.01},
+        {"k4", thermal.value(QStringLiteral("nut_heat_W_per_mm_min")).toDouble(), 0.01},
+        {"lambda_W_mK", rig.value(QStringLiteral("screw")).toObject().value(QStringLiteral("conductivity_W_mK")).toDouble(), 0.02},
+        {"fixed_end_position_mm", rig.value(QStringLiteral("machine")).toObject().value(QStringLiteral("fixed_end_position_mm")).toDouble(), 1.0},
+    };
+    for (const auto &e : expected) {
+        const double value = fitted.value(QLatin1String(e.name)).toDouble();
+        const double off = e.name == QByteArrayLiteral("fixed_end_position_mm") ? std::fabs(value - e.truth) : std::fabs(value / e.truth - 1.0);
+        qInfo("%s: fitted %.6g, rig %.6g", e.name, value, e.truth);
+        QVERIFY2(e.truth != 0.0 && off <= e.tolerance, e.name);
     }
 }
 
