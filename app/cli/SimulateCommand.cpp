@@ -2,6 +2,7 @@
 
 #include "BearingHeatSource.h"
 #include "CliSupport.h"
+#include "ExportableModelJson.h"
 #include "NutHeatSource.h"
 #include "ScrewResponseSimulator.h"
 #include "SessionAnalysis.h"
@@ -17,20 +18,6 @@
 #include <cmath>
 
 namespace driftlab {
-
-namespace {
-
-double number(const QJsonObject &o, const char *key, const QString &where, bool required = true, double fallback = 0.0)
-{
-    const QJsonValue v = o.value(QLatin1String(key));
-    if (v.isUndefined() && !required)
-        return fallback;
-    if (!v.isDouble() || !std::isfinite(v.toDouble()))
-        throw UsageError(QStringLiteral("simulate: %1: '%2' must be a number").arg(where, QLatin1String(key)));
-    return v.toDouble();
-}
-
-} // namespace
 
 QString SimulateCommand::summary() const
 {
@@ -69,40 +56,30 @@ int SimulateCommand::run(const QStringList &args)
     QFile file(modelPath);
     if (!file.open(QIODevice::ReadOnly))
         throw UsageError(QStringLiteral("simulate: cannot read %1: %2").arg(modelPath, file.errorString()));
-    QJsonParseError perr;
-    const QJsonDocument doc = QJsonDocument::fromJson(file.readAll(), &perr);
-    if (!doc.isObject())
-        throw UsageError(QStringLiteral("simulate: %1 is not a JSON object (%2 at offset %3)")
-                             .arg(modelPath, perr.errorString())
-                             .arg(perr.offset));
-    const QJsonObject m = doc.object();
-    if (m.value(QStringLiteral("model")).toString() != QLatin1String("fdm-seed000"))
-        throw UsageError(QStringLiteral("simulate: %1: 'model' must be \"fdm-seed000\"").arg(modelPath));
+    const QByteArray bytes = file.readAll();
+    ExportableModel model; // the one reader of model files (export-model reads them too)
+    try {
+        model = ExportableModelJson::parse(bytes, modelPath);
+    } catch (const std::invalid_argument &e) {
+        throw UsageError(QStringLiteral("simulate: %1").arg(QString::fromUtf8(e.what())));
+    }
+    if (!model.physics)
+        throw UsageError(QStringLiteral("simulate: %1: a %2 model: simulate runs the seed-000 screw model "
+                                        "(\"model\": \"fdm-seed000\"); 'validate' predicts a session with a data-driven one")
+                             .arg(modelPath, QString::fromStdString(model.kind())));
+    const QJsonObject m = QJsonDocument::fromJson(bytes).object();
     const QJsonObject par = m.value(QStringLiteral("parameters")).toObject();
-    const QString where = modelPath + QStringLiteral(" parameters");
-    FdmParameters fp;
-    fp.k1 = number(par, "k1", where);
-    fp.k2 = number(par, "k2", where);
-    fp.k3 = number(par, "k3", where);
-    fp.k4 = number(par, "k4", where);
-    fp.conductivity_W_mK = number(par, "lambda_W_mK", where);
-    fp.fixedEndPosition_mm = number(par, "fixed_end_position_mm", where);
-    if (!(fp.conductivity_W_mK > 0))
-        throw UsageError(QStringLiteral("simulate: %1: lambda_W_mK must be > 0").arg(where));
-    ScrewGeometry g;
-    const QJsonObject screw = m.value(QStringLiteral("screw")).toObject();
-    const QString sw = modelPath + QStringLiteral(" screw");
-    g.length_m = number(screw, "length_m", sw, false, g.length_m);
-    g.diameter_m = number(screw, "diameter_m", sw, false, g.diameter_m);
-    g.nutLength_m = number(screw, "nut_length_m", sw, false, g.nutLength_m);
-    g.fixedBearingLength_m = number(screw, "fixed_bearing_length_m", sw, false, g.fixedBearingLength_m);
-    g.density_kg_m3 = number(screw, "density_kg_m3", sw, false, g.density_kg_m3);
-    g.specificHeat_J_kgK = number(screw, "specific_heat_J_kgK", sw, false, g.specificHeat_J_kgK);
-    g.expansion_per_K = number(screw, "expansion_per_K", sw, false, g.expansion_per_K);
+    const FdmParameters &fp = model.parameters;
+    const ScrewGeometry &g = model.geometry;
     ResponseSimulatorOptions so;
-    const QJsonObject grid = m.value(QStringLiteral("grid")).toObject();
-    so.grid.dx_m = number(grid, "dx_m", modelPath + QStringLiteral(" grid"), false, so.grid.dx_m);
-    so.grid.dt_s = number(grid, "dt_s", modelPath + QStringLiteral(" grid"), false, so.grid.dt_s);
+    so.grid.dx_m = model.grid.dx_m;
+    // The implicit step the model was fitted with (model.grid holds the controller's explicit one).
+    const QJsonValue dt = m.value(QStringLiteral("grid")).toObject().value(QStringLiteral("dt_s"));
+    if (!dt.isUndefined()) {
+        if (!dt.isDouble() || !(dt.toDouble() > 0))
+            throw UsageError(QStringLiteral("simulate: %1: grid.dt_s: must be a number > 0").arg(modelPath));
+        so.grid.dt_s = dt.toDouble();
+    }
     so.elongationInterval_s = every;
 
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);

@@ -77,6 +77,29 @@ void TestFitRig::identifiesAndPredictsHeldOut()
         QVERIFY2(erms < 0.10 * peak, part);
         QVERIFY(s.value(QStringLiteral("interferometer_points")).toInt() >= 50);
     }
+    // `simulate` runs the saved model over the held-out session: the same answer as fit --holdout.
+    const QString predictions = dir.filePath(QStringLiteral("predictions.json"));
+    QVERIFY2(run({QStringLiteral("simulate"), QStringLiteral("4"), QStringLiteral("--model"), json, QStringLiteral("--db"), db,
+                  QStringLiteral("--json"), predictions},
+                 &err) == 0,
+             err.constData());
+    QFile pf(predictions);
+    QVERIFY(pf.open(QIODevice::ReadOnly));
+    const QJsonObject simulated = QJsonDocument::fromJson(pf.readAll()).object();
+    const QJsonObject validation = model.value(QStringLiteral("validation")).toObject();
+    for (const char *key : {"interferometer_rms_um", "elongation_rms_um"}) {
+        const double a = simulated.value(QLatin1String(key)).toDouble(), b = validation.value(QLatin1String(key)).toDouble();
+        qInfo("held-out %s: simulate %.4f, fit --holdout %.4f", key, a, b);
+        QVERIFY2(b > 0.0 && std::fabs(a - b) <= 0.01 * b, key);
+    }
+    // An incomplete model file: exit 2 naming the file and the field.
+    const QString notFdm = dir.filePath(QStringLiteral("incomplete.json"));
+    QFile nf(notFdm);
+    QVERIFY(nf.open(QIODevice::WriteOnly));
+    nf.write(R"({"model": "fdm-seed000", "parameters": {"k1": 0.001}})");
+    nf.close();
+    QCOMPARE(run({QStringLiteral("simulate"), QStringLiteral("4"), QStringLiteral("--model"), notFdm, QStringLiteral("--db"), db}, &err), 2);
+    QVERIFY2(err.contains("incomplete.json") && err.contains("parameters.k2"), err.constData());
 }
 
 void TestFitRig::recoversTheParametersOfAnExactRig()
