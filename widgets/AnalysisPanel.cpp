@@ -155,9 +155,10 @@ AnalysisPanel::AnalysisPanel(QWidget *parent)
     selectionPage->addWidget(tables);
     selectionPage->addWidget(m_selectionPlots);
     selectionPage->setStretchFactor(1, 3);
-    m_table->setHorizontalHeaderLabels({tr("model"), tr("inputs"), tr("training RMSE (µm)"), tr("CV RMSE (µm)"),
-                                        tr("held-out RMSE (µm)"), tr("held-out MAE (µm)"), tr("held-out max |e| (µm)"),
-                                        tr("held-out fitting degree (%)"), tr("fit time (s)"), tr("note")});
+    // Two-line headers keep the numeric columns narrow enough for a 1366-pixel screen.
+    m_table->setHorizontalHeaderLabels({tr("model"), tr("inputs"), tr("training\nRMSE (µm)"), tr("CV\nRMSE (µm)"),
+                                        tr("held-out\nRMSE (µm)"), tr("held-out\nMAE (µm)"), tr("held-out\nmax |e| (µm)"),
+                                        tr("held-out fitting\ndegree (%)"), tr("fit\ntime (s)"), tr("note")});
     m_prediction->setTitle(tr("Measured and predicted"));
     m_residual->setTitle(tr("Residual"));
     auto *modelsPage = new QSplitter(Qt::Vertical, this);
@@ -513,6 +514,7 @@ void AnalysisPanel::showModels()
         for (const ModelChannel &c : f.model.inputs)
             inputs << QString::fromStdString(c.id);
         m_table->setItem(i, 1, item(inputs.join(QStringLiteral(", "))));
+        m_table->item(i, 1)->setToolTip(inputs.join(QStringLiteral(", ")));
         m_table->setItem(i, 2, item(number(f.training.metrics.rmse)));
         m_table->setItem(i, 3, item(number(f.cvRmse)));
         const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -530,6 +532,8 @@ void AnalysisPanel::showModels()
         }
     }
     m_table->resizeColumnsToContents();
+    // A long input list is elided (the full list is the cell's tooltip), not widening the table.
+    m_table->setColumnWidth(1, std::min(m_table->columnWidth(1), m_table->fontMetrics().horizontalAdvance(QLatin1Char('x')) * 28));
     if (best >= 0)
         m_table->selectRow(best);
     showModel(best);
