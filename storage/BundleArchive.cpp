@@ -6,6 +6,10 @@
 #include <QFile>
 #include <QFileInfo>
 
+#include <sys/stat.h>
+
+#include <cerrno>
+
 #include <zip.h>
 
 #include <cstdlib>
@@ -59,8 +63,10 @@ BundleArchive::BundleArchive(const QString &path, Mode mode) : m_path(path), m_m
         return;
     }
     const QFileInfo info(path);
-    if (info.isDir())
+    if (info.isDir()) {
+        m_root = info.canonicalFilePath();
         return;
+    }
     if (!info.exists())
         throw BundleError(name, 0, QString(), QStringLiteral("no such bundle directory or zip: %1").arg(path));
     int error = 0;
@@ -68,7 +74,9 @@ BundleArchive::BundleArchive(const QString &path, Mode mode) : m_path(path), m_m
     if (!m_zip) {
         zip_error_t ze;
         zip_error_init_with_code(&ze, error);
-        const QString what = QString::fromUtf8(zip_error_strerror(&ze));
+        // Opening for reading, "file exists" is libzip's word for two entries of one name.
+        const QString what = error == ZIP_ER_EXISTS ? QStringLiteral("two entries have the same name (which is the bundle's?)")
+                                                    : QString::fromUtf8(zip_error_strerror(&ze));
         zip_error_fini(&ze);
         throw BundleError(name, 0, QString(), QStringLiteral("not a readable zip bundle: %1").arg(what));
     }
@@ -114,7 +122,33 @@ bool BundleArchive::exists(const QString &relativePath) const
         return false;
     if (m_zip)
         return m_entries.contains(relativePath);
-    return QFileInfo(QDir(m_path).filePath(relativePath)).isFile();
+    // Present at all (a dangling link or a pipe too): read() then says what is wrong with it.
+    const QFileInfo fi(QDir(m_path).filePath(relativePath));
+    return (fi.exists() || fi.isSymLink()) && !fi.isDir();
+}
+
+QString BundleArchive::checkedFile(const QString &relativePath) const
+{
+    const QFileInfo fi(QDir(m_path).filePath(relativePath));
+    if (!fi.exists() && !fi.isSymLink())
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("missing from the bundle"));
+    // Whatever a link inside the bundle points to must be inside the bundle too.
+    const QString canonical = fi.canonicalFilePath();
+    if (canonical.isEmpty())
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("a symbolic link to nothing: refused"));
+    if (m_root.isEmpty() || !canonical.startsWith(m_root + QLatin1Char('/')))
+        throw BundleError(relativePath, 0, QString(),
+                          QStringLiteral("resolves outside the bundle (a symbolic link?): refused, nothing read from it"));
+    struct stat st {};
+    if (::stat(QFile::encodeName(canonical).constData(), &st) != 0)
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot read: %1").arg(QString::fromLocal8Bit(std::strerror(errno))));
+    if (!S_ISREG(st.st_mode))
+        throw BundleError(relativePath, 0, QString(),
+                          QStringLiteral("not a regular file (a directory, pipe, socket or device): refused"));
+    if (static_cast<qint64>(st.st_size) >= kMaxEntryBytes)
+        throw BundleError(relativePath, 0, QString(),
+                          QStringLiteral("file too large (%1 bytes; the limit is %2)").arg(st.st_size).arg(kMaxEntryBytes - 1));
+    return canonical;
 }
 
 QByteArray BundleArchive::read(const QString &relativePath) const
@@ -122,9 +156,7 @@ QByteArray BundleArchive::read(const QString &relativePath) const
     if (!isSafeRelativePath(relativePath))
         throw BundleError(relativePath, 0, QString(), QStringLiteral("unsafe path (absolute or '..'): refused"));
     if (!m_zip) {
-        QFile f(QDir(m_path).filePath(relativePath));
-        if (!f.exists())
-            throw BundleError(relativePath, 0, QString(), QStringLiteral("missing from the bundle"));
+        QFile f(checkedFile(relativePath));
         if (!f.open(QIODevice::ReadOnly))
             throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot read: %1").arg(f.errorString()));
         return f.readAll();
@@ -142,11 +174,27 @@ QByteArray BundleArchive::read(const QString &relativePath) const
     if (!f)
         throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot open zip entry: %1").arg(zipError(m_zip)));
     QByteArray data(static_cast<int>(st.size), Qt::Uninitialized);
-    const zip_int64_t got = zip_fread(f, data.data(), st.size);
-    const QString err = QString::fromUtf8(zip_file_strerror(f));
-    zip_fclose(f);
-    if (got < 0 || static_cast<zip_uint64_t>(got) != st.size)
-        throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot read zip entry: %1").arg(err));
+    zip_int64_t got = zip_fread(f, data.data(), st.size);
+    // libzip compares the CRC only when a read reaches the end of the entry: read past it.
+    char past = 0;
+    if (got >= 0 && static_cast<zip_uint64_t>(got) == st.size && zip_fread(f, &past, 1) != 0)
+        got = -1;
+    const int readCode = zip_error_code_zip(zip_file_get_error(f));
+    // libzip checks the CRC at the end of the data or when the entry is closed.
+    const int closeCode = zip_fclose(f);
+    if (got < 0 || static_cast<zip_uint64_t>(got) != st.size || closeCode != 0) {
+        const int code = readCode != ZIP_ER_OK ? readCode : closeCode != 0 ? closeCode : ZIP_ER_EOF;
+        QString why;
+        if (code == ZIP_ER_CRC) {
+            why = QStringLiteral("its data do not match the zip's checksum (CRC error): the zip is damaged");
+        } else {
+            zip_error_t ze;
+            zip_error_init_with_code(&ze, code);
+            why = QString::fromUtf8(zip_error_strerror(&ze));
+            zip_error_fini(&ze);
+        }
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot read zip entry: %1").arg(why));
+    }
     return data;
 }
 

@@ -33,7 +33,13 @@ public:
     static bool isSafeRelativePath(const QString &path);
 
 private:
+    // Directory bundles: the canonical path of a regular file of the bundle, after refusing a
+    // missing file, anything resolving outside the bundle (symbolic links), anything that is
+    // not a regular file (a pipe would block, a device never ends) and files of 2 GiB or more.
+    QString checkedFile(const QString &relativePath) const;
+
     QString m_path;
+    QString m_root;                    // directory: canonical bundle path
     Mode m_mode;
     zip *m_zip = nullptr;
     QString m_prefix;                  // zip: top-level folder holding manifest.json, with '/'

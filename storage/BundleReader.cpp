@@ -495,6 +495,16 @@ void BundleReader::readFrames(const QString &file)
         QString error;
         if (!IrFrameCodec::fromImageFile(m_archive->read(frame.sourceName), frame.sourceName, pixels, frame.width, frame.height, error))
             throw BundleError(file, line.number, QStringLiteral("file"), QStringLiteral("%1: %2").arg(frame.sourceName, error));
+        if (!m_content.frames.isEmpty() &&
+            (frame.width != m_content.frames.front().width || frame.height != m_content.frames.front().height))
+            throw BundleError(file, line.number, QStringLiteral("file"),
+                              QStringLiteral("%1 is %2 x %3 pixels, the first frame %4 (%5 x %6): one camera, one size")
+                                  .arg(frame.sourceName)
+                                  .arg(frame.width)
+                                  .arg(frame.height)
+                                  .arg(m_content.frames.front().sourceName)
+                                  .arg(m_content.frames.front().width)
+                                  .arg(m_content.frames.front().height));
         m_content.frames.push_back(frame);
     }
 }

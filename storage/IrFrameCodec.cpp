@@ -49,9 +49,10 @@ QByteArray IrFrameCodec::compress(const QVector<quint16> &pixels, int width, int
 
 QVector<quint16> IrFrameCodec::decompress(const QByteArray &blob, int width, int height, const QString &what)
 {
-    const int n = width * height;
+    const qint64 n64 = static_cast<qint64>(width) * height;
+    const int n = n64 <= kMaxPixels ? static_cast<int>(n64) : 0;
     QByteArray planes;
-    if (width > 0 && height > 0 && n <= (1 << 28)) {
+    if (width > 0 && height > 0 && n64 <= kMaxPixels) {
         planes.resize(2 * n);
         z_stream z{};
         if (inflateInit(&z) != Z_OK)
@@ -116,6 +117,14 @@ bool IrFrameCodec::fromImageFile(const QByteArray &data, const QString &fileName
     buffer.setData(data);
     buffer.open(QIODevice::ReadOnly);
     QImageReader reader(&buffer, tiff ? QByteArray("tiff") : QByteArray("png"));
+    const QSize declared = reader.size(); // from the header, nothing decoded yet
+    if (declared.isValid() && static_cast<qint64>(declared.width()) * declared.height() > kMaxPixels) {
+        error = QStringLiteral("declares %1 x %2 pixels, more than the %3 pixels (4096 x 4096) a frame may have")
+                    .arg(declared.width())
+                    .arg(declared.height())
+                    .arg(kMaxPixels);
+        return false;
+    }
     QImage image;
     if (!reader.read(&image)) {
         error = QStringLiteral("cannot decode image: %1").arg(reader.errorString());

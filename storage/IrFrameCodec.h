@@ -15,13 +15,17 @@ namespace driftlab {
 class IrFrameCodec {
 public:
     static QString storeEncoding() { return QStringLiteral("d16p-zlib"); }
+    // The largest frame DriftLab imports, stores and reads back (4096 x 4096 pixels: thermal
+    // cameras have 640 x 512 or 1280 x 1024). A file declaring more is refused before decoding.
+    static constexpr int kMaxPixels = 4096 * 4096;
     static QByteArray compress(const QVector<quint16> &pixels, int width, int height);
     // Throws StorageError naming `what` if the blob does not decode to width * height pixels.
     static QVector<quint16> decompress(const QByteArray &blob, int width, int height, const QString &what);
 
     static QByteArray toPng(const QVector<quint16> &pixels, int width, int height);
-    // Decodes a 16-bit single-channel image (PNG, or TIFF with the plugin). On failure returns
-    // false and sets error (what is wrong, without the file name).
+    // Decodes a 16-bit single-channel image (PNG, or TIFF with the plugin) of at most
+    // kMaxPixels (checked on the size its header declares, before decoding). On failure
+    // returns false and sets error (what is wrong, without the file name).
     static bool fromImageFile(const QByteArray &data, const QString &fileName, QVector<quint16> &pixels, int &width,
                               int &height, QString &error);
 };

@@ -22,6 +22,8 @@
 
 #include <zip.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -238,16 +240,57 @@ QByteArray contentHash(const QString &path)
     return h;
 }
 
-void zipEntries(const QString &zipPath, const QVector<QPair<QString, QByteArray>> &entries)
+// store: entries uncompressed, so that a test can find and change their bytes in the zip.
+void zipEntries(const QString &zipPath, const QVector<QPair<QString, QByteArray>> &entries, bool store = false)
 {
     int err = 0;
     zip_t *z = zip_open(QFile::encodeName(zipPath).constData(), ZIP_CREATE | ZIP_TRUNCATE, &err);
     QVERIFY(z);
     for (const auto &e : entries) {
         zip_source_t *s = zip_source_buffer(z, e.second.constData(), static_cast<zip_uint64_t>(e.second.size()), 0);
-        QVERIFY(zip_file_add(z, e.first.toUtf8().constData(), s, ZIP_FL_ENC_UTF_8) >= 0);
+        const zip_int64_t index = zip_file_add(z, e.first.toUtf8().constData(), s, ZIP_FL_ENC_UTF_8);
+        QVERIFY(index >= 0);
+        if (store)
+            QCOMPARE(zip_set_file_compression(z, static_cast<zip_uint64_t>(index), ZIP_CM_STORE, 0), 0);
     }
     QCOMPARE(zip_close(z), 0);
+}
+
+// Replaces every occurrence of `from` in a file by `to` (same length).
+void patchBytes(const QString &path, const QByteArray &from, const QByteArray &to)
+{
+    QFile f(path);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    QByteArray bytes = f.readAll();
+    f.close();
+    QVERIFY(bytes.contains(from) && from.size() == to.size());
+    bytes.replace(from, to);
+    QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    f.write(bytes);
+}
+
+// A PNG whose header declares width x height 16-bit grayscale pixels, with almost no data.
+QByteArray pngHeaderOnly(quint32 width, quint32 height)
+{
+    const auto crc32 = [](const QByteArray &data) {
+        quint32 c = 0xffffffffu;
+        for (char ch : data) {
+            c ^= static_cast<quint8>(ch);
+            for (int k = 0; k < 8; ++k)
+                c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+        }
+        return c ^ 0xffffffffu;
+    };
+    const auto be32 = [](quint32 v) {
+        const char b[4] = {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8), static_cast<char>(v)};
+        return QByteArray(b, 4);
+    };
+    const auto chunk = [&](const QByteArray &type, const QByteArray &data) {
+        return be32(static_cast<quint32>(data.size())) + type + data + be32(crc32(type + data));
+    };
+    return QByteArray("\x89PNG\r\n\x1a\n", 8) +
+           chunk("IHDR", be32(width) + be32(height) + QByteArray("\x10\x00\x00\x00\x00", 5)) +
+           chunk("IDAT", QByteArray("\x78\x9c\x03\x00", 4)) + chunk("IEND", QByteArray());
 }
 
 } // namespace
@@ -518,7 +561,7 @@ private:
     {
         return [=](const QString &d, QString &) { writeFile(d, rel, content); };
     }
-    static std::function<void(const QString &, QString &)> zipOf(const QVector<QPair<QString, QByteArray>> &extra)
+    static std::function<void(const QString &, QString &)> zipOf(const QVector<QPair<QString, QByteArray>> &extra, bool store = false)
     {
         return [=](const QString &d, QString &target) {
             QVector<QPair<QString, QByteArray>> entries;
@@ -529,7 +572,7 @@ private:
             }
             entries += extra;
             target = d + QStringLiteral(".zip");
-            zipEntries(target, entries);
+            zipEntries(target, entries, store);
         };
     }
 
@@ -680,6 +723,47 @@ private:
                              QFile f(target);
                              f.open(QIODevice::ReadWrite);
                              f.resize(f.size() / 2);
+                         }});
+            // Issue 21: files that are not what they seem, frames too large to read back, damaged zips.
+            m.push_back({"channels.csv is a named pipe", "channels.csv: not a regular file", [=](const QString &d, QString &) {
+                             const QString p = QDir(d).filePath(C);
+                             QFile::remove(p);
+                             QCOMPARE(::mkfifo(QFile::encodeName(p).constData(), 0600), 0);
+                         }});
+            m.push_back({"channels.csv links to /dev/urandom", "channels.csv: resolves outside the bundle", [=](const QString &d, QString &) {
+                             QFile::remove(QDir(d).filePath(C));
+                             QVERIFY(QFile::link(QStringLiteral("/dev/urandom"), QDir(d).filePath(C)));
+                         }});
+            m.push_back({"channels.csv links to a file outside", "channels.csv: resolves outside the bundle", [=](const QString &d, QString &) {
+                             const QString outside = d + QStringLiteral("-outside-channels.csv");
+                             QVERIFY(QFile::rename(QDir(d).filePath(C), outside));
+                             QVERIFY(QFile::link(outside, QDir(d).filePath(C)));
+                         }});
+            m.push_back({"ir folder links outside", "ir/index.csv: resolves outside the bundle", [=](const QString &d, QString &) {
+                             const QString outside = d + QStringLiteral("-outside-ir");
+                             QVERIFY(QDir().rename(QDir(d).filePath(QStringLiteral("ir")), outside));
+                             QVERIFY(QFile::link(outside, QDir(d).filePath(QStringLiteral("ir"))));
+                         }});
+            m.push_back({"events.csv links to nothing", "events.csv: a symbolic link to nothing", [=](const QString &d, QString &) {
+                             QFile::remove(QDir(d).filePath(E));
+                             QVERIFY(QFile::link(QDir(d).filePath(QStringLiteral("gone.csv")), QDir(d).filePath(E)));
+                         }});
+            m.push_back({"frame declares 16400 x 16400 pixels", "ir/f001.png: declares 16400 x 16400 pixels",
+                         file(QStringLiteral("ir/f001.png"), pngHeaderOnly(16400, 16400))});
+            m.push_back({"frames of two sizes", "ir/index.csv: line 3: field 'file': ir/f001.png is 8 x 8 pixels, the first frame ir/f000.png (40 x 24)",
+                         [=](const QString &d, QString &) {
+                             QImage img(8, 8, QImage::Format_Grayscale16);
+                             img.fill(0);
+                             QVERIFY(img.save(QDir(d).filePath(QStringLiteral("ir/f001.png")), "PNG"));
+                         }});
+            m.push_back({"zip entry damaged (CRC)", "events.csv: cannot read zip entry: its data do not match the zip's checksum",
+                         [=](const QString &d, QString &target) {
+                             zipOf({}, true)(d, target);
+                             patchBytes(target, "door opened", "door opene!"); // still a valid events.csv
+                         }});
+            m.push_back({"zip with two entries of one name", "two entries have the same name", [=](const QString &d, QString &target) {
+                             zipOf({{QStringLiteral("channelz.csv"), "time_s\n"}}, true)(d, target);
+                             patchBytes(target, "channelz.csv", "channels.csv");
                          }});
             m.push_back({"bad cell inside zip", "channels.csv: line 5: field 'S1': non-numeric value 'abc'", [=](const QString &d, QString &target) {
                              cell(5, 1, "abc")(d, target);
