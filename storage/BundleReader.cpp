@@ -8,12 +8,14 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonParseError>
+#include <QHash>
 #include <QSet>
 #include <QUuid>
 
 #include <charconv>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace driftlab {
 
@@ -22,7 +24,8 @@ namespace {
 const QString kManifest = QStringLiteral("manifest.json");
 const QString kChannels = QStringLiteral("channels.csv");
 
-// One CSV file split into lines of fields (RFC 4180 quotes allowed, for event labels).
+// One CSV file split into records of fields (RFC 4180 quotes allowed, with line breaks inside
+// them, for event labels); a record's number is the line it starts on.
 class CsvFile {
 public:
     CsvFile(const QString &name, const QByteArray &data) : m_name(name)
@@ -30,24 +33,37 @@ public:
         if (data.trimmed().isEmpty())
             throw BundleError(name, 1, QString(), QStringLiteral("empty file, expected a header line"));
         int start = 0;
-        int lineNo = 0;
+        int lineNo = 1; // of the record's first line
         while (start < data.size()) {
-            int end = data.indexOf('\n', start);
-            if (end < 0)
-                end = data.size();
-            ++lineNo;
+            // A record ends at a line break outside quotes: a quoted field may hold line breaks
+            // (RFC 4180), so a label written with one comes back unchanged.
+            bool quoted = false;
+            int end = start;
+            int breaks = 0;
+            for (; end < data.size(); ++end) {
+                const char c = data[end];
+                if (c == '"')
+                    quoted = !quoted;
+                else if (c == '\n' && !quoted)
+                    break;
+                else if (c == '\n')
+                    ++breaks;
+            }
             QByteArray line = data.mid(start, end - start);
             if (line.endsWith('\r'))
                 line.chop(1);
             start = end + 1;
+            const int number = lineNo;
+            lineNo += breaks + 1;
             if (line.trimmed().isEmpty())
                 continue;
-            m_lines.push_back({lineNo, split(line, lineNo)});
+            m_lines.push_back({number, split(line, number), breaks + 1});
         }
     }
     struct Line {
         int number;
         QVector<QByteArray> fields;
+        int span = 1; // lines of the file (more when a quoted field holds line breaks)
     };
     const QVector<Line> &lines() const { return m_lines; }
     const QString &name() const { return m_name; }
@@ -80,6 +96,13 @@ public:
     }
     void checkWidth(const Line &line, int width) const
     {
+        if (line.fields.size() != width && line.span > 1)
+            throw BundleError(m_name, line.number, QString(),
+                              QStringLiteral("unterminated quoted field? A quote opened on this line closes %1 lines "
+                                             "further down, making a record of %2 fields (expected %3)")
+                                  .arg(line.span - 1)
+                                  .arg(line.fields.size())
+                                  .arg(width));
         if (line.fields.size() != width)
             throw BundleError(m_name, line.number, QString(),
                               QStringLiteral("expected %1 fields, found %2 (truncated or malformed line)")
@@ -146,7 +169,8 @@ QString describe(const QByteArray &cell)
     const char *b = s.constData();
     const auto r = std::from_chars(b + (s.startsWith('+') ? 1 : 0), b + s.size(), v);
     if (r.ptr == b + s.size() && (r.ec == std::errc::result_out_of_range || !std::isfinite(v)))
-        return QStringLiteral("value '%1' out of range (not a finite double)").arg(QString::fromUtf8(s.left(40)));
+        return QStringLiteral("value '%1' out of range: a number is 0 or between about 1e-308 and 1e308 in magnitude")
+            .arg(QString::fromUtf8(s.left(40)));
     return QStringLiteral("non-numeric value '%1'").arg(QString::fromUtf8(s.left(40)));
 }
 
@@ -166,6 +190,30 @@ int jsonLine(const QByteArray &data, int offset)
     return 1 + static_cast<int>(data.left(offset).count('\n'));
 }
 
+// Text DriftLab stores and writes back unchanged: no control characters but tab and line
+// breaks (none at all in an id), no unpaired UTF-16 surrogate ("\ud800" in JSON), no NUL.
+QString checkedText(const QString &text, const QString &file, int line, const QString &field, bool lineBreaks)
+{
+    for (int i = 0; i < text.size(); ++i) {
+        const QChar c = text.at(i);
+        if (c.isHighSurrogate() && i + 1 < text.size() && text.at(i + 1).isLowSurrogate()) {
+            ++i;
+            continue;
+        }
+        const ushort u = c.unicode();
+        const bool allowedBreak = lineBreaks && (u == '\t' || u == '\n' || u == '\r');
+        if (c.isSurrogate())
+            throw BundleError(file, line, field, QStringLiteral("an unpaired UTF-16 surrogate (U+%1) at character %2: not text")
+                                                     .arg(u, 4, 16, QLatin1Char('0'))
+                                                     .arg(i + 1));
+        if ((u < 0x20 || u == 0x7f) && !allowedBreak)
+            throw BundleError(file, line, field, QStringLiteral("control character U+%1 at character %2: refused")
+                                                     .arg(u, 4, 16, QLatin1Char('0'))
+                                                     .arg(i + 1));
+    }
+    return text;
+}
+
 QString str(const QJsonObject &o, const QString &key, const QString &field, bool required)
 {
     const QJsonValue v = o.value(key);
@@ -173,7 +221,7 @@ QString str(const QJsonObject &o, const QString &key, const QString &field, bool
         return QString();
     if (!v.isString())
         throw BundleError(kManifest, 0, field, v.isUndefined() ? QStringLiteral("missing") : QStringLiteral("must be a string"));
-    return v.toString();
+    return checkedText(v.toString(), kManifest, 0, field, true);
 }
 
 void checkNumber(const QJsonObject &o, const QString &key, const QString &field, bool nullable)
@@ -326,9 +374,13 @@ void BundleReader::readManifest()
         const QJsonObject c = cv.toObject();
         ChannelInfo ch;
         ch.key = str(c, QStringLiteral("id"), field + QStringLiteral(".id"), true);
-        if (ch.key.isEmpty() || ch.key.contains(QLatin1Char(',')) || ch.key.contains(QLatin1Char('"')) ||
+        checkedText(ch.key, kManifest, 0, field + QStringLiteral(".id"), false);
+        if (ch.key.isEmpty() || ch.key.size() > 128 || ch.key.contains(QLatin1Char(',')) || ch.key.contains(QLatin1Char('"')) ||
             ch.key == QLatin1String("time_s") || ch.key.trimmed() != ch.key)
-            throw BundleError(kManifest, 0, field + QStringLiteral(".id"), QStringLiteral("invalid channel id '%1'").arg(ch.key));
+            throw BundleError(kManifest, 0, field + QStringLiteral(".id"),
+                              QStringLiteral("invalid channel id '%1' (1 to 128 characters, no ',', '\"' or control "
+                                             "characters, no surrounding spaces, not time_s)")
+                                  .arg(ch.key.left(130)));
         if (ids.contains(ch.key))
             throw BundleError(kManifest, 0, field + QStringLiteral(".id"), QStringLiteral("duplicate channel id '%1'").arg(ch.key));
         ids.insert(ch.key);
@@ -338,6 +390,17 @@ void BundleReader::readManifest()
                               QStringLiteral("unknown kind '%1' (expected %2)").arg(ch.kind, kinds.join(QStringLiteral(", "))));
         ch.sensor = str(c, QStringLiteral("sensor"), field + QStringLiteral(".sensor"), false);
         ch.unit = str(c, QStringLiteral("unit"), field + QStringLiteral(".unit"), false);
+        // The format fixes the units of these kinds; a converted unit would be stored as given.
+        static const QHash<QString, QString> kFixedUnit{{QStringLiteral("temperature"), QStringLiteral("degC")},
+                                                         {QStringLiteral("displacement"), QStringLiteral("um")},
+                                                         {QStringLiteral("position"), QStringLiteral("mm")},
+                                                         {QStringLiteral("feed"), QStringLiteral("mm/min")}};
+        const QString fixedUnit = kFixedUnit.value(ch.kind);
+        if (!fixedUnit.isEmpty() && !ch.unit.isEmpty() && ch.unit != fixedUnit)
+            throw BundleError(kManifest, 0, field + QStringLiteral(".unit"),
+                              QStringLiteral("'%1' for a %2 channel: the format fixes %3 (convert the values before "
+                                             "writing the bundle)")
+                                  .arg(ch.unit, ch.kind, fixedUnit));
         ch.location = str(c, QStringLiteral("location"), field + QStringLiteral(".location"), false);
         ch.role = str(c, QStringLiteral("role"), field + QStringLiteral(".role"), false);
         checkNumber(c, QStringLiteral("screw_position_m"), field + QStringLiteral(".screw_position_m"), false);
@@ -349,6 +412,12 @@ void BundleReader::readManifest()
         const QJsonValue b = m.value(QLatin1String(block));
         if (!b.isUndefined() && !b.isObject())
             throw BundleError(kManifest, 0, QLatin1String(block), QStringLiteral("must be an object"));
+    }
+    for (const auto &[block, unit] : {std::pair<const char *, const char *>{"infrared", "degC"}, {"interferometer", "um"}}) {
+        const QJsonValue u = m.value(QLatin1String(block)).toObject().value(QStringLiteral("unit"));
+        if (!u.isUndefined() && u.toString() != QLatin1String(unit))
+            throw BundleError(kManifest, 0, QLatin1String(block) + QStringLiteral(".unit"),
+                              QStringLiteral("'%1': the format fixes %2").arg(u.toVariant().toString(), QLatin1String(unit)));
     }
     const QJsonObject ir = m.value(QStringLiteral("infrared")).toObject();
     checkNumber(ir, QStringLiteral("scale"), QStringLiteral("infrared.scale"), false);
@@ -466,7 +535,11 @@ void BundleReader::readEvents(const QString &file)
         f.checkWidth(line, 2);
         EventRecord e;
         e.t = number(f, line, cols.value(QStringLiteral("time_s")), QStringLiteral("time_s"));
-        e.label = QString::fromUtf8(line.fields[cols.value(QStringLiteral("label"))]);
+        const QByteArray raw = line.fields[cols.value(QStringLiteral("label"))];
+        e.label = QString::fromUtf8(raw.constData(), raw.size()); // the whole cell: fromUtf8(QByteArray) stops at a NUL
+        if (e.label.toUtf8() != raw)
+            throw BundleError(f.name(), line.number, QStringLiteral("label"), QStringLiteral("not valid UTF-8 text"));
+        checkedText(e.label, f.name(), line.number, QStringLiteral("label"), true);
         m_content.events.push_back(e);
     }
 }

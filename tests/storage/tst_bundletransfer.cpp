@@ -460,6 +460,41 @@ private slots:
         QCOMPARE(store.session(back).manifest.value(QStringLiteral("interferometer")).toObject().value(QStringLiteral("reference_run")).toInt(), 2);
     }
 
+    // Issue 21: every text a bundle may hold comes back unchanged through import, export and
+    // import: ids and labels in any script, with emoji, tabs and line breaks in labels.
+    void acceptedTextRoundTrips()
+    {
+        const QString dir = m_tmp.filePath(QStringLiteral("text.bundle"));
+        copyDir(m_base, dir);
+        const QString id = QStringLiteral("T_Umgebung_\u00fc\u6e29\U0001F321");
+        editManifest(dir, [&](QJsonObject &o) {
+            o = withChannel(o, 0, "id", id);
+            QJsonObject session = sub(o, "session");
+            session.insert(QStringLiteral("notes"), QStringLiteral("line 1\nline 2\ttab \U0001F321"));
+            o.insert(QStringLiteral("session"), session);
+        });
+        editFile(dir, QStringLiteral("channels.csv"), [&](QByteArray t) { return t.replace(",T_amb,", "," + id.toUtf8() + ","); });
+        const QString label = QStringLiteral("T\u00fcr auf\tzu\n\U0001F321, \"zitiert\"");
+        editFile(dir, QStringLiteral("events.csv"), [&](QByteArray t) {
+            return t + "130,\"" + label.toUtf8().replace("\"", "\"\"") + "\"\n";
+        });
+        SessionStore store(m_tmp.filePath(QStringLiteral("text.sqlite")));
+        qint64 a = 0, b = 0;
+        try {
+            a = BundleTransfer::importBundle(store, dir);
+            const QString out = m_tmp.filePath(QStringLiteral("text-out.bundle"));
+            BundleTransfer::exportBundle(store, a, out);
+            b = BundleTransfer::importBundle(store, out, true);
+        } catch (const std::exception &e) {
+            QFAIL(e.what());
+        }
+        for (qint64 s : {a, b}) {
+            QCOMPARE(store.channels(s).front().key, id);
+            QCOMPARE(store.events(s).back().label, label);
+            QCOMPARE(store.session(s).notes, QStringLiteral("line 1\nline 2\ttab \U0001F321"));
+        }
+    }
+
     void formatDoubleIsShortestExact()
     {
         std::mt19937_64 rng(5);
@@ -611,6 +646,30 @@ private:
             m.push_back({"unknown kind", "field 'channels[1].kind': unknown kind 'pressure'",
                          manifest([](QJsonObject &o) { o = withChannel(o, 1, "kind", "pressure"); })});
             m.push_back({"duplicate channel id", "duplicate channel id 'S1'", manifest([](QJsonObject &o) { o = withChannel(o, 3, "id", "S1"); })});
+            // Issue 21: what an id and a text may contain, and the units the format fixes.
+            m.push_back({"channel id with a newline", "field 'channels[2].id': control character U+000a at character 2",
+                         manifest([](QJsonObject &o) { o = withChannel(o, 2, "id", "S\n1"); })});
+            m.push_back({"channel id of 200 characters", "field 'channels[2].id': invalid channel id",
+                         manifest([](QJsonObject &o) { o = withChannel(o, 2, "id", QString(200, QLatin1Char('S'))); })});
+            m.push_back({"session name with a lone surrogate", "field 'session.name': an unpaired UTF-16 surrogate (U+d800) at character 2",
+                         [=](const QString &d, QString &) {
+                             editFile(d, M, [](QByteArray t) { return t.replace("\"X-axis warm-up\"", "\"X\\ud800-axis\""); });
+                         }});
+            m.push_back({"event label with NUL", "events.csv: line 3: field 'label': control character U+0000 at character 2",
+                         [=](const QString &d, QString &) { editFile(d, E, [](QByteArray t) { return replaceLine(t, 3, QByteArray("60,a\0b", 7)); }); }});
+            m.push_back({"event label not UTF-8", "events.csv: line 2: field 'label': not valid UTF-8 text",
+                         [=](const QString &d, QString &) { editFile(d, E, [](QByteArray t) { return replaceLine(t, 2, "0,caf\xe9 \xed\xa0\x80x"); }); }});
+            m.push_back({"temperature in degF", "field 'channels[0].unit': 'degF' for a temperature channel: the format fixes degC",
+                         manifest([](QJsonObject &o) { o = withChannel(o, 0, "unit", "degF"); })});
+            m.push_back({"displacement in mm", "field 'channels[2].unit': 'mm' for a displacement channel: the format fixes um",
+                         manifest([](QJsonObject &o) { o = withChannel(o, 2, "unit", "mm"); })});
+            m.push_back({"interferometer errors in mm", "field 'interferometer.unit': 'mm': the format fixes um", manifest([](QJsonObject &o) {
+                             QJsonObject in = sub(o, "interferometer");
+                             in.insert(QStringLiteral("unit"), QStringLiteral("mm"));
+                             o.insert(QStringLiteral("interferometer"), in);
+                         })});
+            m.push_back({"number below a double's range", "channels.csv: line 5: field 'S1': value '1e-400' out of range: a number is 0 or between",
+                         cell(5, 1, "1e-400")});
             m.push_back({"channel id missing", "field 'channels[0].id': missing", manifest([](QJsonObject &o) { o = withChannel(o, 0, "id", QJsonValue::Undefined); })});
             m.push_back({"screw position not a number", "field 'channels[1].screw_position_m': must be a number",
                          manifest([](QJsonObject &o) { o = withChannel(o, 1, "screw_position_m", "zero"); })});
@@ -711,7 +770,7 @@ private:
                          [=](const QString &d, QString &) { editFile(d, X, [](QByteArray t) { return t.replace("200.25", "50"); }); }});
             m.push_back({"events non-numeric time", "events.csv: line 3: field 'time_s': non-numeric value 'later'",
                          [=](const QString &d, QString &) { editFile(d, E, [](QByteArray t) { return replaceLine(t, 3, "later,door"); }); }});
-            m.push_back({"events unterminated quote", "events.csv: line 2: unterminated quoted field",
+            m.push_back({"events unterminated quote", "events.csv: line 2: unterminated quoted field? A quote opened on this line closes 4 lines further down",
                          [=](const QString &d, QString &) { editFile(d, E, [](QByteArray t) { return replaceLine(t, 2, "0,\"feed"); }); }});
             m.push_back({"events empty", "events.csv: line 1: empty file", file(E, "")});
             m.push_back({"events wrong header", "events.csv: line 1: field 'what': unknown column", file(E, "time_s,label,what\n0,x,y\n")});
