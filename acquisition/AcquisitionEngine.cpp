@@ -95,6 +95,12 @@ void AcquisitionEngine::stop()
         throw std::runtime_error(m_error);
 }
 
+std::string AcquisitionEngine::writerError() const
+{
+    std::lock_guard<std::mutex> lock(m_mutex);
+    return m_error;
+}
+
 void AcquisitionEngine::addInterferometerPoints(const QVector<InterferometerPoint> &points, const QString &note)
 {
     std::lock_guard<std::mutex> lock(m_mutex);

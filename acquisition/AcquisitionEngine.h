@@ -62,6 +62,9 @@ public:
     QVector<DeviceHealth> health() const;
     QVector<DeviceWorker::StampStats> stampStats() const;
     long long samplesWritten() const { return m_samplesWritten; }
+    // The writer's failure (disk full, ...) as soon as it happens; empty while it writes. The
+    // devices keep running until stop(), which rethrows it.
+    std::string writerError() const;
     long long commits() const { return m_commits; }
     int queueHighWater() const;
 
@@ -74,7 +77,7 @@ private:
     std::vector<std::unique_ptr<BlockQueue>> m_queues;
     std::vector<std::unique_ptr<DeviceWorker>> m_workers;
     std::thread m_writer;
-    std::mutex m_mutex;
+    mutable std::mutex m_mutex;
     std::condition_variable m_wake;
     std::condition_variable m_started;
     bool m_startDone = false;

@@ -8,7 +8,9 @@ namespace driftlab {
 
 void SqlSupport::fail(const QString &path, const QString &what, const QSqlError &error)
 {
-    if (error.nativeErrorCode() == QLatin1String("13")) // SQLITE_FULL
+    // SQLITE_FULL; QSQLITE reports a failed COMMIT without the native code, only SQLite's text.
+    if (error.nativeErrorCode() == QLatin1String("13") || error.databaseText().contains(QLatin1String("database or disk is full")) ||
+        error.driverText().contains(QLatin1String("database or disk is full")))
         throw StorageError(QStringLiteral("%1: disk full (or database size limit reached): %2; the last "
                                           "transaction was rolled back, the database is intact (%3)")
                                .arg(path, what, error.text())

@@ -254,10 +254,12 @@ void AcquisitionPanel::stopRecording()
     if (!m_engine)
         return;
     m_timer->stop();
+    QString failure;
     try {
         m_engine->stop();
     } catch (const std::exception &e) {
-        m_lastError = QString::fromUtf8(e.what());
+        failure = QString::fromUtf8(e.what());
+        m_lastError = failure;
     }
     onTick(); // final state of the table
     refreshPlot();
@@ -266,7 +268,16 @@ void AcquisitionPanel::stopRecording()
     m_pause->setChecked(false);
     updateButtons();
     m_elapsed->setText(tr("stopped"));
-    m_message->setText(tr("Session %1 recorded into %2").arg(m_session).arg(m_dbPath));
+    if (failure.isEmpty()) {
+        m_message->setStyleSheet(QString());
+        m_message->setText(tr("Session %1 recorded into %2").arg(m_session).arg(m_dbPath));
+    } else {
+        // Disk full and other writer failures: say so; what was committed stays (session incomplete).
+        m_message->setStyleSheet(QStringLiteral("color: #b00020;"));
+        m_message->setText(tr("Recording stopped: %1. What was stored before is kept: session %2, marked incomplete.")
+                               .arg(failure)
+                               .arg(m_session));
+    }
     emit recordingStopped(m_session);
 }
 
@@ -321,8 +332,8 @@ void AcquisitionPanel::onTick()
 {
     if (!m_engine)
         return;
-    if (m_timer->isActive() && m_end_s > 0 && m_engine->now_s() >= m_end_s) {
-        stopRecording(); // the run's duration is reached (stopRecording's own last tick skips this)
+    if (m_timer->isActive() && ((m_end_s > 0 && m_engine->now_s() >= m_end_s) || !m_engine->writerError().empty())) {
+        stopRecording(); // the run's duration is reached, or the writer failed (stopRecording's own last tick skips this)
         return;
     }
     m_elapsed->setText(tr("%1%2 elapsed%3")

@@ -182,7 +182,8 @@ int RecordCommand::run(const QStringList &args)
         const auto previousInt = std::signal(SIGINT, onInterrupt);
         const auto previousTerm = std::signal(SIGTERM, onInterrupt);
         QVector<DeviceHealth::State> states(engine.deviceCount(), DeviceHealth::State::Closed);
-        while (engine.now_s() < seconds && !g_interrupted) {
+        // Stop at once when the writer fails (disk full): recording on would only lose data.
+        while (engine.now_s() < seconds && !g_interrupted && engine.writerError().empty()) {
             QThread::msleep(100);
             report(engine.now_s(), seconds, engine.samplesWritten());
             const QVector<DeviceHealth> health = engine.health();
@@ -195,6 +196,9 @@ int RecordCommand::run(const QStringList &args)
                                                                               : QStringLiteral(" (%1)").arg(health[i].message)));
                 }
         }
+        if (!engine.writerError().empty())
+            CliSupport::progress(QStringLiteral("  stopped at %1: the session cannot be written; what was committed before is kept")
+                                     .arg(hms(engine.now_s())));
         if (g_interrupted) {
             engine.addMarker(QStringLiteral("recording stopped by the operator"));
             CliSupport::progress(QStringLiteral("  interrupted at %1: storing what was recorded").arg(hms(engine.now_s())));

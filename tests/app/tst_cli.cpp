@@ -6,6 +6,7 @@
 #include <QDir>
 #include <QElapsedTimer>
 #include <QProcess>
+#include <QScopeGuard>
 #include <QSet>
 #include <QTemporaryDir>
 #include <QtTest>
@@ -29,6 +30,7 @@ private slots:
     void duplicateImportRefused();
     void newBundleAndExampleImport();
     void guiExitCodesMatchCli();
+    void recordStopsPromptlyOnAFullDisk();
 
 private:
     QString recordShort(const QString &db, const QString &bundle = QString());
@@ -373,4 +375,37 @@ void TestCli::guiExitCodesMatchCli()
 }
 
 QTEST_GUILESS_MAIN(TestCli)
+// Issue 21: a recording at --speed onto a full filesystem (a 3 MB tmpfs) stops as soon as the
+// writer fails, says "disk full", exits 1 and leaves an intact database with the session
+// marked incomplete (it went on printing progress with a frozen count until the planned end).
+void TestCli::recordStopsPromptlyOnAFullDisk()
+{
+    const QString mountPoint = m_dir.filePath(QStringLiteral("small"));
+    QVERIFY(QDir().mkpath(mountPoint));
+    QProcess mount;
+    mount.start(QStringLiteral("mount"), {QStringLiteral("-t"), QStringLiteral("tmpfs"), QStringLiteral("-o"), QStringLiteral("size=3m"),
+                                          QStringLiteral("tmpfs"), mountPoint});
+    if (!mount.waitForFinished(10000) || mount.exitCode() != 0)
+        QSKIP(qPrintable(QStringLiteral("cannot mount a small tmpfs here (needs root and mount permission): %1")
+                             .arg(QString::fromLocal8Bit(mount.readAllStandardError()).trimmed())));
+    const auto unmount = qScopeGuard([&] { QProcess::execute(QStringLiteral("umount"), {QStringLiteral("-l"), mountPoint}); });
+    const QString db = mountPoint + QStringLiteral("/full.sqlite");
+    QElapsedTimer timer;
+    timer.start();
+    const Result r = run({QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("10:00:00"),
+                          QStringLiteral("--speed"), QStringLiteral("2000"), QStringLiteral("--out"), db});
+    const double seconds = timer.elapsed() / 1000.0;
+    qInfo("stopped after %.1f s of a planned 18 s", seconds);
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("disk full") && r.err.contains("stopped at"), r.err.constData());
+    QVERIFY2(seconds < 15.0, "went on recording after the disk was full");
+    const Result list = run({QStringLiteral("list"), QStringLiteral("--db"), db});
+    QCOMPARE(list.code, 0);
+    QVERIFY2(list.out.contains("INCOMPLETE"), list.out.constData());
+    QProcess check;
+    check.start(QStringLiteral("sqlite3"), {db, QStringLiteral("PRAGMA integrity_check")});
+    if (check.waitForFinished(10000) && check.exitStatus() == QProcess::NormalExit && check.exitCode() == 0)
+        QCOMPARE(check.readAllStandardOutput().trimmed(), QByteArray("ok"));
+}
+
 #include "tst_cli.moc"
