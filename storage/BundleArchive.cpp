@@ -2,6 +2,7 @@
 
 #include "BundleError.h"
 
+#include <QCoreApplication>
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -57,8 +58,14 @@ BundleArchive::BundleArchive(const QString &path, Mode mode) : m_path(path), m_m
                 zip_error_fini(&ze);
                 throw BundleError(name, 0, QString(), QStringLiteral("cannot create zip: %1").arg(what));
             }
-        } else if (!QDir().mkpath(path)) {
-            throw BundleError(name, 0, QString(), QStringLiteral("cannot create directory %1").arg(path));
+        } else {
+            // Written next to its place under a hidden name and renamed by finish(): a failed
+            // export (disk full) leaves no partial bundle behind.
+            m_writeDir = QFileInfo(path).absolutePath() + QStringLiteral("/.") + name +
+                         QStringLiteral(".partial-%1").arg(QCoreApplication::applicationPid());
+            QDir(m_writeDir).removeRecursively();
+            if (!QDir().mkpath(m_writeDir))
+                throw BundleError(name, 0, QString(), QStringLiteral("cannot create directory %1").arg(m_writeDir));
         }
         return;
     }
@@ -114,6 +121,8 @@ BundleArchive::~BundleArchive()
 {
     if (m_zip)
         zip_discard(m_zip);
+    if (!m_writeDir.isEmpty())
+        QDir(m_writeDir).removeRecursively(); // not finished: nothing of it stays
 }
 
 bool BundleArchive::exists(const QString &relativePath) const
@@ -203,11 +212,16 @@ void BundleArchive::write(const QString &relativePath, const QByteArray &data)
     if (!isSafeRelativePath(relativePath))
         throw BundleError(relativePath, 0, QString(), QStringLiteral("unsafe path (absolute or '..'): refused"));
     if (!m_zip) {
-        const QString full = QDir(m_path).filePath(relativePath);
+        const QString full = QDir(m_writeDir).filePath(relativePath);
         QDir().mkpath(QFileInfo(full).absolutePath());
         QFile f(full);
-        if (!f.open(QIODevice::WriteOnly) || f.write(data) != data.size())
-            throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot write: %1").arg(f.errorString()));
+        errno = 0;
+        bool ok = f.open(QIODevice::WriteOnly) && f.write(data) == data.size() && f.flush();
+        f.close();
+        ok = ok && f.error() == QFileDevice::NoError;
+        if (!ok) // QFile says "Unknown error" for a full disk; errno says which
+            throw BundleError(relativePath, 0, QString(),
+                              QStringLiteral("cannot write: %1").arg(errno != 0 ? QString::fromLocal8Bit(std::strerror(errno)) : f.errorString()));
         return;
     }
     void *copy = std::malloc(static_cast<size_t>(std::max(1, data.size())));
@@ -227,7 +241,16 @@ void BundleArchive::write(const QString &relativePath, const QByteArray &data)
 
 void BundleArchive::finish()
 {
-    if (!m_zip || m_mode != Mode::Write)
+    if (m_mode != Mode::Write)
+        return;
+    if (!m_writeDir.isEmpty()) {
+        if (QFileInfo::exists(m_path) || !QDir().rename(m_writeDir, m_path))
+            throw BundleError(QFileInfo(m_path).fileName(), 0, QString(),
+                              QStringLiteral("cannot move the written bundle into place at %1").arg(m_path));
+        m_writeDir.clear();
+        return;
+    }
+    if (!m_zip)
         return;
     if (zip_close(m_zip) != 0) {
         const QString what = zipError(m_zip);

@@ -26,7 +26,8 @@ public:
     // Throws BundleError naming the file if it is missing or unreadable.
     QByteArray read(const QString &relativePath) const;
     void write(const QString &relativePath, const QByteArray &data);
-    // Writes the zip's central directory (Write mode); throws BundleError on failure.
+    // Writes the zip's central directory, or moves the written directory into place (Write
+    // mode); throws BundleError on failure. Without finish() nothing written stays.
     void finish();
 
     // True for a safe bundle-relative path: not empty, not absolute, no '..', no backslash.
@@ -40,6 +41,7 @@ private:
 
     QString m_path;
     QString m_root;                    // directory: canonical bundle path
+    QString m_writeDir;                // directory being written (renamed to m_path by finish())
     Mode m_mode;
     zip *m_zip = nullptr;
     QString m_prefix;                  // zip: top-level folder holding manifest.json, with '/'

@@ -31,6 +31,7 @@ private slots:
     void newBundleAndExampleImport();
     void guiExitCodesMatchCli();
     void recordStopsPromptlyOnAFullDisk();
+    void exportToAFullDiskLeavesNothing();
 
 private:
     QString recordShort(const QString &db, const QString &bundle = QString());
@@ -378,16 +379,25 @@ QTEST_GUILESS_MAIN(TestCli)
 // Issue 21: a recording at --speed onto a full filesystem (a 3 MB tmpfs) stops as soon as the
 // writer fails, says "disk full", exits 1 and leaves an intact database with the session
 // marked incomplete (it went on printing progress with a frozen count until the planned end).
+// Mounts a tmpfs of `size` at dir; empty on success, else why not (the test then skips).
+static QString mountSmallTmpfs(const QString &dir, const QString &size)
+{
+    QDir().mkpath(dir);
+    QProcess mount;
+    mount.start(QStringLiteral("mount"), {QStringLiteral("-t"), QStringLiteral("tmpfs"), QStringLiteral("-o"), QStringLiteral("size=") + size,
+                                          QStringLiteral("tmpfs"), dir});
+    if (mount.waitForFinished(10000) && mount.exitStatus() == QProcess::NormalExit && mount.exitCode() == 0)
+        return QString();
+    return QStringLiteral("cannot mount a small tmpfs here (needs root and mount permission): %1")
+        .arg(QString::fromLocal8Bit(mount.readAllStandardError()).trimmed());
+}
+
 void TestCli::recordStopsPromptlyOnAFullDisk()
 {
     const QString mountPoint = m_dir.filePath(QStringLiteral("small"));
-    QVERIFY(QDir().mkpath(mountPoint));
-    QProcess mount;
-    mount.start(QStringLiteral("mount"), {QStringLiteral("-t"), QStringLiteral("tmpfs"), QStringLiteral("-o"), QStringLiteral("size=3m"),
-                                          QStringLiteral("tmpfs"), mountPoint});
-    if (!mount.waitForFinished(10000) || mount.exitCode() != 0)
-        QSKIP(qPrintable(QStringLiteral("cannot mount a small tmpfs here (needs root and mount permission): %1")
-                             .arg(QString::fromLocal8Bit(mount.readAllStandardError()).trimmed())));
+    const QString why = mountSmallTmpfs(mountPoint, QStringLiteral("3m"));
+    if (!why.isEmpty())
+        QSKIP(qPrintable(why));
     const auto unmount = qScopeGuard([&] { QProcess::execute(QStringLiteral("umount"), {QStringLiteral("-l"), mountPoint}); });
     const QString db = mountPoint + QStringLiteral("/full.sqlite");
     QElapsedTimer timer;
@@ -406,6 +416,29 @@ void TestCli::recordStopsPromptlyOnAFullDisk()
     check.start(QStringLiteral("sqlite3"), {db, QStringLiteral("PRAGMA integrity_check")});
     if (check.waitForFinished(10000) && check.exitStatus() == QProcess::NormalExit && check.exitCode() == 0)
         QCOMPARE(check.readAllStandardOutput().trimmed(), QByteArray("ok"));
+}
+
+// Issue 21: an export onto a full filesystem fails naming the file and why, and leaves no
+// partial bundle (directory or zip) behind.
+void TestCli::exportToAFullDiskLeavesNothing()
+{
+    const QString mountPoint = m_dir.filePath(QStringLiteral("tiny"));
+    const QString why = mountSmallTmpfs(mountPoint, QStringLiteral("1m"));
+    if (!why.isEmpty())
+        QSKIP(qPrintable(why));
+    const auto unmount = qScopeGuard([&] { QProcess::execute(QStringLiteral("umount"), {QStringLiteral("-l"), mountPoint}); });
+    const QString db = m_dir.filePath(QStringLiteral("export-full.sqlite"));
+    QCOMPARE(run({QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("2:48:00"),
+                  QStringLiteral("--out"), db}).code,
+             0);
+    for (const char *name : {"out.bundle", "out.zip"}) {
+        const Result r = run({QStringLiteral("export"), QStringLiteral("1"), mountPoint + QLatin1Char('/') + QLatin1String(name),
+                              QStringLiteral("--db"), db});
+        QCOMPARE(r.code, 1);
+        QVERIFY2(r.err.contains("No space left on device"), r.err.constData());
+        QVERIFY2(QDir(mountPoint).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot).isEmpty(),
+                 qPrintable(QDir(mountPoint).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot).join(QLatin1Char(' '))));
+    }
 }
 
 #include "tst_cli.moc"
