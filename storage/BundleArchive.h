@@ -23,8 +23,9 @@ public:
 
     bool isZip() const { return m_zip != nullptr; }
     bool exists(const QString &relativePath) const;
-    // Throws BundleError naming the file if it is missing or unreadable.
-    QByteArray read(const QString &relativePath) const;
+    // Throws BundleError naming the file if it is missing, unreadable or (maxBytes > 0) larger
+    // than maxBytes, checked before reading.
+    QByteArray read(const QString &relativePath, qint64 maxBytes = 0) const;
     void write(const QString &relativePath, const QByteArray &data);
     // Writes the zip's central directory, or moves the written directory into place (Write
     // mode); throws BundleError on failure. Without finish() nothing written stays.

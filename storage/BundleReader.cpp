@@ -24,6 +24,11 @@ namespace {
 const QString kManifest = QStringLiteral("manifest.json");
 const QString kChannels = QStringLiteral("channels.csv");
 
+// Longest CSV record (header included) a bundle may have: 1 MiB holds 10,000 channels.
+constexpr int kMaxLineBytes = 1 << 20;
+// Largest manifest.json.
+constexpr int kMaxManifestBytes = 16 << 20;
+
 // One CSV file split into records of fields (RFC 4180 quotes allowed, with line breaks inside
 // them, for event labels); a record's number is the line it starts on.
 class CsvFile {
@@ -49,6 +54,11 @@ public:
                 else if (c == '\n')
                     ++breaks;
             }
+            if (end - start > kMaxLineBytes)
+                throw BundleError(name, lineNo, QString(),
+                                  QStringLiteral("line longer than %1 bytes (a bundle's lines are short: a time and a value per "
+                                                 "channel): refused")
+                                      .arg(kMaxLineBytes));
             QByteArray line = data.mid(start, end - start);
             if (line.endsWith('\r'))
                 line.chop(1);
@@ -306,7 +316,7 @@ void BundleReader::readManifest()
 {
     if (!m_archive->exists(kManifest))
         throw BundleError(kManifest, 0, QString(), QStringLiteral("missing: not a recording bundle"));
-    const QByteArray data = m_archive->read(kManifest);
+    const QByteArray data = m_archive->read(kManifest, kMaxManifestBytes);
     if (data.trimmed().isEmpty())
         throw BundleError(kManifest, 1, QString(), QStringLiteral("empty file"));
     QJsonParseError pe;

@@ -824,6 +824,9 @@ private:
                              zipOf({{QStringLiteral("channelz.csv"), "time_s\n"}}, true)(d, target);
                              patchBytes(target, "channelz.csv", "channels.csv");
                          }});
+            m.push_back({"a 2 MB line", "channels.csv: line 5: line longer than 1048576 bytes",
+                         [=](const QString &d, QString &) { editFile(d, C, [](QByteArray t) { return replaceLine(t, 5, QByteArray(2 << 20, '7')); }); }});
+            m.push_back({"zip bomb", "to 83886080 bytes, more than 100 times (a zip bomb?): refused before extracting anything", zipOf({{QStringLiteral("padding.bin"), QByteArray(80 << 20, '\0')}})});
             m.push_back({"bad cell inside zip", "channels.csv: line 5: field 'S1': non-numeric value 'abc'", [=](const QString &d, QString &target) {
                              cell(5, 1, "abc")(d, target);
                              zipOf({})(d, target);
