@@ -33,41 +33,45 @@ constexpr int kMaxManifestBytes = 16 << 20;
 // them, for event labels); a record's number is the line it starts on.
 class CsvFile {
 public:
-    CsvFile(const QString &name, const QByteArray &data) : m_name(name)
+    // Keeps the file's bytes and where each record is; a record is split into fields when it is
+    // asked for (fields of every line at once took 16 times the file's size).
+    CsvFile(const QString &name, const QByteArray &data) : m_name(name), m_data(data)
     {
         if (data.trimmed().isEmpty())
             throw BundleError(name, 1, QString(), QStringLiteral("empty file, expected a header line"));
         int start = 0;
         int lineNo = 1; // of the record's first line
+        const char *bytes = data.constData();
         while (start < data.size()) {
             // A record ends at a line break outside quotes: a quoted field may hold line breaks
             // (RFC 4180), so a label written with one comes back unchanged.
             bool quoted = false;
             int end = start;
             int breaks = 0;
+            bool blank = true;
             for (; end < data.size(); ++end) {
-                const char c = data[end];
+                const char c = bytes[end];
                 if (c == '"')
                     quoted = !quoted;
                 else if (c == '\n' && !quoted)
                     break;
                 else if (c == '\n')
                     ++breaks;
+                if (c != ' ' && c != '\t' && c != '\r')
+                    blank = false;
             }
             if (end - start > kMaxLineBytes)
                 throw BundleError(name, lineNo, QString(),
                                   QStringLiteral("line longer than %1 bytes (a bundle's lines are short: a time and a value per "
                                                  "channel): refused")
                                       .arg(kMaxLineBytes));
-            QByteArray line = data.mid(start, end - start);
-            if (line.endsWith('\r'))
-                line.chop(1);
-            start = end + 1;
-            const int number = lineNo;
+            int length = end - start;
+            if (length > 0 && bytes[start + length - 1] == '\r')
+                --length;
+            if (!blank)
+                m_records.push_back({lineNo, start, length, breaks + 1});
             lineNo += breaks + 1;
-            if (line.trimmed().isEmpty())
-                continue;
-            m_lines.push_back({number, split(line, number), breaks + 1});
+            start = end + 1;
         }
     }
     struct Line {
@@ -75,13 +79,18 @@ public:
         QVector<QByteArray> fields;
         int span = 1; // lines of the file (more when a quoted field holds line breaks)
     };
-    const QVector<Line> &lines() const { return m_lines; }
+    int lineCount() const { return m_records.size(); }
+    Line line(int i) const
+    {
+        const Record &r = m_records.at(i);
+        return {r.number, split(QByteArray::fromRawData(m_data.constData() + r.start, r.length), r.number), r.span};
+    }
     const QString &name() const { return m_name; }
 
     // Column index of each required header name; optional ones give -1.
     QHash<QString, int> header(const QStringList &required, const QStringList &optional) const
     {
-        const Line &h = m_lines.front();
+        const Line h = line(0);
         QHash<QString, int> cols;
         for (int i = 0; i < h.fields.size(); ++i) {
             const QString f = QString::fromUtf8(h.fields[i]).trimmed();
@@ -153,8 +162,12 @@ private:
         return out;
     }
 
+    struct Record {
+        int number, start, length, span;
+    };
     QString m_name;
-    QVector<Line> m_lines;
+    QByteArray m_data;
+    QVector<Record> m_records;
 };
 
 // Strict number: the whole (trimmed) cell, finite. empty/nan -> missing when allowed.
@@ -444,7 +457,7 @@ void BundleReader::readManifest()
 void BundleReader::readChannels()
 {
     const CsvFile f(kChannels, m_archive->read(kChannels));
-    const CsvFile::Line &h = f.lines().front();
+    const CsvFile::Line h = f.line(0);
     int timeCol = -1;
     for (int col = 0; col < h.fields.size(); ++col) {
         if (QString::fromUtf8(h.fields[col]).trimmed() == QLatin1String("time_s")) {
@@ -474,8 +487,8 @@ void BundleReader::readChannels()
     m_content.samples.resize(m_content.channels.size());
     double last = -INFINITY;
     const int width = h.fields.size();
-    for (int l = 1; l < f.lines().size(); ++l) {
-        const CsvFile::Line &line = f.lines()[l];
+    for (int l = 1; l < f.lineCount(); ++l) {
+        const CsvFile::Line line = f.line(l);
         f.checkWidth(line, width);
         const double t = number(f, line, timeCol, QStringLiteral("time_s"));
         if (t < last)
@@ -502,11 +515,11 @@ void BundleReader::readInterferometer(const QString &file)
     const CsvFile f(file, m_archive->read(file));
     const auto cols = f.header({QStringLiteral("time_s"), QStringLiteral("run"), QStringLiteral("position_mm"), QStringLiteral("error_um")},
                                {QStringLiteral("direction")});
-    const int width = f.lines().front().fields.size();
+    const int width = f.line(0).fields.size();
     double last = -INFINITY;
     QSet<int> runs;
-    for (int l = 1; l < f.lines().size(); ++l) {
-        const CsvFile::Line &line = f.lines()[l];
+    for (int l = 1; l < f.lineCount(); ++l) {
+        const CsvFile::Line line = f.line(l);
         f.checkWidth(line, width);
         InterferometerPoint p;
         p.t = number(f, line, cols.value(QStringLiteral("time_s")), QStringLiteral("time_s"));
@@ -540,8 +553,8 @@ void BundleReader::readEvents(const QString &file)
 {
     const CsvFile f(file, m_archive->read(file));
     const auto cols = f.header({QStringLiteral("time_s"), QStringLiteral("label")}, {});
-    for (int l = 1; l < f.lines().size(); ++l) {
-        const CsvFile::Line &line = f.lines()[l];
+    for (int l = 1; l < f.lineCount(); ++l) {
+        const CsvFile::Line line = f.line(l);
         f.checkWidth(line, 2);
         EventRecord e;
         e.t = number(f, line, cols.value(QStringLiteral("time_s")), QStringLiteral("time_s"));
@@ -559,8 +572,8 @@ void BundleReader::readFrames(const QString &file)
     const CsvFile f(file, m_archive->read(file));
     const auto cols = f.header({QStringLiteral("time_s"), QStringLiteral("file")}, {});
     double last = -INFINITY;
-    for (int l = 1; l < f.lines().size(); ++l) {
-        const CsvFile::Line &line = f.lines()[l];
+    for (int l = 1; l < f.lineCount(); ++l) {
+        const CsvFile::Line line = f.line(l);
         f.checkWidth(line, 2);
         IrFrame frame;
         frame.t = number(f, line, cols.value(QStringLiteral("time_s")), QStringLiteral("time_s"));
