@@ -222,10 +222,24 @@ int RecordCommand::run(const QStringList &args)
     } else {
         store = std::make_unique<SessionStore>(path);
         RigRecorder recorder(*store, *simRig);
+        // Ctrl-C / SIGTERM: stop after the chunk being written and close the session as the
+        // threaded path does (everything so far is committed chunk by chunk).
+        g_interrupted = 0;
+        double reached = 0.0;
+        const auto previousInt = std::signal(SIGINT, onInterrupt);
+        const auto previousTerm = std::signal(SIGTERM, onInterrupt);
         id = recorder.record(sessionName, seconds, [&](double done, double total) {
+            reached = done;
             report(done, total, recorder.sink()->samplesWritten());
-            return true;
+            return !g_interrupted;
         });
+        std::signal(SIGINT, previousInt);
+        std::signal(SIGTERM, previousTerm);
+        if (g_interrupted && reached < seconds) {
+            store->addEvent(id, EventRecord{reached, QStringLiteral("recording stopped by the operator")});
+            store->setComplete(id, true);
+            CliSupport::progress(QStringLiteral("  interrupted at %1: storing what was recorded").arg(hms(reached)));
+        }
         samples = recorder.sink()->samplesWritten();
         points = recorder.sink()->pointsWritten();
         frames = recorder.sink()->framesWritten();

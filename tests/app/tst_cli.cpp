@@ -32,6 +32,7 @@ private slots:
     void guiExitCodesMatchCli();
     void recordStopsPromptlyOnAFullDisk();
     void exportToAFullDiskLeavesNothing();
+    void sigtermClosesTheSession();
 
 private:
     QString recordShort(const QString &db, const QString &bundle = QString());
@@ -438,6 +439,35 @@ void TestCli::exportToAFullDiskLeavesNothing()
         QVERIFY2(r.err.contains("No space left on device"), r.err.constData());
         QVERIFY2(QDir(mountPoint).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot).isEmpty(),
                  qPrintable(QDir(mountPoint).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot).join(QLatin1Char(' '))));
+    }
+}
+
+// Issue 21: SIGTERM (and Ctrl-C) during a recording closes the session cleanly, on the fast
+// simulation path as on the device-thread path: complete, with an event saying where it stopped.
+void TestCli::sigtermClosesTheSession()
+{
+    for (const bool threaded : {false, true}) {
+        const QString db = m_dir.filePath(threaded ? QStringLiteral("sigterm-threads.sqlite") : QStringLiteral("sigterm.sqlite"));
+        QProcess p;
+        QStringList args{QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("2000:00:00"),
+                         QStringLiteral("--out"), db};
+        if (threaded)
+            args << QStringLiteral("--speed") << QStringLiteral("2000");
+        p.start(QStringLiteral(DRIFTLAB_CLI), args);
+        QVERIFY(p.waitForStarted());
+        QTest::qWait(1500);
+        QCOMPARE(p.state(), QProcess::Running); // 2000 h do not fit in 1.5 s either way
+        p.terminate();
+        QVERIFY(p.waitForFinished(30000));
+        const QByteArray err = p.readAllStandardError();
+        QCOMPARE(p.exitStatus(), QProcess::NormalExit);
+        QVERIFY2(p.exitCode() == 0 && err.contains("interrupted at"), err.constData());
+        const Result list = run({QStringLiteral("list"), QStringLiteral("--db"), db});
+        QVERIFY2(list.code == 0 && list.out.contains("Simulated rig") && !list.out.contains("INCOMPLETE"), list.out.constData());
+        QProcess q;
+        q.start(QStringLiteral("sqlite3"), {db, QStringLiteral("SELECT count(*) FROM events WHERE label = 'recording stopped by the operator'")});
+        if (q.waitForFinished(10000) && q.exitStatus() == QProcess::NormalExit && q.exitCode() == 0)
+            QCOMPARE(q.readAllStandardOutput().trimmed(), QByteArray("1"));
     }
 }
 
