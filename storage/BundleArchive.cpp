@@ -7,6 +7,7 @@
 #include <QFile>
 #include <QFileInfo>
 
+#include <signal.h>
 #include <sys/stat.h>
 
 #include <cerrno>
@@ -46,6 +47,20 @@ bool BundleArchive::isSafeRelativePath(const QString &path)
     return true;
 }
 
+// A killed export leaves its hidden ".NAME.partial-PID" folder; the next export of NAME removes
+// those whose process is gone (kill(pid, 0) fails with ESRCH), never a running export's.
+static void removeAbandonedPartials(const QString &dir, const QString &name)
+{
+    const QString prefix = QStringLiteral(".") + name + QStringLiteral(".partial-");
+    const QStringList found = QDir(dir).entryList({prefix + QLatin1Char('*')}, QDir::Dirs | QDir::Hidden | QDir::NoDotAndDotDot);
+    for (const QString &entry : found) {
+        bool ok = false;
+        const qint64 pid = entry.mid(prefix.size()).toLongLong(&ok);
+        if (ok && pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
+            QDir(dir + QLatin1Char('/') + entry).removeRecursively();
+    }
+}
+
 BundleArchive::BundleArchive(const QString &path, Mode mode) : m_path(path), m_mode(mode)
 {
     const bool zipPath = path.endsWith(QLatin1String(".zip"), Qt::CaseInsensitive);
@@ -69,6 +84,7 @@ BundleArchive::BundleArchive(const QString &path, Mode mode) : m_path(path), m_m
             m_writeDir = QFileInfo(path).absolutePath() + QStringLiteral("/.") + name +
                          QStringLiteral(".partial-%1").arg(QCoreApplication::applicationPid());
             QDir(m_writeDir).removeRecursively();
+            removeAbandonedPartials(QFileInfo(path).absolutePath(), name);
             if (!QDir().mkpath(m_writeDir))
                 throw BundleError(name, 0, QString(), QStringLiteral("cannot create directory %1").arg(m_writeDir));
         }

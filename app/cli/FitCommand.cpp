@@ -246,8 +246,10 @@ int FitCommand::run(const QStringList &args)
     fm.metrics.insert(QStringLiteral("plausibility"), out.value(QStringLiteral("plausibility")));
     if (holdoutId >= 0)
         fm.metrics.insert(QStringLiteral("validation"), out.value(QStringLiteral("validation")));
+    store.begin(); // one model row per fitted session, all or none (a kill in between leaves none)
     for (qint64 id : ids)
         store.addFittedModel(id, fm);
+    store.commit();
 
     if (p.isSet(json)) {
         CliSupport::writeJson(QJsonDocument(out), p.value(json));

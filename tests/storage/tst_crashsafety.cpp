@@ -14,6 +14,7 @@
 #include <QThread>
 #include <QtTest>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -42,8 +43,11 @@ private slots:
         std::uniform_int_distribution<int> delay_ms(200, 1800);
         QElapsedTimer total;
         total.start();
+        // CI kills 22 times; DRIFTLAB_KILLS=100 (or more) for the figure in docs/reliability.md.
+        const int planned = qEnvironmentVariableIsSet("DRIFTLAB_KILLS") ? qEnvironmentVariableIntValue("DRIFTLAB_KILLS") : 22;
+        double maxLoss_s = 0.0; // session time between the last committed sample and the kill
         int kills = 0;
-        for (; kills < 22; ++kills) {
+        for (; kills < planned; ++kills) {
             QProcess child;
             child.start(helper, {db});
             QVERIFY2(child.waitForStarted(5000), "helper did not start");
@@ -76,6 +80,7 @@ private slots:
                                                               .arg(killedAt - start)
                                                               .arg(b.t.size())
                                                               .arg(mustHave)));
+            maxLoss_s = std::max(maxLoss_s, static_cast<double>(killedAt - start) / 1000.0 - (b.t.isEmpty() ? 0.0 : b.t.back()));
             for (int k = 0; k < b.t.size(); ++k) { // a gapless prefix with the right values
                 QCOMPARE(b.t[k], k * 0.01);
                 QCOMPARE(b.v[k], crashValue(k));
@@ -86,10 +91,12 @@ private slots:
             for (const IrFrame &f : store.irFrames(session))
                 QCOMPARE(store.irFrame(f.id).pixels.size(), 64 * 32);
         }
-        QVERIFY(kills >= 20);
+        QVERIFY(kills >= std::min(planned, 20));
         SessionStore store(db);
         QCOMPARE(store.sessions().size(), kills); // no session lost
-        qInfo("%d kills in %.1f s", kills, static_cast<double>(total.elapsed()) / 1000.0);
+        qInfo("%d kills in %.1f s; at most %.3f s of data before a kill was lost", kills,
+              static_cast<double>(total.elapsed()) / 1000.0, maxLoss_s);
+        QVERIFY(maxLoss_s <= 1.0);
     }
 
     void diskFullStopsWithClearError()
