@@ -16,12 +16,14 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <limits>
+#include <algorithm>
 
 namespace driftlab {
 
 namespace {
 
-constexpr qint64 kMaxEntryBytes = qint64(1) << 31; // QByteArray limit
+constexpr qint64 kMaxEntryBytes = qint64(1) << 31; // QByteArray limit: files read whole
 // Zip entries above 64 MiB may expand at most 100 times (CSV of sampled data: 3-10 times);
 // all entries together at most 16 GiB.
 constexpr zip_uint64_t kRatioCheckedBytes = zip_uint64_t(64) << 20;
@@ -85,8 +87,12 @@ BundleArchive::BundleArchive(const QString &path, Mode mode) : m_path(path), m_m
                          QStringLiteral(".partial-%1").arg(QCoreApplication::applicationPid());
             QDir(m_writeDir).removeRecursively();
             removeAbandonedPartials(QFileInfo(path).absolutePath(), name);
-            if (!QDir().mkpath(m_writeDir))
-                throw BundleError(name, 0, QString(), QStringLiteral("cannot create directory %1").arg(m_writeDir));
+            if (!QDir().mkpath(m_writeDir)) {
+                const int why = ::mkdir(QFile::encodeName(m_writeDir).constData(), 0777) == 0 ? 0 : errno;
+                throw BundleError(name, 0, QString(),
+                                  QStringLiteral("cannot create directory %1: %2")
+                                      .arg(m_writeDir, QString::fromLocal8Bit(std::strerror(why ? why : EIO))));
+            }
         }
         return;
     }
@@ -202,27 +208,45 @@ QString BundleArchive::checkedFile(const QString &relativePath) const
     if (!S_ISREG(st.st_mode))
         throw BundleError(relativePath, 0, QString(),
                           QStringLiteral("not a regular file (a directory, pipe, socket or device): refused"));
-    if (static_cast<qint64>(st.st_size) >= kMaxEntryBytes)
-        throw BundleError(relativePath, 0, QString(),
-                          QStringLiteral("file too large (%1 bytes; the limit is %2)").arg(st.st_size).arg(kMaxEntryBytes - 1));
     return canonical;
 }
 
 QByteArray BundleArchive::read(const QString &relativePath, qint64 maxBytes) const
 {
+    QByteArray data;
+    readChunks(relativePath, maxBytes > 0 ? std::min(maxBytes, kMaxEntryBytes - 1) : kMaxEntryBytes - 1,
+               [&data](const char *bytes, qint64 n) { data.append(bytes, static_cast<int>(n)); });
+    return data;
+}
+
+void BundleArchive::readChunks(const QString &relativePath, qint64 maxBytes, const ChunkSink &sink) const
+{
     const auto tooLarge = [&](qint64 size) {
-        if (maxBytes > 0 && size > maxBytes)
+        if (size > maxBytes)
             throw BundleError(relativePath, 0, QString(),
                               QStringLiteral("%1 bytes, more than the %2 this file may have: refused").arg(size).arg(maxBytes));
     };
     if (!isSafeRelativePath(relativePath))
         throw BundleError(relativePath, 0, QString(), QStringLiteral("unsafe path (absolute or '..'): refused"));
+    constexpr qint64 kChunk = 1 << 20;
+    QByteArray buffer(static_cast<int>(kChunk), Qt::Uninitialized);
     if (!m_zip) {
         QFile f(checkedFile(relativePath));
         tooLarge(f.size());
         if (!f.open(QIODevice::ReadOnly))
             throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot read: %1").arg(f.errorString()));
-        return f.readAll();
+        qint64 total = 0;
+        for (;;) {
+            const qint64 got = f.read(buffer.data(), kChunk);
+            if (got < 0)
+                throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot read: %1").arg(f.errorString()));
+            if (got == 0)
+                break;
+            total += got;
+            tooLarge(total); // a file growing while it is read
+            sink(buffer.constData(), got);
+        }
+        return;
     }
     const auto it = m_entries.constFind(relativePath);
     if (it == m_entries.cend())
@@ -231,22 +255,29 @@ QByteArray BundleArchive::read(const QString &relativePath, qint64 maxBytes) con
     zip_stat_init(&st);
     if (zip_stat_index(m_zip, static_cast<zip_uint64_t>(it.value()), 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE))
         throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot stat zip entry: %1").arg(zipError(m_zip)));
-    if (static_cast<qint64>(st.size) >= kMaxEntryBytes)
-        throw BundleError(relativePath, 0, QString(), QStringLiteral("zip entry too large (%1 bytes)").arg(st.size));
-    tooLarge(static_cast<qint64>(st.size));
+    tooLarge(static_cast<qint64>(std::min<zip_uint64_t>(st.size, std::numeric_limits<qint64>::max())));
     zip_file_t *f = zip_fopen_index(m_zip, static_cast<zip_uint64_t>(it.value()), 0);
     if (!f)
         throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot open zip entry: %1").arg(zipError(m_zip)));
-    QByteArray data(static_cast<int>(st.size), Qt::Uninitialized);
-    zip_int64_t got = zip_fread(f, data.data(), st.size);
-    // libzip compares the CRC only when a read reaches the end of the entry: read past it.
-    char past = 0;
-    if (got >= 0 && static_cast<zip_uint64_t>(got) == st.size && zip_fread(f, &past, 1) != 0)
-        got = -1;
+    zip_uint64_t total = 0;
+    zip_int64_t got = 0;
+    try {
+        // libzip compares the CRC only when a read reaches the end of the entry: read until a
+        // read returns 0, one past the declared size.
+        while ((got = zip_fread(f, buffer.data(), static_cast<zip_uint64_t>(kChunk))) > 0) {
+            total += static_cast<zip_uint64_t>(got);
+            if (total > st.size)
+                break;
+            sink(buffer.constData(), got);
+        }
+    } catch (...) {
+        zip_fclose(f);
+        throw;
+    }
     const int readCode = zip_error_code_zip(zip_file_get_error(f));
     // libzip checks the CRC at the end of the data or when the entry is closed.
     const int closeCode = zip_fclose(f);
-    if (got < 0 || static_cast<zip_uint64_t>(got) != st.size || closeCode != 0) {
+    if (got < 0 || total != st.size || closeCode != 0) {
         const int code = readCode != ZIP_ER_OK ? readCode : closeCode != 0 ? closeCode : ZIP_ER_EOF;
         QString why;
         if (code == ZIP_ER_CRC) {
@@ -259,7 +290,6 @@ QByteArray BundleArchive::read(const QString &relativePath, qint64 maxBytes) con
         }
         throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot read zip entry: %1").arg(why));
     }
-    return data;
 }
 
 void BundleArchive::write(const QString &relativePath, const QByteArray &data)

@@ -7,6 +7,8 @@
 #include <QString>
 #include <QStringList>
 
+#include <functional>
+
 struct zip;
 
 namespace driftlab {
@@ -26,6 +28,10 @@ public:
     // Throws BundleError naming the file if it is missing, unreadable or (maxBytes > 0) larger
     // than maxBytes, checked before reading.
     QByteArray read(const QString &relativePath, qint64 maxBytes = 0) const;
+    // The same in chunks of at most 1 MiB, for files too large to hold (channels.csv): memory
+    // does not grow with the file. A damaged zip entry (CRC) is reported after its last chunk.
+    using ChunkSink = std::function<void(const char *data, qint64 size)>;
+    void readChunks(const QString &relativePath, qint64 maxBytes, const ChunkSink &sink) const;
     void write(const QString &relativePath, const QByteArray &data);
     // Writes the zip's central directory, or moves the written directory into place (Write
     // mode); throws BundleError on failure. Without finish() nothing written stays.
@@ -37,7 +43,7 @@ public:
 private:
     // Directory bundles: the canonical path of a regular file of the bundle, after refusing a
     // missing file, anything resolving outside the bundle (symbolic links), anything that is
-    // not a regular file (a pipe would block, a device never ends) and files of 2 GiB or more.
+    // not a regular file (a pipe would block, a device never ends).
     QString checkedFile(const QString &relativePath) const;
 
     QString m_path;

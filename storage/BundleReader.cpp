@@ -24,151 +24,14 @@ namespace {
 const QString kManifest = QStringLiteral("manifest.json");
 const QString kChannels = QStringLiteral("channels.csv");
 
-// Longest CSV record (header included) a bundle may have: 1 MiB holds 10,000 channels.
-constexpr int kMaxLineBytes = 1 << 20;
 // Largest manifest.json.
 constexpr int kMaxManifestBytes = 16 << 20;
-
-// One CSV file split into records of fields (RFC 4180 quotes allowed, with line breaks inside
-// them, for event labels); a record's number is the line it starts on.
-class CsvFile {
-public:
-    // Keeps the file's bytes and where each record is; a record is split into fields when it is
-    // asked for (fields of every line at once took 16 times the file's size).
-    CsvFile(const QString &name, const QByteArray &data) : m_name(name), m_data(data)
-    {
-        if (data.trimmed().isEmpty())
-            throw BundleError(name, 1, QString(), QStringLiteral("empty file, expected a header line"));
-        int start = 0;
-        int lineNo = 1; // of the record's first line
-        const char *bytes = data.constData();
-        while (start < data.size()) {
-            // A record ends at a line break outside quotes: a quoted field may hold line breaks
-            // (RFC 4180), so a label written with one comes back unchanged.
-            bool quoted = false;
-            int end = start;
-            int breaks = 0;
-            bool blank = true;
-            for (; end < data.size(); ++end) {
-                const char c = bytes[end];
-                if (c == '"')
-                    quoted = !quoted;
-                else if (c == '\n' && !quoted)
-                    break;
-                else if (c == '\n')
-                    ++breaks;
-                if (c != ' ' && c != '\t' && c != '\r')
-                    blank = false;
-            }
-            if (end - start > kMaxLineBytes)
-                throw BundleError(name, lineNo, QString(),
-                                  QStringLiteral("line longer than %1 bytes (a bundle's lines are short: a time and a value per "
-                                                 "channel): refused")
-                                      .arg(kMaxLineBytes));
-            int length = end - start;
-            if (length > 0 && bytes[start + length - 1] == '\r')
-                --length;
-            if (!blank)
-                m_records.push_back({lineNo, start, length, breaks + 1});
-            lineNo += breaks + 1;
-            start = end + 1;
-        }
-    }
-    struct Line {
-        int number;
-        QVector<QByteArray> fields;
-        int span = 1; // lines of the file (more when a quoted field holds line breaks)
-    };
-    int lineCount() const { return m_records.size(); }
-    Line line(int i) const
-    {
-        const Record &r = m_records.at(i);
-        return {r.number, split(QByteArray::fromRawData(m_data.constData() + r.start, r.length), r.number), r.span};
-    }
-    const QString &name() const { return m_name; }
-
-    // Column index of each required header name; optional ones give -1.
-    QHash<QString, int> header(const QStringList &required, const QStringList &optional) const
-    {
-        const Line h = line(0);
-        QHash<QString, int> cols;
-        for (int i = 0; i < h.fields.size(); ++i) {
-            const QString f = QString::fromUtf8(h.fields[i]).trimmed();
-            if (cols.contains(f))
-                throw BundleError(m_name, h.number, f, QStringLiteral("duplicate column"));
-            cols.insert(f, i);
-        }
-        for (const QString &r : required) {
-            if (!cols.contains(r))
-                throw BundleError(m_name, h.number, r, QStringLiteral("missing column (header must have %1)")
-                                                            .arg(required.join(QLatin1Char(','))));
-        }
-        for (auto it = cols.cbegin(); it != cols.cend(); ++it) {
-            if (!required.contains(it.key()) && !optional.contains(it.key()))
-                throw BundleError(m_name, h.number, it.key(), QStringLiteral("unknown column"));
-        }
-        for (const QString &o : optional) {
-            if (!cols.contains(o))
-                cols.insert(o, -1);
-        }
-        return cols;
-    }
-    void checkWidth(const Line &line, int width) const
-    {
-        if (line.fields.size() != width && line.span > 1)
-            throw BundleError(m_name, line.number, QString(),
-                              QStringLiteral("unterminated quoted field? A quote opened on this line closes %1 lines "
-                                             "further down, making a record of %2 fields (expected %3)")
-                                  .arg(line.span - 1)
-                                  .arg(line.fields.size())
-                                  .arg(width));
-        if (line.fields.size() != width)
-            throw BundleError(m_name, line.number, QString(),
-                              QStringLiteral("expected %1 fields, found %2 (truncated or malformed line)")
-                                  .arg(width)
-                                  .arg(line.fields.size()));
-    }
-
-private:
-    QVector<QByteArray> split(const QByteArray &line, int lineNo) const
-    {
-        QVector<QByteArray> out;
-        QByteArray cur;
-        bool quoted = false;
-        for (int i = 0; i < line.size(); ++i) {
-            const char c = line[i];
-            if (quoted) {
-                if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-                    cur += '"';
-                    ++i;
-                } else if (c == '"') {
-                    quoted = false;
-                } else {
-                    cur += c;
-                }
-            } else if (c == '"' && cur.trimmed().isEmpty()) {
-                quoted = true;
-                cur.clear();
-            } else if (c == ',') {
-                out.push_back(cur);
-                cur.clear();
-            } else {
-                cur += c;
-            }
-        }
-        if (quoted)
-            throw BundleError(m_name, lineNo, QString(), QStringLiteral("unterminated quoted field"));
-        out.push_back(cur);
-        return out;
-    }
-
-    struct Record {
-        int number, start, length, span;
-    };
-    QString m_name;
-    QByteArray m_data;
-    QVector<Record> m_records;
-};
+// Largest interferometer.csv, events.csv and ir/index.csv (held as parsed records: a million
+// interferometer points are about 60 MB).
+constexpr qint64 kMaxTableBytes = qint64(64) << 20;
+// Largest channels.csv (streamed: memory does not grow with it; a 10-hour 1 kHz session of ten
+// channels is about 4 GB).
+constexpr qint64 kMaxStreamedBytes = qint64(64) << 30;
 
 // Strict number: the whole (trimmed) cell, finite. empty/nan -> missing when allowed.
 bool parseNumber(const QByteArray &cell, double &out, bool &missing)
@@ -197,7 +60,7 @@ QString describe(const QByteArray &cell)
     return QStringLiteral("non-numeric value '%1'").arg(QString::fromUtf8(s.left(40)));
 }
 
-double number(const CsvFile &f, const CsvFile::Line &line, int col, const QString &field)
+double number(const BundleCsv &f, const BundleCsv::Line &line, int col, const QString &field)
 {
     double v = 0;
     bool missing = false;
@@ -257,7 +120,8 @@ void checkNumber(const QJsonObject &o, const QString &key, const QString &field,
 
 } // namespace
 
-BundleReader::BundleReader(const QString &path) : m_archive(std::make_unique<BundleArchive>(path, BundleArchive::Mode::Read))
+BundleReader::BundleReader(const QString &path, SampleSink sink)
+    : m_archive(std::make_unique<BundleArchive>(path, BundleArchive::Mode::Read)), m_sink(std::move(sink))
 {
     readManifest();
     readChannels();
@@ -284,10 +148,19 @@ BundleReader::BundleReader(const QString &path) : m_archive(std::make_unique<Bun
     const QString ir = optionalFile(QStringLiteral("infrared"), QStringLiteral("index"), QStringLiteral("ir/index.csv"));
     if (!ir.isEmpty())
         readFrames(ir);
-    m_content.session.contentSha256 = QString::fromLatin1(contentHash().toHex());
+    if (!m_sink)
+        m_content.session.contentSha256 = QString::fromLatin1(contentHash().toHex());
 }
 
 QByteArray BundleReader::contentHash() const
+{
+    SampleSource source;
+    source.count = [this](int i) { return static_cast<qint64>(m_content.samples[i].t.size()); };
+    source.forEachBlock = [this](int i, const BlockVisitor &visit) { visit(m_content.samples[i].t, m_content.samples[i].v); };
+    return contentHash(m_content, source);
+}
+
+QByteArray BundleReader::contentHash(const BundleContent &c, const SampleSource &samples)
 {
     QCryptographicHash h(QCryptographicHash::Sha256);
     const auto text = [&h](const QString &s) {
@@ -300,12 +173,19 @@ QByteArray BundleReader::contentHash() const
         h.addData(reinterpret_cast<const char *>(&n), sizeof n);
         h.addData(reinterpret_cast<const char *>(v), static_cast<int>(n * static_cast<qint64>(sizeof(double))));
     };
-    const BundleContent &c = m_content;
+    // The bytes of a channel's times, then of its values, each after their count: read block
+    // by block (twice) so that no channel is ever held whole.
+    const auto doubles = [&h](const QVector<double> &v) {
+        h.addData(reinterpret_cast<const char *>(v.constData()), static_cast<int>(v.size() * static_cast<qint64>(sizeof(double))));
+    };
     text(c.session.started);
     for (int i = 0; i < c.channels.size(); ++i) {
         text(c.channels[i].key);
-        numbers(c.samples[i].t.constData(), c.samples[i].t.size());
-        numbers(c.samples[i].v.constData(), c.samples[i].v.size());
+        const qint64 n = samples.count(i);
+        h.addData(reinterpret_cast<const char *>(&n), sizeof n);
+        samples.forEachBlock(i, [&](const QVector<double> &t, const QVector<double> &) { doubles(t); });
+        h.addData(reinterpret_cast<const char *>(&n), sizeof n);
+        samples.forEachBlock(i, [&](const QVector<double> &, const QVector<double> &v) { doubles(v); });
     }
     for (const InterferometerPoint &p : c.interferometer) {
         const double v[] = {p.t, static_cast<double>(p.run), p.position_mm, p.error_um};
@@ -454,41 +334,61 @@ void BundleReader::readManifest()
         throw BundleError(kManifest, 0, QStringLiteral("events"), QStringLiteral("must be a file name"));
 }
 
+void BundleReader::readCsv(const QString &file, qint64 maxBytes, const std::function<void(const BundleCsv &, const BundleCsv::Line &)> &each)
+{
+    BundleCsv csv(file);
+    const BundleCsv::Sink sink = [&](const BundleCsv::Line &line) { each(csv, line); };
+    m_archive->readChunks(file, maxBytes, [&](const char *data, qint64 size) { csv.feed(data, size, sink); });
+    csv.finish(sink);
+}
+
 void BundleReader::readChannels()
 {
-    const CsvFile f(kChannels, m_archive->read(kChannels));
-    const CsvFile::Line h = f.line(0);
     int timeCol = -1;
-    for (int col = 0; col < h.fields.size(); ++col) {
-        if (QString::fromUtf8(h.fields[col]).trimmed() == QLatin1String("time_s")) {
-            if (timeCol >= 0)
-                throw BundleError(kChannels, h.number, QStringLiteral("time_s"), QStringLiteral("duplicate column"));
-            timeCol = col;
-        }
-    }
-    if (timeCol < 0)
-        throw BundleError(kChannels, h.number, QStringLiteral("time_s"), QStringLiteral("missing column (header must be time_s,<id>,...)"));
-    QVector<int> channelOf(h.fields.size(), -1);
-    for (int col = 0; col < h.fields.size(); ++col) {
-        const QString name = QString::fromUtf8(h.fields[col]).trimmed();
-        if (col == timeCol)
-            continue;
-        int index = -1;
-        for (int c = 0; c < m_content.channels.size(); ++c) {
-            if (m_content.channels[c].key == name)
-                index = c;
-        }
-        if (index < 0)
-            throw BundleError(kChannels, h.number, name, QStringLiteral("unknown channel id in the header (not in manifest.json)"));
-        if (channelOf.contains(index))
-            throw BundleError(kChannels, h.number, name, QStringLiteral("duplicate column"));
-        channelOf[col] = index;
-    }
-    m_content.samples.resize(m_content.channels.size());
+    int width = 0;
+    QVector<int> channelOf;
     double last = -INFINITY;
-    const int width = h.fields.size();
-    for (int l = 1; l < f.lineCount(); ++l) {
-        const CsvFile::Line line = f.line(l);
+    // Without a sink every sample is kept in content().samples; with one they go to the sink
+    // in chunks of about kChunkSamples and only the current chunk is held.
+    constexpr qint64 kChunkSamples = 1 << 20;
+    QVector<SampleBlock> chunk(m_content.channels.size());
+    qint64 inChunk = 0;
+    QVector<SampleBlock> &target = m_sink ? chunk : m_content.samples;
+    m_content.samples.resize(m_content.channels.size());
+    const auto header = [&](const BundleCsv::Line &h) {
+        for (int col = 0; col < h.fields.size(); ++col) {
+            if (QString::fromUtf8(h.fields[col]).trimmed() == QLatin1String("time_s")) {
+                if (timeCol >= 0)
+                    throw BundleError(kChannels, h.number, QStringLiteral("time_s"), QStringLiteral("duplicate column"));
+                timeCol = col;
+            }
+        }
+        if (timeCol < 0)
+            throw BundleError(kChannels, h.number, QStringLiteral("time_s"),
+                              QStringLiteral("missing column (header must be time_s,<id>,...)"));
+        channelOf.fill(-1, h.fields.size());
+        for (int col = 0; col < h.fields.size(); ++col) {
+            const QString name = QString::fromUtf8(h.fields[col]).trimmed();
+            if (col == timeCol)
+                continue;
+            int index = -1;
+            for (int c = 0; c < m_content.channels.size(); ++c) {
+                if (m_content.channels[c].key == name)
+                    index = c;
+            }
+            if (index < 0)
+                throw BundleError(kChannels, h.number, name, QStringLiteral("unknown channel id in the header (not in manifest.json)"));
+            if (channelOf.contains(index))
+                throw BundleError(kChannels, h.number, name, QStringLiteral("duplicate column"));
+            channelOf[col] = index;
+        }
+        width = h.fields.size();
+    };
+    readCsv(kChannels, kMaxStreamedBytes, [&](const BundleCsv &f, const BundleCsv::Line &line) {
+        if (width == 0) {
+            header(line);
+            return;
+        }
         f.checkWidth(line, width);
         const double t = number(f, line, timeCol, QStringLiteral("time_s"));
         if (t < last)
@@ -503,23 +403,35 @@ void BundleReader::readChannels()
             if (!parseNumber(line.fields[col], v, missing))
                 throw BundleError(kChannels, line.number, m_content.channels[channelOf[col]].key, describe(line.fields[col]));
             if (!missing) {
-                m_content.samples[channelOf[col]].t.push_back(t);
-                m_content.samples[channelOf[col]].v.push_back(v);
+                target[channelOf[col]].t.push_back(t);
+                target[channelOf[col]].v.push_back(v);
+                ++inChunk;
             }
         }
-    }
+        if (m_sink && inChunk >= kChunkSamples) {
+            m_sink(m_content, chunk);
+            for (SampleBlock &b : chunk)
+                b = SampleBlock();
+            inChunk = 0;
+        }
+    });
+    if (m_sink && inChunk > 0)
+        m_sink(m_content, chunk);
 }
 
 void BundleReader::readInterferometer(const QString &file)
 {
-    const CsvFile f(file, m_archive->read(file));
-    const auto cols = f.header({QStringLiteral("time_s"), QStringLiteral("run"), QStringLiteral("position_mm"), QStringLiteral("error_um")},
-                               {QStringLiteral("direction")});
-    const int width = f.line(0).fields.size();
+    QHash<QString, int> cols;
+    int width = 0;
     double last = -INFINITY;
     QSet<int> runs;
-    for (int l = 1; l < f.lineCount(); ++l) {
-        const CsvFile::Line line = f.line(l);
+    readCsv(file, kMaxTableBytes, [&](const BundleCsv &f, const BundleCsv::Line &line) {
+        if (width == 0) {
+            cols = f.header(line, {QStringLiteral("time_s"), QStringLiteral("run"), QStringLiteral("position_mm"), QStringLiteral("error_um")},
+                            {QStringLiteral("direction")});
+            width = line.fields.size();
+            return;
+        }
         f.checkWidth(line, width);
         InterferometerPoint p;
         p.t = number(f, line, cols.value(QStringLiteral("time_s")), QStringLiteral("time_s"));
@@ -542,7 +454,7 @@ void BundleReader::readInterferometer(const QString &file)
                                   QStringLiteral("must be '+' or '-', got '%1'").arg(p.direction.left(20)));
         }
         m_content.interferometer.push_back(p);
-    }
+    });
     const QJsonValue ref = m_content.manifest.value(QStringLiteral("interferometer")).toObject().value(QStringLiteral("reference_run"));
     if (!ref.isUndefined() && !m_content.interferometer.isEmpty() && !runs.contains(ref.toInt()))
         throw BundleError(kManifest, 0, QStringLiteral("interferometer.reference_run"),
@@ -551,10 +463,14 @@ void BundleReader::readInterferometer(const QString &file)
 
 void BundleReader::readEvents(const QString &file)
 {
-    const CsvFile f(file, m_archive->read(file));
-    const auto cols = f.header({QStringLiteral("time_s"), QStringLiteral("label")}, {});
-    for (int l = 1; l < f.lineCount(); ++l) {
-        const CsvFile::Line line = f.line(l);
+    QHash<QString, int> cols;
+    bool headerSeen = false;
+    readCsv(file, kMaxTableBytes, [&](const BundleCsv &f, const BundleCsv::Line &line) {
+        if (!headerSeen) {
+            cols = f.header(line, {QStringLiteral("time_s"), QStringLiteral("label")}, {});
+            headerSeen = true;
+            return;
+        }
         f.checkWidth(line, 2);
         EventRecord e;
         e.t = number(f, line, cols.value(QStringLiteral("time_s")), QStringLiteral("time_s"));
@@ -564,16 +480,20 @@ void BundleReader::readEvents(const QString &file)
             throw BundleError(f.name(), line.number, QStringLiteral("label"), QStringLiteral("not valid UTF-8 text"));
         checkedText(e.label, f.name(), line.number, QStringLiteral("label"), true);
         m_content.events.push_back(e);
-    }
+    });
 }
 
 void BundleReader::readFrames(const QString &file)
 {
-    const CsvFile f(file, m_archive->read(file));
-    const auto cols = f.header({QStringLiteral("time_s"), QStringLiteral("file")}, {});
+    QHash<QString, int> cols;
+    bool headerSeen = false;
     double last = -INFINITY;
-    for (int l = 1; l < f.lineCount(); ++l) {
-        const CsvFile::Line line = f.line(l);
+    readCsv(file, kMaxTableBytes, [&](const BundleCsv &f, const BundleCsv::Line &line) {
+        if (!headerSeen) {
+            cols = f.header(line, {QStringLiteral("time_s"), QStringLiteral("file")}, {});
+            headerSeen = true;
+            return;
+        }
         f.checkWidth(line, 2);
         IrFrame frame;
         frame.t = number(f, line, cols.value(QStringLiteral("time_s")), QStringLiteral("time_s"));
@@ -602,7 +522,7 @@ void BundleReader::readFrames(const QString &file)
                                   .arg(m_content.frames.front().width)
                                   .arg(m_content.frames.front().height));
         m_content.frames.push_back(frame);
-    }
+    });
 }
 
 IrFrame BundleReader::frame(int i) const

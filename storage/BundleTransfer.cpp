@@ -56,31 +56,53 @@ QByteArray BundleTransfer::formatDouble(double v)
 
 qint64 BundleTransfer::importBundle(SessionStore &store, const QString &bundlePath, bool allowDuplicate)
 {
-    const BundleReader reader(bundlePath); // validates everything first
-    const BundleContent &c = reader.content();
-    SessionInfo session = c.session;
-    const qint64 sameUuid = session.uuid.isEmpty() ? 0 : store.sessionByUuid(session.uuid);
-    const qint64 sameContent = store.sessionByContentHash(session.contentSha256);
-    if ((sameUuid || sameContent) && !allowDuplicate) {
-        const qint64 existing = sameUuid ? sameUuid : sameContent;
-        throw DuplicateSessionError(
-            QStringLiteral("%1 is already in %2 as session %3 '%4' (%5); nothing imported")
-                .arg(bundlePath, store.path())
-                .arg(existing)
-                .arg(store.session(existing).name,
-                     sameUuid ? QStringLiteral("same session UUID %1").arg(session.uuid)
-                              : QStringLiteral("same recorded content")),
-            existing, sameUuid != 0);
-    }
-    if (sameUuid)
-        session.uuid.clear(); // a deliberate second copy is a session of its own
+    // One transaction: channels.csv is read in chunks straight into the new session (memory
+    // does not grow with the file); a problem anywhere in the bundle, or a duplicate found
+    // once the content hash is known, rolls everything back.
+    const auto duplicate = [&](qint64 existing, bool sameUuid, const QString &uuid) {
+        return DuplicateSessionError(QStringLiteral("%1 is already in %2 as session %3 '%4' (%5); nothing imported")
+                                         .arg(bundlePath, store.path())
+                                         .arg(existing)
+                                         .arg(store.session(existing).name,
+                                              sameUuid ? QStringLiteral("same session UUID %1").arg(uuid)
+                                                       : QStringLiteral("same recorded content")),
+                                     existing, sameUuid);
+    };
+    qint64 id = 0;
+    QVector<qint64> channelIds;
+    const auto create = [&](const BundleContent &c) {
+        if (id)
+            return;
+        SessionInfo session = c.session;
+        const qint64 sameUuid = session.uuid.isEmpty() ? 0 : store.sessionByUuid(session.uuid);
+        if (sameUuid && !allowDuplicate)
+            throw duplicate(sameUuid, true, session.uuid);
+        if (sameUuid)
+            session.uuid.clear(); // a deliberate second copy is a session of its own
+        id = store.createSession(session);
+        for (const ChannelInfo &channel : c.channels)
+            channelIds.push_back(store.addChannel(id, channel));
+    };
     store.begin();
     try {
-        const qint64 id = store.createSession(session);
-        for (int i = 0; i < c.channels.size(); ++i) {
-            const qint64 channel = store.addChannel(id, c.channels[i]);
-            store.appendSamples(channel, c.samples[i].t, c.samples[i].v);
-        }
+        const BundleReader reader(bundlePath, [&](const BundleContent &c, const QVector<SampleBlock> &chunk) {
+            create(c);
+            for (int i = 0; i < chunk.size(); ++i) {
+                if (!chunk[i].t.isEmpty())
+                    store.appendSamples(channelIds[i], chunk[i].t, chunk[i].v);
+            }
+        });
+        const BundleContent &c = reader.content();
+        create(c); // a bundle without samples
+        store.flushSamples();
+        BundleReader::SampleSource stored;
+        stored.count = [&](int i) { return store.sampleCount(channelIds[i]); };
+        stored.forEachBlock = [&](int i, const BundleReader::BlockVisitor &visit) { store.forEachSampleBlock(channelIds[i], visit); };
+        const QString hash = QString::fromLatin1(BundleReader::contentHash(c, stored).toHex());
+        const qint64 sameContent = store.sessionByContentHash(hash);
+        if (sameContent && !allowDuplicate)
+            throw duplicate(sameContent, false, QString());
+        store.setContentSha256(id, hash);
         store.addInterferometerPoints(id, c.interferometer);
         for (const EventRecord &e : c.events)
             store.addEvent(id, e);

@@ -183,6 +183,24 @@ SampleBlock SampleChannels::samples(qint64 channelId, double t0, double t1) cons
     return b;
 }
 
+void SampleChannels::forEachBlock(qint64 channelId,
+                                  const std::function<void(const QVector<double> &, const QVector<double> &)> &visit) const
+{
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
+                           QStringLiteral("SELECT n, data FROM sample_blocks WHERE channel_id = ? ORDER BY t_last, id"));
+    q.setForwardOnly(true);
+    q.addBindValue(channelId);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot read samples of channel %1").arg(channelId));
+    QVector<double> t;
+    QVector<double> v;
+    while (q.next()) {
+        t.clear();
+        v.clear();
+        SampleMipmap::decodeSamples(q.value(1).toByteArray(), q.value(0).toInt(), t, v);
+        visit(t, v);
+    }
+}
+
 QVector<SampleMipmap::Entry> SampleChannels::levelEntries(qint64 channelId, int level, double t0, double t1) const
 {
     QSqlQuery q = SqlSupport::prepared(m_db, m_path,

@@ -13,6 +13,7 @@
 #include <QString>
 
 #include <array>
+#include <functional>
 
 namespace driftlab {
 
@@ -31,6 +32,7 @@ public:
     SampleBlock samples(qint64 channelId, double t0, double t1) const;
     DecimatedSeries decimated(qint64 channelId, double t0, double t1, int maxPoints) const;
     qint64 count(qint64 channelId) const;
+    void forEachBlock(qint64 channelId, const std::function<void(const QVector<double> &, const QVector<double> &)> &visit) const;
 
 private:
     struct ChannelState {

@@ -7,15 +7,21 @@
 #include "StorageError.h"
 
 #include <QAtomicInteger>
+#include <QFile>
 #include <QFileInfo>
 #include <QJsonDocument>
 #include <QSqlError>
 #include <QSqlQuery>
+#include <QUrl>
 #include <QUuid>
 #include <QVariant>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+
+#include <unistd.h>
 
 namespace driftlab {
 
@@ -52,19 +58,54 @@ SessionStore::SessionStore(const QString &path) : m_path(path)
 {
     m_connection = QStringLiteral("driftlab-store-%1").arg(++g_connectionCounter);
     m_db = QSqlDatabase::addDatabase(QStringLiteral("QSQLITE"), m_connection);
-    m_db.setDatabaseName(path);
-    m_db.setConnectOptions(QStringLiteral("QSQLITE_BUSY_TIMEOUT=5000"));
-    const QFileInfo dir(QFileInfo(path).absolutePath());
+    const QFileInfo file(path);
+    const QFileInfo dir(file.absolutePath());
     if (!dir.isDir())
         throw StorageError(QStringLiteral("%1: folder %2 does not exist").arg(path, dir.filePath()).toStdString());
+    // Read-only media (a write-protected share, a DVD, a read-only mount): a database whose
+    // folder cannot be written cannot get its -wal and -shm files, so it is opened read-only
+    // (immutable unless a WAL file is there to be read); every write is then refused with
+    // SQLITE_READONLY, reported as read-only by SqlSupport. A new database there is refused.
+    const QByteArray native = QFile::encodeName(dir.absoluteFilePath());
+    const bool folderWritable = ::access(native.constData(), W_OK) == 0;
+    const int folderErrno = folderWritable ? 0 : errno;
+    if (!file.exists() && !folderWritable)
+        throw StorageError(QStringLiteral("%1: cannot create the database: folder %2 is read-only (%3)")
+                               .arg(path, dir.absoluteFilePath(), QString::fromLocal8Bit(std::strerror(folderErrno)))
+                               .toStdString());
+    m_readOnly = !folderWritable || (file.exists() && ::access(QFile::encodeName(file.absoluteFilePath()).constData(), W_OK) != 0);
+    if (m_readOnly) {
+        const QFileInfo wal(file.absoluteFilePath() + QStringLiteral("-wal"));
+        QUrl uri = QUrl::fromLocalFile(file.absoluteFilePath());
+        uri.setScheme(QStringLiteral("file"));
+        uri.setQuery(wal.exists() && wal.size() > 0 ? QStringLiteral("mode=ro") : QStringLiteral("immutable=1"));
+        m_db.setDatabaseName(uri.toString(QUrl::FullyEncoded));
+        m_db.setConnectOptions(QStringLiteral("QSQLITE_OPEN_URI;QSQLITE_OPEN_READONLY;QSQLITE_BUSY_TIMEOUT=5000"));
+    } else {
+        m_db.setDatabaseName(path);
+        m_db.setConnectOptions(QStringLiteral("QSQLITE_BUSY_TIMEOUT=5000"));
+    }
     if (!m_db.open())
         SqlSupport::fail(path, QStringLiteral("cannot open database"), m_db.lastError());
     QSqlQuery pragma(m_db);
-    // WAL: readers see committed data while a recording writes.
-    if (!pragma.exec(QStringLiteral("PRAGMA journal_mode=WAL")))
-        SqlSupport::fail(path, QStringLiteral("cannot enable WAL (not an SQLite database?)"), pragma.lastError());
-    pragma.exec(QStringLiteral("PRAGMA foreign_keys=ON"));
-    pragma.exec(QStringLiteral("PRAGMA synchronous=NORMAL"));
+    if (m_readOnly) {
+        if (!pragma.exec(QStringLiteral("PRAGMA schema_version")))
+            SqlSupport::fail(path, QStringLiteral("cannot read (not an SQLite database?)"), pragma.lastError());
+        pragma.exec(QStringLiteral("PRAGMA foreign_keys=ON"));
+        if (SchemaMigrator::version(m_db) < SchemaMigrator::currentVersion())
+            throw StorageError(QStringLiteral("%1: read-only: its schema version %2 needs an upgrade to %3, which writes; "
+                                              "copy the file to writable storage to open it")
+                                   .arg(path)
+                                   .arg(SchemaMigrator::version(m_db))
+                                   .arg(SchemaMigrator::currentVersion())
+                                   .toStdString());
+    } else {
+        // WAL: readers see committed data while a recording writes.
+        if (!pragma.exec(QStringLiteral("PRAGMA journal_mode=WAL")))
+            SqlSupport::fail(path, QStringLiteral("cannot enable WAL (not an SQLite database?)"), pragma.lastError());
+        pragma.exec(QStringLiteral("PRAGMA foreign_keys=ON"));
+        pragma.exec(QStringLiteral("PRAGMA synchronous=NORMAL"));
+    }
     m_samples = std::make_unique<SampleChannels>(m_db, m_path);
     SchemaMigrator::migrate(m_db, [this](int toVersion) {
         if (toVersion == 2)
@@ -356,6 +397,25 @@ qint64 SessionStore::addFittedModel(qint64 sessionId, const FittedModel &model)
     q.addBindValue(json(model.metrics));
     SqlSupport::run(q, m_path, QStringLiteral("cannot store fitted model '%1'").arg(model.model));
     return q.lastInsertId().toLongLong();
+}
+
+void SessionStore::forEachSampleBlock(qint64 channelId,
+                                      const std::function<void(const QVector<double> &, const QVector<double> &)> &visit) const
+{
+    m_samples->forEachBlock(channelId, visit);
+}
+
+void SessionStore::flushSamples()
+{
+    m_samples->flush();
+}
+
+void SessionStore::setContentSha256(qint64 sessionId, const QString &sha256)
+{
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("UPDATE sessions SET content_sha256 = ? WHERE id = ?"));
+    q.addBindValue(sha256);
+    q.addBindValue(sessionId);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot set the content hash of session %1").arg(sessionId));
 }
 
 void SessionStore::appendSamples(qint64 channelId, const QVector<double> &t, const QVector<double> &v)

@@ -27,6 +27,8 @@ public:
     SessionStore &operator=(const SessionStore &) = delete;
 
     QString path() const { return m_path; }
+    // Opened read-only because the file or its folder cannot be written (read-only media).
+    bool isReadOnly() const { return m_readOnly; }
 
     // Creates a session; an empty info.uuid gets a new random UUID. Throws StorageError if
     // the UUID is malformed or already names a session.
@@ -70,6 +72,13 @@ public:
     // coarsest mipmap level that still gives maxPoints buckets (never the whole channel).
     DecimatedSeries decimated(qint64 channelId, double t0, double t1, int maxPoints) const;
     qint64 sampleCount(qint64 channelId) const;
+    // Every stored block of a channel in time order, one at a time (memory does not grow with
+    // the channel). Inside begin()/commit() call flushSamples() first.
+    void forEachSampleBlock(qint64 channelId, const std::function<void(const QVector<double> &t, const QVector<double> &v)> &visit) const;
+    // Writes the samples buffered in this transaction so that they can be read back in it.
+    void flushSamples();
+    // Sets the content hash of an imported session (BundleReader::contentHash).
+    void setContentSha256(qint64 sessionId, const QString &sha256);
     // Frames of a session in time order, without pixels; irFrame() reads one with pixels.
     QVector<IrFrame> irFrames(qint64 sessionId) const;
     IrFrame irFrame(qint64 frameId) const;
@@ -94,6 +103,7 @@ private:
     [[noreturn]] void failSql(const QString &what, const QSqlError &error) const;
 
     QString m_path;
+    bool m_readOnly = false;
     QString m_connection;
     QSqlDatabase m_db;
     bool m_inTransaction = false;

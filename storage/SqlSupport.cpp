@@ -15,6 +15,13 @@ void SqlSupport::fail(const QString &path, const QString &what, const QSqlError 
                                           "transaction was rolled back, the database is intact (%3)")
                                .arg(path, what, error.text())
                                .toStdString());
+    // SQLITE_READONLY: the database was opened read-only (read-only media) or its file lost
+    // write permission.
+    if (error.nativeErrorCode() == QLatin1String("8") || error.databaseText().contains(QLatin1String("readonly database")))
+        throw StorageError(QStringLiteral("%1: read-only: %2: the database cannot be written (read-only media or no write "
+                                          "permission); nothing was changed")
+                               .arg(path, what)
+                               .toStdString());
     throw StorageError(QStringLiteral("%1: %2: %3").arg(path, what, error.text()).toStdString());
 }
 

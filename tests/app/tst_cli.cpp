@@ -32,6 +32,8 @@ private slots:
     void guiExitCodesMatchCli();
     void recordStopsPromptlyOnAFullDisk();
     void exportToAFullDiskLeavesNothing();
+    void importOntoAFullDiskChangesNothing();
+    void readOnlyMediaRefusedClearly();
     void sigtermClosesTheSession();
 
 private:
@@ -440,6 +442,91 @@ void TestCli::exportToAFullDiskLeavesNothing()
         QVERIFY2(QDir(mountPoint).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot).isEmpty(),
                  qPrintable(QDir(mountPoint).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot).join(QLatin1Char(' '))));
     }
+}
+
+// Issue 21: an import into a database on a full filesystem fails with the disk-full message,
+// leaves the database intact with its earlier session, and a retry after making room imports.
+void TestCli::importOntoAFullDiskChangesNothing()
+{
+    const QString source = m_dir.filePath(QStringLiteral("import-full-source.sqlite"));
+    const QString bundle = m_dir.filePath(QStringLiteral("import-full.bundle"));
+    QCOMPARE(run({QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("2:48:00"),
+                  QStringLiteral("--out"), source, QStringLiteral("--export"), bundle}).code,
+             0);
+    const QString mountPoint = m_dir.filePath(QStringLiteral("import-full"));
+    const QString why = mountSmallTmpfs(mountPoint, QStringLiteral("1m"));
+    if (!why.isEmpty())
+        QSKIP(qPrintable(why));
+    const auto unmount = qScopeGuard([&] { QProcess::execute(QStringLiteral("umount"), {QStringLiteral("-l"), mountPoint}); });
+    const QString db = mountPoint + QStringLiteral("/lab.sqlite");
+    Result r = run({QStringLiteral("import"), QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/bundles/example.bundle"),
+                    QStringLiteral("--db"), db});
+    QVERIFY2(r.code == 0, r.err.constData());
+    r = run({QStringLiteral("import"), bundle, QStringLiteral("--db"), db});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("disk full") && r.err.contains(QFileInfo(db).fileName().toUtf8()), r.err.constData());
+    r = run({QStringLiteral("list"), QStringLiteral("--db"), db, QStringLiteral("--json"), QStringLiteral("-")});
+    QCOMPARE(r.code, 0);
+    const QJsonArray sessions = QJsonDocument::fromJson(r.out).object().value(QStringLiteral("sessions")).toArray();
+    QCOMPARE(sessions.size(), 1); // the earlier session, nothing of the refused one
+    QProcess check;
+    check.start(QStringLiteral("sqlite3"), {db, QStringLiteral("PRAGMA integrity_check")});
+    if (check.waitForFinished(10000) && check.exitStatus() == QProcess::NormalExit && check.exitCode() == 0)
+        QCOMPARE(check.readAllStandardOutput().trimmed(), QByteArray("ok"));
+}
+
+// Issue 21: a database and a bundle folder on read-only media (a tmpfs remounted read-only).
+// Reading works (list, info, plot, export to writable media); writing is refused at once
+// with a message naming the file and saying it is read-only, and changes nothing.
+void TestCli::readOnlyMediaRefusedClearly()
+{
+    const QString mountPoint = m_dir.filePath(QStringLiteral("readonly"));
+    const QString why = mountSmallTmpfs(mountPoint, QStringLiteral("8m"));
+    if (!why.isEmpty())
+        QSKIP(qPrintable(why));
+    const auto unmount = qScopeGuard([&] { QProcess::execute(QStringLiteral("umount"), {QStringLiteral("-l"), mountPoint}); });
+    const QString db = mountPoint + QStringLiteral("/archive.sqlite");
+    QCOMPARE(run({QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("0:20:00"),
+                  QStringLiteral("--out"), db}).code,
+             0);
+    const QByteArray before = [&] {
+        QFile f(db);
+        return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+    }();
+    QVERIFY(!before.isEmpty());
+    QCOMPARE(QProcess::execute(QStringLiteral("mount"), {QStringLiteral("-o"), QStringLiteral("remount,ro"), mountPoint}), 0);
+
+    // Reading.
+    Result r = run({QStringLiteral("list"), QStringLiteral("--db"), db});
+    QVERIFY2(r.code == 0, r.err.constData());
+    r = run({QStringLiteral("plot"), QStringLiteral("1"), QStringLiteral("--view"), QStringLiteral("timeseries"), QStringLiteral("--out"),
+             m_dir.filePath(QStringLiteral("ro.png")), QStringLiteral("--db"), db});
+    QVERIFY2(r.code == 0, r.err.constData());
+    r = run({QStringLiteral("export"), QStringLiteral("1"), m_dir.filePath(QStringLiteral("from-ro.bundle")), QStringLiteral("--db"), db});
+    QVERIFY2(r.code == 0, r.err.constData());
+
+    // Writing: into the read-only database, and onto the read-only folder.
+    const QList<QStringList> writes = {
+        {QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("0:10:00"), QStringLiteral("--out"), db},
+        {QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("0:10:00"), QStringLiteral("--speed"),
+         QStringLiteral("600"), QStringLiteral("--out"), db},
+        {QStringLiteral("import"), QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/bundles/example.bundle"), QStringLiteral("--db"), db},
+        {QStringLiteral("export"), QStringLiteral("1"), mountPoint + QStringLiteral("/out.bundle"), QStringLiteral("--db"), db},
+        {QStringLiteral("export"), QStringLiteral("1"), mountPoint + QStringLiteral("/out.zip"), QStringLiteral("--db"), db},
+        {QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("0:10:00"), QStringLiteral("--out"),
+         mountPoint + QStringLiteral("/new.sqlite")},
+    };
+    for (const QStringList &args : writes) {
+        r = run(args);
+        const QByteArray what = args.join(QLatin1Char(' ')).toUtf8() + " -> " + QByteArray::number(r.code) + ": " + r.err;
+        QVERIFY2(r.code == 1 || r.code == 2, what.constData());
+        QVERIFY2(r.err.contains("read-only") || r.err.contains("Read-only"), what.constData());
+        QVERIFY2(r.err.contains(mountPoint.toUtf8()), what.constData()); // names the file or folder
+    }
+    QFile f(db);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    QVERIFY(f.readAll() == before);
+    QCOMPARE(QDir(mountPoint).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot), QStringList{QStringLiteral("archive.sqlite")});
 }
 
 // Issue 21: SIGTERM (and Ctrl-C) during a recording closes the session cleanly, on the fast
