@@ -92,6 +92,9 @@ void SimulatedDevice::read(JsonFields &f)
     m_maxBlockWall_s = f.number(QStringLiteral("max_block_wall_s"), m_maxBlockWall_s, 1e-4, 10.0);
     m_failAt_s = f.number(QStringLiteral("fail_at_s"), -1.0, -1.0, 1e9);
     m_failFor_s = f.number(QStringLiteral("fail_for_s"), 0.0, 0.0, 1e9);
+    m_failEvery_s = f.number(QStringLiteral("fail_every_s"), 0.0, 0.0, 1e9);
+    if (m_failEvery_s > 0.0 && m_failEvery_s <= m_failFor_s)
+        f.fail(QStringLiteral("fail_every_s"), QStringLiteral("must be longer than fail_for_s (%1 s), got %2 s").arg(m_failFor_s).arg(m_failEvery_s));
     const QString stamping = f.choice(QStringLiteral("stamping"), {QStringLiteral("device"), QStringLiteral("receipt")},
                                       m_deviceStamped ? QStringLiteral("device") : QStringLiteral("receipt"));
     m_deviceStamped = stamping == QLatin1String("device");
@@ -112,8 +115,10 @@ bool SimulatedDevice::failing() const
         return true;
     if (m_failAt_s < 0.0 || !m_clock)
         return false;
-    const double now = m_clock->now_s();
-    return now >= m_failAt_s && now < m_failAt_s + m_failFor_s;
+    const double since = m_clock->now_s() - m_failAt_s;
+    if (since < 0.0)
+        return false;
+    return (m_failEvery_s > 0.0 ? std::fmod(since, m_failEvery_s) : since) < m_failFor_s;
 }
 
 void SimulatedDevice::open()

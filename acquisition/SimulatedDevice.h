@@ -9,13 +9,13 @@
 // clock); with "stamping": "receipt" it leaves that to the worker (receipt - declared
 // latency), like a plain instrument, so the skew of the whole chain and the latency
 // correction are measurable. Failure injection: kill()/revive() or the settings
-// fail_at_s / fail_for_s (session seconds): while failed, read() and open() throw
+// fail_at_s / fail_for_s [/ fail_every_s, repeating] (session seconds): while failed, read() and open() throw
 // DeviceError after a timeout, as a device that stopped answering.
 //
 // Settings (JSON): latency_s (declared, default per type), true_latency_s (default = declared),
 // latency_jitter_s, stamping (device | receipt), rate_Hz (poll ticks; default the channels'
 // rate), max_block_wall_s
-// (longest wall time a block collects, default 0.05), fail_at_s, fail_for_s.
+// (longest wall time a block collects, default 0.05), fail_at_s, fail_for_s, fail_every_s.
 
 #include "Device.h"
 #include "SimulatedRigHub.h"
@@ -71,6 +71,7 @@ private:
     double m_maxBlockWall_s = 0.05;
     double m_failAt_s = -1.0;
     double m_failFor_s = 0.0;
+    double m_failEvery_s = 0.0; // > 0: the failure repeats with this period
     double m_next_s = 0.0;
     bool m_open = false;
     std::atomic<bool> m_killed{false};

@@ -8,6 +8,9 @@ jobs="$(nproc)"
 
 "$src/scripts/build.sh" "$src/build" -DDRIFTLAB_WERROR=ON
 ctest --test-dir "$src/build" --output-on-failure -j"$jobs"
+# A fast subset of the long runs recorded in docs/reliability.md: 3 hours of recording with
+# failing instruments and a reader (the 24-hour run: scripts/soak.sh 24 240).
+DRIFTLAB_CLI="$src/build/app/driftlab-cli" "$src/scripts/soak.sh" 3 600
 
 # The sanitizer pass runs every test but the long diagnosis sweep subset (label
 # "diagnosis"), whose engine is covered under the sanitizers by tst_diagnosisengine.
@@ -16,3 +19,4 @@ ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" \
 LSAN_OPTIONS="suppressions=$src/scripts/lsan.supp:print_suppressions=0" \
 UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
   ctest --test-dir "$src/build-asan" --output-on-failure -j"$jobs" -LE diagnosis
+

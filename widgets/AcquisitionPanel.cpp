@@ -281,6 +281,11 @@ void AcquisitionPanel::stopRecording()
     emit recordingStopped(m_session);
 }
 
+QString AcquisitionPanel::messageText() const
+{
+    return m_message->text();
+}
+
 void AcquisitionPanel::addMarker(const QString &label)
 {
     if (m_engine)

@@ -50,6 +50,7 @@ public:
     qint64 sessionId() const { return m_session; }
     QString databasePath() const { return m_dbPath; }
     QString lastError() const { return m_lastError; }
+    QString messageText() const; // what the panel tells the user (errors, results)
     double elapsed_s() const;
     int deviceRowCount() const;
     QString deviceCell(int row, int column) const; // columns: device, state, rate, samples, gaps

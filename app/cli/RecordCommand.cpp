@@ -11,6 +11,7 @@
 
 #include <QCommandLineParser>
 #include <QElapsedTimer>
+#include <QJsonArray>
 #include <QJsonObject>
 #include <QThread>
 
@@ -161,6 +162,7 @@ int RecordCommand::run(const QStringList &args)
     long long samples = 0;
     int points = -1, frames = -1; // unknown in threaded mode until read back
     std::unique_ptr<SessionStore> store;
+    QJsonArray deviceHealth; // threaded mode: per device, as the engine saw it
     if (speedValue > 0.0) {
         // One worker thread per device on one session clock (simulated or real instruments).
         simRig.reset();
@@ -209,6 +211,12 @@ int RecordCommand::run(const QStringList &args)
         samples = engine.samplesWritten();
         for (int i = 0; i < engine.deviceCount(); ++i) {
             const DeviceHealth h = engine.health().value(i);
+            deviceHealth.append(QJsonObject{{QStringLiteral("id"), engine.device(i).id()},
+                                            {QStringLiteral("state"), DeviceHealth::stateName(h.state)},
+                                            {QStringLiteral("samples"), static_cast<double>(h.samples)},
+                                            {QStringLiteral("gaps"), h.gaps},
+                                            {QStringLiteral("reconnects"), h.reconnects},
+                                            {QStringLiteral("dropped_blocks"), static_cast<double>(h.droppedBlocks)}});
             if (h.gaps > 0 || h.state == DeviceHealth::State::Failed)
                 CliSupport::progress(QStringLiteral("  warning: %1 had %2 gap(s), %3 reconnect(s)%4")
                                          .arg(engine.device(i).id())
@@ -260,6 +268,8 @@ int RecordCommand::run(const QStringList &args)
                        {QStringLiteral("samples"), static_cast<double>(samples)},
                        {QStringLiteral("interferometer_points"), points},
                        {QStringLiteral("ir_frames"), frames}};
+    if (!deviceHealth.isEmpty())
+        result.insert(QStringLiteral("devices"), deviceHealth);
     if (p.isSet(exportOpt)) {
         BundleTransfer::exportBundle(*store, id, p.value(exportOpt));
         CliSupport::progress(QStringLiteral("exported session %1 to %2").arg(id).arg(p.value(exportOpt)));

@@ -5,7 +5,11 @@
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
 
+#include <QDir>
 #include <QElapsedTimer>
+#include <QFile>
+#include <QProcess>
+#include <QScopeGuard>
 #include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QtTest>
@@ -22,6 +26,7 @@ private slots:
     void recordsAndShowsHealth();
     void badRigIsReported();
     void namedRunIntoANewFolderStopsByItself();
+    void fullAndReadOnlyMediaAreShown();
 };
 
 void TestAcquisitionPanel::recordsAndShowsHealth()
@@ -106,6 +111,50 @@ void TestAcquisitionPanel::namedRunIntoANewFolderStopsByItself()
         if (!all.tLast.isEmpty())
             QVERIFY2(all.tLast.back() <= 120.0 + 1e-6, qPrintable(c.key)); // nothing past the duration
     }
+}
+
+// Issue 21 item 4: a recording onto a full disk stops by itself and the panel says so; a
+// database on read-only media is refused at Start with the reason; the panel records again
+// afterwards (the GUI keeps running). Mounts tmpfs volumes; skips where it cannot.
+void TestAcquisitionPanel::fullAndReadOnlyMediaAreShown()
+{
+    QTemporaryDir dir;
+    const QString mountPoint = dir.filePath(QStringLiteral("small"));
+    QDir().mkpath(mountPoint);
+    if (QProcess::execute(QStringLiteral("mount"), {QStringLiteral("-t"), QStringLiteral("tmpfs"), QStringLiteral("-o"),
+                                                    QStringLiteral("size=3m"), QStringLiteral("tmpfs"), mountPoint}) != 0)
+        QSKIP("cannot mount a small tmpfs here (needs root and mount permission)");
+    const auto unmount = qScopeGuard([&] { QProcess::execute(QStringLiteral("umount"), {QStringLiteral("-l"), mountPoint}); });
+    AcquisitionPanel panel;
+    panel.resize(900, 700);
+    panel.show();
+    const QString full = mountPoint + QStringLiteral("/full.sqlite");
+    QSignalSpy stopped(&panel, &AcquisitionPanel::recordingStopped);
+    QVERIFY2(panel.startRecording(QStringLiteral("baseline"), full, 5000.0), qPrintable(panel.lastError()));
+    QVERIFY2(stopped.wait(30000), "the recording did not stop when the disk was full");
+    QVERIFY(!panel.recording());
+    QVERIFY2(panel.lastError().contains(QLatin1String("disk full")), qPrintable(panel.lastError()));
+    QVERIFY2(panel.messageText().contains(QLatin1String("disk full")) && panel.messageText().contains(QLatin1String("incomplete")),
+             qPrintable(panel.messageText()));
+
+    // The same volume read-only: refused at Start, nothing changed.
+    QCOMPARE(QProcess::execute(QStringLiteral("mount"), {QStringLiteral("-o"), QStringLiteral("remount,ro"), mountPoint}), 0);
+    QFile before(full);
+    QVERIFY(before.open(QIODevice::ReadOnly));
+    const QByteArray bytes = before.readAll();
+    QVERIFY(!panel.startRecording(QStringLiteral("baseline"), full, 600.0));
+    QVERIFY2(panel.lastError().contains(QLatin1String("read-only")), qPrintable(panel.lastError()));
+    QVERIFY2(panel.messageText().contains(QLatin1String("read-only")), qPrintable(panel.messageText()));
+    QFile after(full);
+    QVERIFY(after.open(QIODevice::ReadOnly));
+    QVERIFY(after.readAll() == bytes);
+
+    // And the panel records on writable storage again.
+    stopped.clear();
+    panel.setRunDetails(QStringLiteral("after"), QString(), 60.0, QString());
+    QVERIFY2(panel.startRecording(QStringLiteral("baseline"), dir.filePath(QStringLiteral("ok.sqlite")), 600.0), qPrintable(panel.lastError()));
+    QVERIFY(stopped.wait(20000));
+    QVERIFY(SessionStore(dir.filePath(QStringLiteral("ok.sqlite"))).session(panel.sessionId()).complete);
 }
 
 QTEST_MAIN(TestAcquisitionPanel)
