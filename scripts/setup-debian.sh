@@ -11,7 +11,7 @@ PACKAGES=(
   libqt5datavisualization5-dev libqt5serialport5-dev libqt5serialbus5-dev
   libqwt-qt5-dev libeigen3-dev libopencv-dev libsqlite3-dev
   libceres-dev libnlopt-cxx-dev libzip-dev zlib1g-dev libmodbus-dev qt5-image-formats-plugins
-  xvfb xauth fonts-dejavu-core sqlite3 python3 socat ccache poppler-utils
+  xvfb xauth fonts-dejavu-core sqlite3 python3 socat ccache poppler-utils clang libclang-rt-14-dev
   linuxcnc-uspace
 )
 

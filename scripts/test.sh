@@ -20,3 +20,6 @@ LSAN_OPTIONS="suppressions=$src/scripts/lsan.supp:print_suppressions=0" \
 UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
   ctest --test-dir "$src/build-asan" --output-on-failure -j"$jobs" -LE diagnosis
 
+# libFuzzer on every parser of user files, under ASan + UBSan (clang; a separate build):
+# regression inputs first, then each harness for DRIFTLAB_FUZZ_SECONDS (docs/reliability.md).
+"$src/scripts/fuzz.sh" "${DRIFTLAB_FUZZ_SECONDS:-30}"

@@ -1,0 +1,7 @@
+// libFuzzer harness: ir/index.csv of a recording bundle (docs/recording-bundle.md).
+#include "BundleFileHarness.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    return fuzz::readBundleWith("ir/index.csv", data, size);
+}
