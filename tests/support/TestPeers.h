@@ -40,6 +40,7 @@ public:
         m_program = program;
         m_args = args;
         m_out.clear();
+        m_all.clear();
         m_process = std::make_unique<QProcess>();
         m_process->setProcessChannelMode(QProcess::SeparateChannels);
         m_process->start(program, args);
@@ -72,6 +73,17 @@ public:
         }
     }
     bool running() const { return m_process && m_process->state() == QProcess::Running; }
+    // Everything the peer printed since start() (reads what is pending first).
+    QByteArray output()
+    {
+        if (m_process) {
+            m_process->waitForReadyRead(20); // the pipe is read only when asked to
+            const QByteArray more = m_process->readAllStandardOutput();
+            m_out += more;
+            m_all += more;
+        }
+        return m_all;
+    }
     QByteArray errors() const { return m_process ? m_process->readAllStandardError() : QByteArray(); }
 
 private:
@@ -83,7 +95,9 @@ private:
             if (t.elapsed() > timeout_ms || m_process->state() != QProcess::Running)
                 return false;
             m_process->waitForReadyRead(50);
-            m_out += m_process->readAllStandardOutput();
+            const QByteArray more = m_process->readAllStandardOutput();
+            m_out += more;
+            m_all += more;
         }
         return true;
     }
@@ -91,6 +105,7 @@ private:
     QString m_program;
     QStringList m_args;
     QByteArray m_out;
+    QByteArray m_all;
     QString m_ready;
 };
 

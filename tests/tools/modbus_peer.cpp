@@ -12,6 +12,9 @@
 //   --holding ADDR=VALUE   initial holding register (repeatable)
 //   --clock ADDR           input registers ADDR, ADDR+1 hold CLOCK_MONOTONIC in ms
 //                          (high word first), refreshed when a request arrives
+//   --log-writes           print every accepted write of holding registers (functions 6
+//                          and 16) on standard output: "write MS ADDR V1 [V2 ...]", MS being
+//                          CLOCK_MONOTONIC in milliseconds, V the register contents after it
 // Standard input, one command per line:
 //   set input|holding ADDR VALUE    stall    resume    drop    exception CODE    normal    quit
 // Standard output: "ready PORT" once listening (TCP) or "ready rtu" (RTU), then one line per
@@ -43,6 +46,7 @@ struct Peer {
     Mode mode = Mode::Normal;
     int exceptionCode = MODBUS_EXCEPTION_SLAVE_OR_SERVER_FAILURE;
     int clockAddress = -1;
+    bool logWrites = false;
     bool quit = false;
 };
 
@@ -70,6 +74,25 @@ void refreshClock(Peer &p)
     p.map->tab_input_registers[p.clockAddress + 1] = static_cast<uint16_t>(v & 0xffff);
 }
 
+void logWrite(const Peer &p, const uint8_t *query)
+{
+    const int h = modbus_get_header_length(p.ctx);
+    const int function = query[h];
+    if (function != 0x06 && function != 0x10)
+        return;
+    const int address = (query[h + 1] << 8) | query[h + 2];
+    const int count = function == 0x06 ? 1 : ((query[h + 3] << 8) | query[h + 4]);
+    if (address < 0 || count < 1 || address + count > 10000)
+        return;
+    timespec ts{};
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    std::printf("write %lld %d", static_cast<long long>(ts.tv_sec) * 1000LL + ts.tv_nsec / 1000000, address);
+    for (int i = 0; i < count; ++i)
+        std::printf(" %u", static_cast<unsigned>(p.map->tab_registers[address + i]));
+    std::printf("\n");
+    std::fflush(stdout);
+}
+
 // Handles one request on the current socket / serial line. Returns false if the peer
 // closed the connection.
 bool serve(Peer &p)
@@ -85,7 +108,8 @@ bool serve(Peer &p)
     case Mode::Exception: modbus_reply_exception(p.ctx, query, static_cast<unsigned>(p.exceptionCode)); return true;
     case Mode::Normal:
         refreshClock(p);
-        modbus_reply(p.ctx, query, rc, p.map);
+        if (modbus_reply(p.ctx, query, rc, p.map) >= 0 && p.logWrites)
+            logWrite(p, query);
         return true;
     }
     return true;
@@ -269,6 +293,8 @@ int main(int argc, char **argv)
             baud = std::atoi(argv[++i]);
         } else if (a == "--unit" && next) {
             unit = std::atoi(argv[++i]);
+        } else if (a == "--log-writes") {
+            p.logWrites = true;
         } else if (a == "--clock" && next) {
             p.clockAddress = std::atoi(argv[++i]);
         } else if ((a == "--input" || a == "--holding") && next && parseAssignment(next, address, value)) {
