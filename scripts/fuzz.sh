@@ -13,7 +13,7 @@ seconds="${1:-60}"
 shift || true
 build="${DRIFTLAB_FUZZ_BUILD:-$src/build-fuzz}"
 all=(bundle_manifest bundle_channels bundle_interferometer bundle_events bundle_irindex ir_frame
-     rig_json column_map csv_import rtl mtconnect model_json batch_job)
+     rig_json column_map csv_import rtl mtconnect offset_map model_json batch_job)
 harnesses=("$@")
 [ ${#harnesses[@]} -gt 0 ] || harnesses=("${all[@]}")
 
