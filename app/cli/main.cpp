@@ -5,6 +5,7 @@
 #include "DiagnoseCommand.h"
 #include "ExportCommand.h"
 #include "ExportModelCommand.h"
+#include "CompensateCommand.h"
 #include "FitCommand.h"
 #include "ImportCommand.h"
 #include "ImportCsvCommand.h"
@@ -54,6 +55,7 @@ std::vector<std::unique_ptr<CliCommand>> commands()
     list.push_back(std::make_unique<ReportCommand>());
     list.push_back(std::make_unique<BatchCommand>());
     list.push_back(std::make_unique<ExportModelCommand>());
+    list.push_back(std::make_unique<CompensateCommand>());
     return list;
 }
 

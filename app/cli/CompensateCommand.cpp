@@ -1,0 +1,238 @@
+#include "CompensateCommand.h"
+
+#include "CliSupport.h"
+#include "CompensationLoop.h"
+#include "ExportableModelJson.h"
+#include "JsonFields.h"
+#include "SessionOffsetSource.h"
+#include "SessionStore.h"
+#include "StorageError.h"
+
+#include <QCommandLineParser>
+#include <QElapsedTimer>
+#include <QFileInfo>
+#include <QJsonArray>
+#include <QJsonObject>
+#include <QThread>
+
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <mutex>
+
+namespace driftlab {
+
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+void onSignal(int) { g_stop = 1; }
+
+double number(const QCommandLineParser &p, const QCommandLineOption &o, const QString &name, double lo, double hi)
+{
+    bool ok = false;
+    const double v = p.value(o).toDouble(&ok);
+    if (!ok || !std::isfinite(v) || v <= lo || v > hi)
+        throw UsageError(QStringLiteral("compensate: %1 must be a number in (%2, %3], got '%4'").arg(name).arg(lo).arg(hi).arg(p.value(o)));
+    return v;
+}
+
+QJsonValue jsonNumber(double v)
+{
+    return std::isfinite(v) ? QJsonValue(v) : QJsonValue();
+}
+
+} // namespace
+
+QString CompensateCommand::summary() const
+{
+    return QStringLiteral(
+        "Run the live compensation loop: follow session ID of DB as it is recorded, run the fitted\n"
+        "data-driven model (MODEL.json from 'fit --model ... --out') on its input channels and write the\n"
+        "compensation -E of the chosen axis to a controller's Modbus TCP holding registers (--map: the\n"
+        "preset m80, seed 003's R5700.. registers in 1 um steps, or a map file). Writing is off unless\n"
+        "--enable; the offset is clamped to --max-offset, moves at most --max-rate and only in whole\n"
+        "register steps; a lost connection stops writing and is retried. Runs for --duration or until\n"
+        "Ctrl-C. Exit 1 if the controller was never reached. See docs/export.md.");
+}
+
+int CompensateCommand::run(const QStringList &args)
+{
+    QCommandLineParser p;
+    const QCommandLineOption modbus(QStringLiteral("modbus"), QStringLiteral("Controller's Modbus TCP server."), QStringLiteral("host:port"));
+    const QCommandLineOption mapOpt(QStringLiteral("map"), QStringLiteral("Register map: preset name (m80) or MAP.json (default m80)."),
+                                    QStringLiteral("preset|file"), QStringLiteral("m80"));
+    const QCommandLineOption axis(QStringLiteral("axis"), QStringLiteral("Map axis that gets the model's offset (default X)."),
+                                  QStringLiteral("X"), QStringLiteral("X"));
+    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Database of the recording."), QStringLiteral("file"));
+    const QCommandLineOption session(QStringLiteral("session"), QStringLiteral("Session to follow (being recorded, or finished)."),
+                                     QStringLiteral("id"));
+    const QCommandLineOption enable(QStringLiteral("enable"), QStringLiteral("Write to the controller (default: compute only)."));
+    const QCommandLineOption duration(QStringLiteral("duration"), QStringLiteral("Run time, SECONDS or H:MM:SS (default: until Ctrl-C)."),
+                                      QStringLiteral("time"));
+    const QCommandLineOption rate(QStringLiteral("rate"), QStringLiteral("Loop rate, Hz (default 10)."), QStringLiteral("Hz"),
+                                  QStringLiteral("10"));
+    const QCommandLineOption maxOffset(QStringLiteral("max-offset"), QStringLiteral("Largest offset written, um (default 50)."),
+                                       QStringLiteral("um"), QStringLiteral("50"));
+    const QCommandLineOption maxRate(QStringLiteral("max-rate"), QStringLiteral("Fastest change of the offset, um/s (default 5)."),
+                                     QStringLiteral("um/s"), QStringLiteral("5"));
+    const QCommandLineOption timeout(QStringLiteral("timeout"), QStringLiteral("Controller answer timeout, s (default 0.5)."),
+                                     QStringLiteral("s"), QStringLiteral("0.5"));
+    const QCommandLineOption position(QStringLiteral("position-channel"),
+                                      QStringLiteral("Axis position channel for the synthetic model (default X)."), QStringLiteral("id"),
+                                      QStringLiteral("X"));
+    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
+                                  QStringLiteral("file"));
+    p.addOptions({modbus, mapOpt, axis, db, session, enable, duration, rate, maxOffset, maxRate, timeout, position, json});
+    p.addPositionalArgument(QStringLiteral("MODEL.json"), QStringLiteral("Fitted data-driven model."));
+    if (!parse(p, args))
+        return 0;
+
+    // Everything is checked before anything connects.
+    if (p.positionalArguments().size() != 1)
+        throw UsageError(QStringLiteral("compensate: give exactly one MODEL.json"));
+    if (!p.isSet(modbus))
+        throw UsageError(QStringLiteral("compensate: --modbus HOST:PORT is required"));
+    CompensationLoop::Options o;
+    {
+        const QString endpoint = p.value(modbus);
+        const int colon = endpoint.lastIndexOf(QLatin1Char(':'));
+        bool ok = false;
+        o.port = colon > 0 ? endpoint.mid(colon + 1).toInt(&ok) : 0;
+        o.host = colon > 0 ? endpoint.left(colon) : QString();
+        if (!ok || o.port < 1 || o.port > 65535 || o.host.isEmpty())
+            throw UsageError(QStringLiteral("compensate: --modbus must be HOST:PORT, got '%1'").arg(endpoint));
+    }
+    try {
+        const QString map = p.value(mapOpt);
+        o.map = OffsetRegisterMap::presetNames().contains(map) ? OffsetRegisterMap::fromPreset(map) : OffsetRegisterMap::fromFile(map);
+    } catch (const std::invalid_argument &e) {
+        throw UsageError(QStringLiteral("compensate: --map: %1").arg(QString::fromUtf8(e.what())));
+    }
+    const int axisIndex = o.map.axisIndex(p.value(axis));
+    if (axisIndex < 0)
+        throw UsageError(QStringLiteral("compensate: --axis: the register map has no axis '%1'").arg(p.value(axis)));
+    o.rate_Hz = number(p, rate, QStringLiteral("--rate"), 0.0, 1000.0);
+    o.limits.maxOffset_um = number(p, maxOffset, QStringLiteral("--max-offset"), 0.0, 1e6);
+    o.limits.maxRate_um_s = number(p, maxRate, QStringLiteral("--max-rate"), 0.0, 1e6);
+    o.timeout_s = number(p, timeout, QStringLiteral("--timeout"), 0.0, 60.0);
+    o.enabled = p.isSet(enable);
+    const double seconds = p.isSet(duration) ? CliSupport::parseDuration(p.value(duration), QStringLiteral("--duration")) : 0.0;
+    if (!p.isSet(session))
+        throw UsageError(QStringLiteral("compensate: --session ID is required (the session being recorded)"));
+    bool ok = false;
+    const qint64 sessionId = p.value(session).toLongLong(&ok);
+    if (!ok || sessionId <= 0)
+        throw UsageError(QStringLiteral("compensate: --session must be a session id, got '%1'").arg(p.value(session)));
+    const QString path = CliSupport::databasePath(p.value(db), QString(), true);
+    if (p.isSet(json))
+        CliSupport::checkOutput(p.value(json), QStringLiteral("--json"), false);
+    const QString modelPath = p.positionalArguments().front();
+    std::unique_ptr<SessionOffsetSource> source;
+    try {
+        const ExportableModel model = ExportableModelJson::read(modelPath);
+        source = std::make_unique<SessionOffsetSource>(path, sessionId, model, p.value(position));
+        SessionStore(path).session(sessionId); // exists
+    } catch (const std::invalid_argument &e) {
+        throw UsageError(QStringLiteral("compensate: %1: %2").arg(modelPath, QString::fromUtf8(e.what())));
+    } catch (const StorageError &e) {
+        throw UsageError(QStringLiteral("compensate: %1").arg(QString::fromUtf8(e.what())));
+    }
+
+    // The source runs on the loop's thread; its last problem is reported here.
+    std::mutex problemMutex;
+    QString problem;
+    std::atomic<double> modelTime{std::nan("")}, error{std::nan("")};
+    const int axes = o.map.axes.size();
+    CompensationLoop loop(o, [&](double) {
+        QVector<double> offsets(axes, std::nan(""));
+        try {
+            offsets[axisIndex] = source->update();
+            modelTime = source->modelTime_s();
+            error = source->error_um();
+        } catch (const std::exception &e) {
+            std::lock_guard<std::mutex> lock(problemMutex);
+            problem = QString::fromUtf8(e.what());
+        }
+        return offsets;
+    });
+    CliSupport::progress(QStringLiteral("compensating axis %1 through %2:%3 (%4 map), model %5 on session %6 of %7; writing %8")
+                             .arg(o.map.axes[axisIndex].name, o.host)
+                             .arg(o.port)
+                             .arg(o.map.preset.isEmpty() ? p.value(mapOpt) : o.map.preset, QFileInfo(modelPath).fileName())
+                             .arg(sessionId)
+                             .arg(path, o.enabled ? QStringLiteral("enabled") : QStringLiteral("off (no --enable)")));
+    g_stop = 0;
+    const auto previousInt = std::signal(SIGINT, onSignal);
+    const auto previousTerm = std::signal(SIGTERM, onSignal);
+    loop.start();
+    QElapsedTimer wall;
+    wall.start();
+    int shown = 0;
+    double lastReport = 0.0;
+    QString lastProblem;
+    while (!g_stop && (seconds <= 0.0 || wall.elapsed() / 1000.0 < seconds)) {
+        QThread::msleep(50);
+        const QVector<CompensationLoop::Entry> log = loop.log();
+        for (; shown < log.size(); ++shown)
+            if (!log[shown].what.startsWith(QLatin1String("write ")))
+                CliSupport::progress(QStringLiteral("  %1 s: %2").arg(log[shown].t_s, 0, 'f', 2).arg(log[shown].what));
+        {
+            std::lock_guard<std::mutex> lock(problemMutex);
+            if (problem != lastProblem && !problem.isEmpty())
+                CliSupport::progress(QStringLiteral("  model: %1").arg(problem));
+            lastProblem = problem;
+        }
+        if (wall.elapsed() / 1000.0 - lastReport >= 1.0) {
+            lastReport = wall.elapsed() / 1000.0;
+            const CompensationLoop::Status s = loop.status();
+            CliSupport::progress(QStringLiteral("  %1 s: session time %2 s, E %3 um, offset %4 um requested, %5 um written%6")
+                                     .arg(lastReport, 0, 'f', 0)
+                                     .arg(modelTime.load(), 0, 'f', 1)
+                                     .arg(error.load(), 0, 'f', 2)
+                                     .arg(s.requested_um.value(axisIndex), 0, 'f', 2)
+                                     .arg(s.written_um.value(axisIndex), 0, 'f', 0)
+                                     .arg(s.connected ? QString() : QStringLiteral(" (not connected)")));
+        }
+    }
+    loop.stop();
+    std::signal(SIGINT, previousInt);
+    std::signal(SIGTERM, previousTerm);
+    const CompensationLoop::Status s = loop.status();
+    QJsonArray log;
+    bool everConnected = false;
+    for (const CompensationLoop::Entry &e : loop.log()) {
+        log.append(QJsonObject{{QStringLiteral("t_s"), e.t_s}, {QStringLiteral("what"), e.what}});
+        everConnected = everConnected || e.what.startsWith(QLatin1String("connected to"));
+    }
+    QJsonArray written;
+    for (int i = 0; i < axes; ++i)
+        written.append(QJsonObject{{QStringLiteral("axis"), o.map.axes[i].name}, {QStringLiteral("written_um"), jsonNumber(s.written_um[i])}});
+    const QJsonObject result{{QStringLiteral("model"), modelPath},
+                             {QStringLiteral("session"), static_cast<double>(sessionId)},
+                             {QStringLiteral("enabled"), s.enabled},
+                             {QStringLiteral("connected"), everConnected},
+                             {QStringLiteral("ticks"), static_cast<double>(s.ticks)},
+                             {QStringLiteral("writes"), static_cast<double>(s.writes)},
+                             {QStringLiteral("failed_writes"), static_cast<double>(s.failedWrites)},
+                             {QStringLiteral("reconnects"), s.reconnects},
+                             {QStringLiteral("model_time_s"), jsonNumber(modelTime)},
+                             {QStringLiteral("error_um"), jsonNumber(error)},
+                             {QStringLiteral("axes"), written},
+                             {QStringLiteral("period_mean_s"), s.meanPeriod_s},
+                             {QStringLiteral("period_jitter_s"), s.periodJitter_s},
+                             {QStringLiteral("max_lateness_s"), s.maxLateness_s},
+                             {QStringLiteral("log"), log}};
+    if (p.isSet(json))
+        CliSupport::writeJson(QJsonDocument(result), p.value(json));
+    CliSupport::progress(QStringLiteral("compensate: %1 ticks, %2 writes, %3 reconnects; period %4 ms, jitter %5 ms")
+                             .arg(s.ticks)
+                             .arg(s.writes)
+                             .arg(s.reconnects)
+                             .arg(s.meanPeriod_s * 1e3, 0, 'f', 2)
+                             .arg(s.periodJitter_s * 1e3, 0, 'f', 2));
+    if (!everConnected)
+        throw std::runtime_error(QStringLiteral("never reached the controller at %1:%2").arg(o.host).arg(o.port).toStdString());
+    return 0;
+}
+
+} // namespace driftlab

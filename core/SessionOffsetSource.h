@@ -1,0 +1,57 @@
+#pragma once
+// The offset a live compensation loop writes, from a fitted data-driven model following a
+// session as it is recorded: each update() reads the samples the model's input channels gained
+// since the last one (its own read-only connection to the session's database, opened on the
+// calling thread), advances the model on the first input's sample times with the other inputs
+// held at their latest value (as the fitters' grid does), and returns the compensation -E in um
+// at the newest time every input has reached. The synthetic model is evaluated at the latest
+// position of its position channel. Physics (fdm-seed000) models are refused for now: they run
+// on a controller through the C export (docs/export.md).
+
+#include "DataDrivenPredictor.h"
+#include "ExportableModel.h"
+
+#include <QString>
+#include <QVector>
+
+#include <memory>
+#include <optional>
+
+namespace driftlab {
+
+class SessionStore;
+
+class SessionOffsetSource {
+public:
+    // Checks what can be checked without the database: the model kind. Throws
+    // std::invalid_argument with the reason.
+    SessionOffsetSource(const QString &databasePath, qint64 sessionId, const ExportableModel &model,
+                        const QString &positionChannel = QStringLiteral("X"));
+    ~SessionOffsetSource();
+
+    // Throws std::invalid_argument when the session lacks an input channel, StorageError when
+    // the database cannot be read. NaN until every input has a sample.
+    double update();
+    double modelTime_s() const { return m_time_s; }
+    double error_um() const { return m_error_um; } // the model's E at modelTime_s
+
+private:
+    void open();
+
+    QString m_path;
+    qint64 m_session;
+    DataDrivenModel m_model;
+    QString m_positionChannel;
+    std::unique_ptr<SessionStore> m_store;
+    std::optional<DataDrivenPredictor> m_predictor;
+    QVector<qint64> m_channels;        // per model input
+    qint64 m_positionId = 0;
+    QVector<double> m_readUpTo;        // per input: newest sample time read
+    QVector<QVector<double>> m_pendT, m_pendV; // per input: samples read but not yet consumed
+    std::vector<double> m_held;        // per input: latest value at the model time
+    double m_position_mm = 0.0;
+    double m_time_s = -1e300;
+    double m_error_um = 0.0;
+};
+
+} // namespace driftlab

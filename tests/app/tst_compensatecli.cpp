@@ -1,0 +1,179 @@
+// driftlab-cli compensate (issue 16): a data-driven model fitted by 'fit' follows a session and
+// its compensation is written to an independent Modbus TCP server (libmodbus, modbus_peer
+// --log-writes). The value the controller ends with is checked against the model evaluated
+// here from its JSON on the session's last samples; a dry run writes nothing; the loop follows
+// a recording in progress; bad input exits 2 naming the option or field.
+#include "SessionStore.h"
+
+#include "../support/CliRunner.h"
+#include "../support/TestPeers.h"
+
+#include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QProcess>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include <cmath>
+
+using namespace driftlab;
+using clirunner::run;
+
+class TestCompensateCli : public QObject {
+    Q_OBJECT
+private slots:
+    void initTestCase();
+    void writesTheModelsCompensation();
+    void dryRunWritesNothing();
+    void followsARecordingInProgress();
+    void badInputExitsTwo_data();
+    void badInputExitsTwo();
+
+private:
+    QStringList writes(testpeers::Peer &peer) const;
+    QTemporaryDir m_dir;
+    QString m_db, m_model;
+};
+
+void TestCompensateCli::initTestCase()
+{
+    m_db = m_dir.filePath(QStringLiteral("rig.sqlite"));
+    m_model = m_dir.filePath(QStringLiteral("mlr.json"));
+    QCOMPARE(run({QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("2:00:00"),
+                  QStringLiteral("--out"), m_db}).code,
+             0);
+    const clirunner::Result r = run({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--model"), QStringLiteral("mlr"),
+                                     QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--db"), m_db, QStringLiteral("--out"), m_model});
+    QVERIFY2(r.code == 0, r.err.constData());
+}
+
+QStringList TestCompensateCli::writes(testpeers::Peer &peer) const
+{
+    QStringList lines;
+    for (const QByteArray &l : peer.output().split('\n'))
+        if (l.startsWith("write "))
+            lines << QString::fromLatin1(l);
+    return lines;
+}
+
+void TestCompensateCli::writesTheModelsCompensation()
+{
+    // The model evaluated from its JSON (mlr: lags 0, a static law) on the session's last samples.
+    QFile f(m_model);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QJsonObject model = QJsonDocument::fromJson(f.readAll()).object();
+    const QJsonObject linear = model.value(QStringLiteral("linear")).toObject();
+    double e = linear.value(QStringLiteral("intercept")).toDouble();
+    SessionStore store(m_db);
+    for (const QJsonValue &v : linear.value(QStringLiteral("terms")).toArray()) {
+        const QJsonObject term = v.toObject();
+        QCOMPARE(term.value(QStringLiteral("lags_s")).toArray().size(), 1);
+        double last = std::nan("");
+        for (const ChannelInfo &c : store.channels(1))
+            if (c.key == term.value(QStringLiteral("channel")).toString())
+                last = store.samples(c.id).v.last();
+        QVERIFY(std::isfinite(last));
+        e += term.value(QStringLiteral("coefficients")).toArray().at(0).toDouble() *
+             std::pow((last - term.value(QStringLiteral("offset")).toDouble()) / term.value(QStringLiteral("scale")).toDouble(),
+                      term.value(QStringLiteral("power")).toInt());
+    }
+    QVERIFY(std::abs(e) >= 2.0 && std::abs(e) < 100.0);
+
+    testpeers::Peer peer;
+    QVERIFY(peer.start(QStringLiteral(MODBUS_PEER), {QStringLiteral("--tcp"), QStringLiteral("0"), QStringLiteral("--log-writes")}));
+    const clirunner::Result r = run({QStringLiteral("compensate"), m_model, QStringLiteral("--modbus"), QStringLiteral("127.0.0.1:") + peer.ready(),
+                                     QStringLiteral("--map"), QStringLiteral("m80"), QStringLiteral("--db"), m_db, QStringLiteral("--session"),
+                                     QStringLiteral("1"), QStringLiteral("--enable"), QStringLiteral("--duration"), QStringLiteral("3"),
+                                     QStringLiteral("--max-rate"), QStringLiteral("40"), QStringLiteral("--max-offset"), QStringLiteral("100"),
+                                     QStringLiteral("--json"), QStringLiteral("-")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const QJsonObject result = QJsonDocument::fromJson(r.out).object();
+    QCOMPARE(result.value(QStringLiteral("model_time_s")).toDouble(), 7200.0);
+    QVERIFY(std::abs(result.value(QStringLiteral("error_um")).toDouble() - e) < 1e-6 * std::max(1.0, std::abs(e)));
+    // The controller's register pair R5700/R5701 ends at the compensation -E, in whole 1 um
+    // steps reached from 0 (truncated toward the held value).
+    const QStringList w = writes(peer);
+    QVERIFY(w.size() >= 3);
+    const QStringList last = w.last().split(QLatin1Char(' '));
+    QCOMPARE(last.value(2), QStringLiteral("5700"));
+    const qint32 value = static_cast<qint32>((last.value(4).toUInt() << 16) | last.value(3).toUInt());
+    QCOMPARE(static_cast<double>(value), -std::trunc(e));
+    for (const QString &line : w)
+        QCOMPARE(line.split(QLatin1Char(' ')).value(2), QStringLiteral("5700")); // only X
+    QCOMPARE(result.value(QStringLiteral("writes")).toInt(), w.size());
+}
+
+void TestCompensateCli::dryRunWritesNothing()
+{
+    testpeers::Peer peer;
+    QVERIFY(peer.start(QStringLiteral(MODBUS_PEER), {QStringLiteral("--tcp"), QStringLiteral("0"), QStringLiteral("--log-writes")}));
+    const clirunner::Result r = run({QStringLiteral("compensate"), m_model, QStringLiteral("--modbus"), QStringLiteral("127.0.0.1:") + peer.ready(),
+                                     QStringLiteral("--db"), m_db, QStringLiteral("--session"), QStringLiteral("1"), QStringLiteral("--duration"),
+                                     QStringLiteral("1.5"), QStringLiteral("--json"), QStringLiteral("-")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    QVERIFY(r.err.contains("writing off (no --enable)"));
+    QCOMPARE(QJsonDocument::fromJson(r.out).object().value(QStringLiteral("writes")).toInt(), 0);
+    QVERIFY(writes(peer).isEmpty());
+}
+
+void TestCompensateCli::followsARecordingInProgress()
+{
+    const QString db = m_dir.filePath(QStringLiteral("live.sqlite"));
+    QProcess recorder;
+    recorder.start(QStringLiteral(DRIFTLAB_CLI), {QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"),
+                                                  QStringLiteral("2:00:00"), QStringLiteral("--speed"), QStringLiteral("600"),
+                                                  QStringLiteral("--out"), db});
+    QVERIFY(recorder.waitForStarted());
+    QVERIFY(testpeers::waitFor([&] { return QFile::exists(db); }, 10000));
+    QTest::qWait(1000);
+    testpeers::Peer peer;
+    QVERIFY(peer.start(QStringLiteral(MODBUS_PEER), {QStringLiteral("--tcp"), QStringLiteral("0"), QStringLiteral("--log-writes")}));
+    const clirunner::Result r = run({QStringLiteral("compensate"), m_model, QStringLiteral("--modbus"), QStringLiteral("127.0.0.1:") + peer.ready(),
+                                     QStringLiteral("--db"), db, QStringLiteral("--session"), QStringLiteral("1"), QStringLiteral("--enable"),
+                                     QStringLiteral("--duration"), QStringLiteral("3"), QStringLiteral("--json"), QStringLiteral("-")});
+    QVERIFY(recorder.waitForFinished(60000));
+    QVERIFY2(r.code == 0, r.err.constData());
+    // It followed the recording: the model's time moved with the session's (600x real time).
+    QVERIFY2(r.err.contains(" s: session time "), r.err.constData());
+    const double reached = QJsonDocument::fromJson(r.out).object().value(QStringLiteral("model_time_s")).toDouble();
+    QVERIFY2(reached > 600.0 && reached < 7200.0, qPrintable(QString::number(reached)));
+    QVERIFY(!writes(peer).isEmpty());
+}
+
+void TestCompensateCli::badInputExitsTwo_data()
+{
+    QTest::addColumn<QStringList>("extra");
+    QTest::addColumn<QString>("message");
+    QTest::newRow("max-rate") << QStringList{QStringLiteral("--max-rate"), QStringLiteral("0")} << QStringLiteral("--max-rate must be a number");
+    QTest::newRow("max-offset") << QStringList{QStringLiteral("--max-offset"), QStringLiteral("-5")} << QStringLiteral("--max-offset must be");
+    QTest::newRow("preset") << QStringList{QStringLiteral("--map"), QStringLiteral("m70")} << QStringLiteral("--map: ");
+    QTest::newRow("overlap") << QStringList{QStringLiteral("--map"), QStringLiteral("OVERLAP")}
+                             << QStringLiteral("axes[1].address: registers 101-102 of axis Y overlap registers 100-101 of axis X");
+    QTest::newRow("axis") << QStringList{QStringLiteral("--axis"), QStringLiteral("W")} << QStringLiteral("the register map has no axis 'W'");
+    QTest::newRow("session") << QStringList{QStringLiteral("--session"), QStringLiteral("9")} << QStringLiteral("no session with id 9");
+    QTest::newRow("endpoint") << QStringList{QStringLiteral("--modbus"), QStringLiteral("nohost")} << QStringLiteral("--modbus must be HOST:PORT");
+}
+
+void TestCompensateCli::badInputExitsTwo()
+{
+    QFETCH(QStringList, extra);
+    QFETCH(QString, message);
+    const QString overlap = m_dir.filePath(QStringLiteral("overlap.json"));
+    QFile f(overlap);
+    QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    f.write(R"({"axes": [{"axis": "X", "address": 100}, {"axis": "Y", "address": 101}]})");
+    f.close();
+    extra.replaceInStrings(QStringLiteral("OVERLAP"), overlap);
+    QStringList args{QStringLiteral("compensate"), m_model, QStringLiteral("--modbus"), QStringLiteral("127.0.0.1:1"), QStringLiteral("--db"),
+                     m_db, QStringLiteral("--session"), QStringLiteral("1"), QStringLiteral("--duration"), QStringLiteral("1")};
+    // A later option overrides the defaults above.
+    args += extra;
+    const clirunner::Result r = run(args);
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains(message.toUtf8()), r.err.constData());
+}
+
+QTEST_GUILESS_MAIN(TestCompensateCli)
+#include "tst_compensatecli.moc"
