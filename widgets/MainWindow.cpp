@@ -1,6 +1,7 @@
 #include "MainWindow.h"
 
 #include "AcquisitionPanel.h"
+#include "CompensationPanel.h"
 #include "BundleTransfer.h"
 #include "CsvImportDialog.h"
 #include "AnalysisPanel.h"
@@ -68,7 +69,8 @@ MainWindow::MainWindow(QWidget *parent)
       m_models(new ModelsPanel(this)),
       m_diagnosis(new DiagnosisPanel(this)),
       m_undo(new QUndoStack(this)),
-      m_analysis(new AnalysisPanel(this))
+      m_analysis(new AnalysisPanel(this)),
+      m_compensation(new CompensationPanel(this))
 {
     setObjectName(QStringLiteral("DriftLabMainWindow"));
     setWindowTitle(tr("DriftLab"));
@@ -102,6 +104,10 @@ MainWindow::MainWindow(QWidget *parent)
                                          Qt::BottomDockWidgetArea, QKeySequence(Qt::CTRL + Qt::Key_5));
     tabifyDockWidget(diagnosis, analysis); // sensitive points and data-driven models
     analysis->hide();
+    QDockWidget *compensation = addPanelDock(tr("Compensation"), QStringLiteral("CompensationDock"), m_compensation,
+                                             Qt::RightDockWidgetArea, QKeySequence(Qt::CTRL + Qt::Key_6));
+    tabifyDockWidget(acquisition, compensation); // live offsets to a controller (docs/export.md)
+    compensation->hide();
     // Further docks (rig setup, ...): addPanelDock(...) here.
 
     // A finished recording appears in the session list of the database it went to.
@@ -357,6 +363,7 @@ void MainWindow::showSession(qint64 sessionId)
     try {
         m_workspace->setSession(m_store.get(), sessionId);
         m_sessionId = sessionId;
+        m_compensation->setSession(m_store->path(), sessionId);
         m_browser->selectSession(sessionId);
         m_browser->setChannels(m_store->channels(sessionId), m_workspace->defaultChannels());
     } catch (const std::exception &e) {

@@ -20,6 +20,7 @@ namespace driftlab {
 
 class AcquisitionPanel;
 class AnalysisPanel;
+class CompensationPanel;
 class DiagnosisPanel;
 class ModelsPanel;
 class ReviewWorkspace;
@@ -69,6 +70,7 @@ public:
     ModelsPanel *models() const { return m_models; }
     DiagnosisPanel *diagnosis() const { return m_diagnosis; }
     AnalysisPanel *analysis() const { return m_analysis; }
+    CompensationPanel *compensation() const { return m_compensation; }
     SessionBrowser *browser() const { return m_browser; }
     QUndoStack *undoStack() const { return m_undo; }
     const SessionStore *store() const { return m_store.get(); }
@@ -114,6 +116,7 @@ private:
     DiagnosisPanel *m_diagnosis;
     QUndoStack *m_undo;
     AnalysisPanel *m_analysis;
+    CompensationPanel *m_compensation;
     QMenu *m_recentMenu = nullptr;
     QMenu *m_viewMenu = nullptr;
     QAction *m_reportAction = nullptr;
