@@ -46,6 +46,19 @@ void CompensationLoop::Options::check() const
         throw std::invalid_argument("the register map has no axis");
 }
 
+bool CompensationLoop::Options::setEndpoint(const QString &hostPort)
+{
+    const QString text = hostPort.trimmed();
+    const int colon = text.lastIndexOf(QLatin1Char(':'));
+    bool ok = false;
+    const int p = colon > 0 ? text.mid(colon + 1).toInt(&ok) : 0;
+    if (!ok || p < 1 || p > 65535)
+        return false;
+    host = text.left(colon);
+    port = p;
+    return true;
+}
+
 CompensationLoop::CompensationLoop(const Options &options, OffsetSource source) : m_options(options), m_source(std::move(source))
 {
     m_options.check();

@@ -36,6 +36,8 @@ public:
         double timeout_s = 0.5;
         bool enabled = false;
         void check() const; // throws std::invalid_argument naming the option
+        // Sets host and port from "HOST:PORT"; false if it is not that.
+        bool setEndpoint(const QString &hostPort);
     };
     // Requested offsets in um at loop time t_s, one per map axis (NaN: hold that axis).
     using OffsetSource = std::function<QVector<double>(double t_s)>;

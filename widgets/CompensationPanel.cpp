@@ -153,13 +153,8 @@ bool CompensationPanel::start()
         if (m_sessionId <= 0)
             throw std::invalid_argument(tr("Select the session to follow in the Sessions list first.").toStdString());
         CompensationLoop::Options o;
-        const QString endpoint = m_endpoint->text().trimmed();
-        const int colon = endpoint.lastIndexOf(QLatin1Char(':'));
-        bool ok = false;
-        o.port = colon > 0 ? endpoint.mid(colon + 1).toInt(&ok) : 0;
-        o.host = endpoint.left(colon);
-        if (!ok || o.host.isEmpty())
-            throw std::invalid_argument(tr("Controller: expected HOST:PORT, got '%1'").arg(endpoint).toStdString());
+        if (!o.setEndpoint(m_endpoint->text()))
+            throw std::invalid_argument(tr("Controller: expected HOST:PORT, got '%1'").arg(m_endpoint->text()).toStdString());
         const QString map = m_map->currentText().trimmed();
         o.map = OffsetRegisterMap::presetNames().contains(map) ? OffsetRegisterMap::fromPreset(map) : OffsetRegisterMap::fromFile(map);
         m_axisIndex = o.map.axisIndex(m_axis->currentText());

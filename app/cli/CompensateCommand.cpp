@@ -93,15 +93,8 @@ int CompensateCommand::run(const QStringList &args)
     if (!p.isSet(modbus))
         throw UsageError(QStringLiteral("compensate: --modbus HOST:PORT is required"));
     CompensationLoop::Options o;
-    {
-        const QString endpoint = p.value(modbus);
-        const int colon = endpoint.lastIndexOf(QLatin1Char(':'));
-        bool ok = false;
-        o.port = colon > 0 ? endpoint.mid(colon + 1).toInt(&ok) : 0;
-        o.host = colon > 0 ? endpoint.left(colon) : QString();
-        if (!ok || o.port < 1 || o.port > 65535 || o.host.isEmpty())
-            throw UsageError(QStringLiteral("compensate: --modbus must be HOST:PORT, got '%1'").arg(endpoint));
-    }
+    if (!o.setEndpoint(p.value(modbus)))
+        throw UsageError(QStringLiteral("compensate: --modbus must be HOST:PORT, got '%1'").arg(p.value(modbus)));
     try {
         const QString map = p.value(mapOpt);
         o.map = OffsetRegisterMap::presetNames().contains(map) ? OffsetRegisterMap::fromPreset(map) : OffsetRegisterMap::fromFile(map);
