@@ -215,6 +215,23 @@ int CompensateCommand::run(const QStringList &args)
                              {QStringLiteral("period_jitter_s"), s.periodJitter_s},
                              {QStringLiteral("max_lateness_s"), s.maxLateness_s},
                              {QStringLiteral("log"), log}};
+    // The run's summary goes with the session (its report's compensation section), unless the
+    // database cannot be written (read-only media): then only the JSON and the log keep it.
+    if (everConnected) {
+        QJsonObject summary = result;
+        summary.remove(QStringLiteral("log"));
+        summary.insert(QStringLiteral("controller"), QStringLiteral("%1:%2").arg(o.host).arg(o.port));
+        summary.insert(QStringLiteral("register_map"), o.map.preset.isEmpty() ? p.value(mapOpt) : o.map.preset);
+        summary.insert(QStringLiteral("axis"), o.map.axes[axisIndex].name);
+        summary.insert(QStringLiteral("max_offset_um"), o.limits.maxOffset_um);
+        summary.insert(QStringLiteral("max_rate_um_s"), o.limits.maxRate_um_s);
+        summary.insert(QStringLiteral("rate_Hz"), o.rate_Hz);
+        try {
+            SessionStore(path).addAnalysisResult(sessionId, QStringLiteral("compensation"), summary);
+        } catch (const StorageError &e) {
+            CliSupport::progress(QStringLiteral("  the run's summary was not stored with the session: %1").arg(QString::fromUtf8(e.what())));
+        }
+    }
     if (p.isSet(json))
         CliSupport::writeJson(QJsonDocument(result), p.value(json));
     CliSupport::progress(QStringLiteral("compensate: %1 ticks, %2 writes, %3 reconnects; period %4 ms, jitter %5 ms")

@@ -103,6 +103,18 @@ void TestCompensateCli::writesTheModelsCompensation()
     for (const QString &line : w)
         QCOMPARE(line.split(QLatin1Char(' ')).value(2), QStringLiteral("5700")); // only X
     QCOMPARE(result.value(QStringLiteral("writes")).toInt(), w.size());
+    // The run is stored with the session, for its report.
+    const QJsonObject stored = SessionStore(m_db).latestAnalysisResult(1, QStringLiteral("compensation"));
+    QCOMPARE(stored.value(QStringLiteral("writes")).toInt(), w.size());
+    QCOMPARE(stored.value(QStringLiteral("register_map")).toString(), QStringLiteral("m80"));
+    const QString html = m_dir.filePath(QStringLiteral("report.html"));
+    const clirunner::Result report = run({QStringLiteral("report"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--out"), html});
+    QVERIFY2(report.code == 0, report.err.constData());
+    QFile page(html);
+    QVERIFY(page.open(QIODevice::ReadOnly));
+    const QByteArray text = page.readAll();
+    QVERIFY(!text.contains("no compensation loop was run"));
+    QVERIFY(text.contains("register_map") || text.contains("register map"));
 }
 
 void TestCompensateCli::dryRunWritesNothing()
