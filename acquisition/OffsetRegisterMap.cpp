@@ -60,6 +60,8 @@ OffsetRegisterMap OffsetRegisterMap::fromJson(JsonFields &f)
             m.axes.push_back(axis);
         }
     }
+    if (m.axes.isEmpty())
+        f.fail(QStringLiteral("axes"), QStringLiteral("needs at least one axis"));
     m.unitId = f.integer(QStringLiteral("unit_id"), m.unitId, 0, 255);
     m.resolution_um = f.number(QStringLiteral("resolution_um"), m.resolution_um, 1e-6, 1e3);
     m.sign = f.integer(QStringLiteral("sign"), m.sign, -1, 1);

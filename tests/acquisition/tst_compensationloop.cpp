@@ -64,6 +64,8 @@ void TestCompensationLoop::registerMapRefusals_data()
     QTest::newRow("sign") << QByteArray(R"({"preset": "m80", "sign": 0})") << QStringLiteral("map.json.sign: must be 1 or -1");
     QTest::newRow("resolution") << QByteArray(R"({"preset": "m80", "resolution_um": 0})") << QStringLiteral("map.json.resolution_um");
     QTest::newRow("no axes") << QByteArray(R"({"unit_id": 1})") << QStringLiteral("map.json.axes");
+    // Found by fuzz_offset_map: an empty list was accepted as a map without axes.
+    QTest::newRow("empty axes") << QByteArray(R"({"axes": [], "unit_id": 3})") << QStringLiteral("map.json.axes: needs at least one axis");
     QTest::newRow("unknown key") << QByteArray(R"({"preset": "m80", "scale": 2})") << QStringLiteral("map.json.scale: unknown key");
 }
 
