@@ -4,6 +4,8 @@
 # regression inputs (tests/fuzz/regressions/HARNESS/), then runs each harness for SECONDS
 # (default 60) from a seed corpus of our own valid files, as many at a time as there are cores.
 #   scripts/fuzz.sh [SECONDS [HARNESS...]]     e.g. scripts/fuzz.sh 600 bundle_channels
+# DRIFTLAB_FUZZ_SEED=N fixes libFuzzer's seed (CI does, so that a CI run explores the same
+# inputs each time and a new finding comes from a longer local run, not from chance).
 # Prints executions, edges covered and corpus size per harness. Exit 1 if a harness crashed,
 # hung (10 s), exceeded 2 GB or failed a regression input: the input is in
 # build-fuzz/fuzz-work/HARNESS/findings/; once fixed, add it to tests/fuzz/regressions/HARNESS/.
@@ -63,7 +65,9 @@ run_one() {
     fi
   fi
   local status=ok
-  "$exe" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
+  local seed=()
+  [ -z "${DRIFTLAB_FUZZ_SEED:-}" ] || seed=(-seed="$DRIFTLAB_FUZZ_SEED")
+  "$exe" "${seed[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
     -artifact_prefix="$work/findings/" "$work/corpus" "$work/seeds" >"$work/log" 2>&1 || status=FINDING
   local execs cov corp
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work/log" | grep -o '[0-9]*$' || echo 0)

@@ -22,4 +22,4 @@ UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
 
 # libFuzzer on every parser of user files, under ASan + UBSan (clang; a separate build):
 # regression inputs first, then each harness for DRIFTLAB_FUZZ_SECONDS (docs/reliability.md).
-"$src/scripts/fuzz.sh" "${DRIFTLAB_FUZZ_SECONDS:-30}"
+DRIFTLAB_FUZZ_SEED="${DRIFTLAB_FUZZ_SEED:-1}" "$src/scripts/fuzz.sh" "${DRIFTLAB_FUZZ_SECONDS:-30}"
