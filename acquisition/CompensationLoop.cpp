@@ -17,14 +17,13 @@ namespace {
 
 // Runs a local event loop until `done` or timeout_s; Qt SerialBus delivers its signals there.
 template <typename Done>
-void waitFor(double timeout_s, const QObject *sender, Done done)
+void waitFor(double timeout_s, Done done)
 {
     QEventLoop loop;
     QTimer timer;
     timer.setSingleShot(true);
     QObject::connect(&timer, &QTimer::timeout, &loop, &QEventLoop::quit);
     done(loop);
-    Q_UNUSED(sender);
     timer.start(std::max(10, static_cast<int>(std::lround(timeout_s * 1000.0))));
     loop.exec();
 }
@@ -164,7 +163,7 @@ void CompensationLoop::run()
         client->setNumberOfRetries(0);
         const double connectTimeout_s = std::max(1.0, m_options.timeout_s);
         if (client->connectDevice() && client->state() != QModbusDevice::ConnectedState) {
-            waitFor(connectTimeout_s, client.get(), [&](QEventLoop &loop) {
+            waitFor(connectTimeout_s, [&](QEventLoop &loop) {
                 QObject::connect(client.get(), &QModbusDevice::stateChanged, &loop, [&loop](QModbusDevice::State s) {
                     if (s == QModbusDevice::ConnectedState || s == QModbusDevice::UnconnectedState)
                         loop.quit();
@@ -202,7 +201,7 @@ void CompensationLoop::run()
         if (!reply)
             return client->errorString();
         if (!reply->isFinished()) {
-            waitFor(m_options.timeout_s + 1.0, reply.get(), [&](QEventLoop &loop) {
+            waitFor(m_options.timeout_s + 1.0, [&](QEventLoop &loop) {
                 QObject::connect(reply.get(), &QModbusReply::finished, &loop, &QEventLoop::quit);
             });
         }
