@@ -61,14 +61,14 @@ CompensationPanel::CompensationPanel(QWidget *parent)
     modelRow->addWidget(browse);
     m_map->setEditable(true);
     m_map->addItems(OffsetRegisterMap::presetNames());
-    m_map->setToolTip(tr("A preset (m80: R5700/R5701 X, R5702/R5703 Y, R5704/R5705 Z, 1 um steps) or a map file"));
+    m_map->setToolTip(tr("A preset (m80: R5700/R5701 X, R5702/R5703 Y, R5704/R5705 Z, 1 µm steps) or a map file"));
     m_axis->addItems({QStringLiteral("X"), QStringLiteral("Y"), QStringLiteral("Z")});
     m_maxOffset->setRange(0.1, 1000.0);
     m_maxOffset->setValue(50.0);
-    m_maxOffset->setSuffix(QStringLiteral(" um"));
+    m_maxOffset->setSuffix(QStringLiteral(" µm"));
     m_maxRate->setRange(0.01, 1000.0);
     m_maxRate->setValue(5.0);
-    m_maxRate->setSuffix(QStringLiteral(" um/s"));
+    m_maxRate->setSuffix(QStringLiteral(" µm/s"));
     m_rate->setRange(0.1, 100.0);
     m_rate->setValue(10.0);
     m_rate->setSuffix(QStringLiteral(" Hz"));
@@ -249,7 +249,9 @@ void CompensationPanel::onTick()
     const CompensationLoop::Status s = m_loop->status();
     const QVector<CompensationLoop::Entry> log = m_loop->log();
     for (; m_shown < log.size(); ++m_shown)
-        m_log->appendPlainText(QStringLiteral("%1 s  %2").arg(log[m_shown].t_s, 8, 'f', 2).arg(log[m_shown].what));
+        m_log->appendPlainText(QStringLiteral("%1 s  %2")
+                                   .arg(log[m_shown].t_s, 8, 'f', 2)
+                                   .arg(QString(log[m_shown].what).replace(QStringLiteral(" um "), QStringLiteral(" µm "))));
     QString state = s.connected ? tr("connected") : tr("<span style='color:#b00020'>%1</span>").arg(s.message.toHtmlEscaped());
     state += s.enabled ? tr(", writing") : tr(", writing off");
     if (s.clamped)
@@ -257,7 +259,7 @@ void CompensationPanel::onTick()
     if (s.rateLimited)
         state += tr(", following at the rate limit");
     if (m_progress && !std::isnan(m_progress->time_s.load()))
-        state += tr("; model at %1 s of the session, E = %2 um").arg(m_progress->time_s.load(), 0, 'f', 1).arg(m_progress->error_um.load(), 0, 'f', 2);
+        state += tr("; model at %1 s of the session, E = %2 µm").arg(m_progress->time_s.load(), 0, 'f', 1).arg(m_progress->error_um.load(), 0, 'f', 2);
     state += tr("; period %1 ms (jitter %2 ms), %3 writes, %4 reconnects")
                  .arg(s.meanPeriod_s * 1e3, 0, 'f', 1)
                  .arg(s.periodJitter_s * 1e3, 0, 'f', 2)
@@ -269,7 +271,7 @@ void CompensationPanel::onTick()
         const double r = s.requested_um[i], w = s.written_um.value(i);
         if (std::isnan(r) && std::isnan(w))
             continue;
-        axes << tr("%1: requested %2 um, controller holds %3 um")
+        axes << tr("%1: requested %2 µm, controller holds %3 µm")
                     .arg(m_axisNames.value(i))
                     .arg(std::isnan(r) ? QStringLiteral("-") : QString::number(r, 'f', 2))
                     .arg(std::isnan(w) ? QStringLiteral("-") : QString::number(w, 'f', 0));

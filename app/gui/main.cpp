@@ -96,7 +96,7 @@ int main(int argc, char **argv)
                                       QStringLiteral("Open the Diagnosis dock and diagnose: TRAIN:VALIDATE session ids."),
                                       QStringLiteral("ids"));
     const QCommandLineOption dock(QStringLiteral("dock"),
-                                  QStringLiteral("Show a dock: sessions, acquisition, models, diagnosis or analysis (repeatable)."),
+                                  QStringLiteral("Show a dock: sessions, acquisition, models, diagnosis, analysis or compensation (repeatable)."),
                                   QStringLiteral("name"));
     const QCommandLineOption analysis(QStringLiteral("analysis"),
                                       QStringLiteral("Open the Analysis dock: select sensitive points of TARGET in session ID, "
@@ -159,7 +159,7 @@ int main(int argc, char **argv)
         const QString object = name.left(1).toUpper() + name.mid(1).toLower() + QStringLiteral("Dock");
         QDockWidget *d = window.dock(object);
         if (!d)
-            return usageError(QStringLiteral("--dock: unknown dock '%1' (sessions, acquisition, models, diagnosis, analysis)").arg(name));
+            return usageError(QStringLiteral("--dock: unknown dock '%1' (sessions, acquisition, models, diagnosis, analysis, compensation)").arg(name));
         d->show();
     }
     if (p.isSet(view) && !window.workspace()->selectView(p.value(view)))

@@ -78,7 +78,7 @@ void TestCompensationPanel::drivesTheControllerFromTheSession()
     const double expected = -std::trunc(e);
     QVERIFY2(testpeers::waitFor([&] {
                  QCoreApplication::processEvents();
-                 return panel.offsetsText().contains(QStringLiteral("controller holds %1 um").arg(expected, 0, 'f', 0));
+                 return panel.offsetsText().contains(QStringLiteral("controller holds %1 µm").arg(expected, 0, 'f', 0));
              }, 10000),
              qPrintable(panel.offsetsText() + QLatin1Char('\n') + panel.statusText()));
     const QString screenshot = qEnvironmentVariable("DRIFTLAB_SCREENSHOT");
@@ -86,7 +86,7 @@ void TestCompensationPanel::drivesTheControllerFromTheSession()
         panel.grab().save(screenshot);
     panel.stop();
     QVERIFY(!panel.running());
-    QVERIFY(panel.logText().contains(QStringLiteral("write X %1 um").arg(expected)));
+    QVERIFY(panel.logText().contains(QStringLiteral("write X %1 µm").arg(expected)));
     // The controller's last X write is the same value.
     QList<QByteArray> last;
     for (const QByteArray &l : peer.output().split('\n'))
