@@ -274,7 +274,7 @@ void CompensationLoop::run()
             g.written(t, d.value_um);
             ++writes;
             note(t, QStringLiteral("write %1 %2 um (R%3/R%4 = %5, %6)")
-                        .arg(map.axes[i].name)
+                        .arg(map.axes[i].label())
                         .arg(d.value_um)
                         .arg(map.axes[i].address)
                         .arg(map.axes[i].address + 1)

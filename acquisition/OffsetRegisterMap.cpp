@@ -4,6 +4,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -45,9 +46,19 @@ OffsetRegisterMap OffsetRegisterMap::fromJson(JsonFields &f)
             Axis axis;
             axis.name = a.requiredString(QStringLiteral("axis"));
             axis.address = a.requiredInteger(QStringLiteral("address"), 0, 65534);
+            if (a.has(QStringLiteral("position_mm")))
+                axis.position_mm = a.requiredNumber(QStringLiteral("position_mm"), -1e6, 1e6);
             a.finish();
-            if (m.axisIndex(axis.name) >= 0)
-                a.fail(QStringLiteral("axis"), QStringLiteral("axis '%1' is mapped twice").arg(axis.name));
+            for (const Axis &other : m.axes) {
+                if (other.name.compare(axis.name, Qt::CaseInsensitive) != 0)
+                    continue;
+                if (!axis.isSupportPoint() || !other.isSupportPoint())
+                    a.fail(QStringLiteral("axis"), QStringLiteral("axis '%1' is mapped twice (several entries of an axis are the support points "
+                                                                  "of a compensation table: each needs its own position_mm)")
+                                                       .arg(axis.name));
+                if (other.position_mm == axis.position_mm)
+                    a.fail(QStringLiteral("position_mm"), QStringLiteral("axis '%1' has two support points at %2 mm").arg(axis.name).arg(axis.position_mm));
+            }
             for (const Axis &other : m.axes)
                 if (std::abs(other.address - axis.address) < 2)
                     a.fail(QStringLiteral("address"), QStringLiteral("registers %1-%2 of axis %3 overlap registers %4-%5 of axis %6")
@@ -85,6 +96,53 @@ OffsetRegisterMap OffsetRegisterMap::fromFile(const QString &path)
             QStringLiteral("%1: not a JSON object%2").arg(path, pe.error != QJsonParseError::NoError ? QStringLiteral(": ") + pe.errorString() : QString()).toStdString());
     JsonFields f(doc.object(), path);
     return fromJson(f);
+}
+
+QString OffsetRegisterMap::Axis::label() const
+{
+    return isSupportPoint() ? QStringLiteral("%1@%2 mm").arg(name).arg(position_mm) : name;
+}
+
+QVector<int> OffsetRegisterMap::entriesOf(const QString &name) const
+{
+    QVector<int> out;
+    for (int i = 0; i < axes.size(); ++i)
+        if (axes[i].name.compare(name, Qt::CaseInsensitive) == 0)
+            out.push_back(i);
+    return out;
+}
+
+QVector<double> OffsetRegisterMap::requests(const QString &name, double here, const std::function<double(double)> &offsetAt) const
+{
+    QVector<double> out(axes.size(), std::nan(""));
+    for (int i : entriesOf(name))
+        out[i] = axes[i].isSupportPoint() ? offsetAt(axes[i].position_mm) : here;
+    return out;
+}
+
+double OffsetRegisterMap::offsetAt(const QString &name, double position_mm, const QVector<double> &entryOffsets_um) const
+{
+    // Support points of the axis in position order.
+    QVector<QPair<double, double>> pts;
+    for (int i : entriesOf(name)) {
+        const double v = entryOffsets_um.value(i, 0.0);
+        if (!axes[i].isSupportPoint())
+            return v;
+        pts.push_back({axes[i].position_mm, v});
+    }
+    if (pts.isEmpty())
+        return 0.0;
+    std::sort(pts.begin(), pts.end());
+    if (position_mm <= pts.front().first)
+        return pts.front().second;
+    if (position_mm >= pts.back().first)
+        return pts.back().second;
+    for (int k = 1; k < pts.size(); ++k)
+        if (position_mm <= pts[k].first) {
+            const double w = (position_mm - pts[k - 1].first) / (pts[k].first - pts[k - 1].first);
+            return pts[k - 1].second + w * (pts[k].second - pts[k - 1].second);
+        }
+    return pts.back().second;
 }
 
 int OffsetRegisterMap::axisIndex(const QString &name) const

@@ -169,6 +169,16 @@ struct DeviceConfig {
     QJsonObject settings;
 };
 
+// The simulated CNC's Modbus TCP server for a live compensation loop (CompensationServer):
+// offsets written to the rig axis's register pair shift the axis, so the interferometer
+// reads the thermal error plus the offset. Off unless enabled.
+struct CompensationServerConfig {
+    bool enabled = false;
+    QString host = QStringLiteral("127.0.0.1");
+    int port = 1502;
+    QJsonObject map{{QStringLiteral("preset"), QStringLiteral("m80")}}; // as a register map file
+};
+
 struct RigRandomise {
     bool enabled = false;
     double relativeSpread = 0.1;     // log-normal factor on heat, convection, contacts, conductivity
@@ -192,6 +202,7 @@ struct RigConfig {
     InfraredConfig infrared;
     FeedProgram program = FeedProgram::seed000Table2(6000.0, 0.0, 520.0);
     RigRandomise randomise;
+    CompensationServerConfig compensationServer;
     unsigned seed = 1;
     // Empty: the simulated instruments of "sensors". Otherwise exactly these devices.
     QVector<DeviceConfig> devices;

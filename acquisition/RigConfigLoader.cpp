@@ -1,5 +1,8 @@
 #include "RigConfigLoader.h"
 
+#include "JsonFields.h"
+#include "OffsetRegisterMap.h"
+
 #include "RealDevices.h"
 
 #include <QDir>
@@ -412,6 +415,35 @@ void bindDevices(Binder &b, RigConfig &c)
     }
 }
 
+void bindCompensationServer(Binder &b, RigConfig &c)
+{
+    CompensationServerConfig &s = c.compensationServer;
+    if (!b.reading() && !s.enabled)
+        return; // rig files without a server stay as they were
+    b.object("compensation_server", [&] {
+        b.boolean("enabled", s.enabled);
+        b.str("host", s.host);
+        b.integer("port", s.port, 1, 65535);
+        if (!b.reading()) {
+            b.current().insert(QStringLiteral("map"), s.map);
+            return;
+        }
+        if (!b.has("map"))
+            return;
+        const QJsonValue v = b.get("map");
+        if (!v.isObject())
+            b.fail(QStringLiteral("map"), QStringLiteral("expected a register map object, e.g. {\"preset\": \"m80\"}, got %1").arg(Binder::shown(v)));
+        s.map = v.toObject();
+        try {
+            JsonFields f(s.map, b.path(QStringLiteral("map")));
+            OffsetRegisterMap::fromJson(f);
+            f.finish();
+        } catch (const std::invalid_argument &e) {
+            b.fail(QString(), QString::fromUtf8(e.what()), true);
+        }
+    });
+}
+
 void bind(Binder &b, RigConfig &c)
 {
     if (b.reading()) {
@@ -539,6 +571,7 @@ void bind(Binder &b, RigConfig &c)
         b.nonNegative("relative_spread", c.randomise.relativeSpread);
         b.nonNegative("fixed_end_jitter_mm", c.randomise.fixedEndJitter_mm);
     });
+    bindCompensationServer(b, c);
     bindDevices(b, c);
 }
 } // namespace

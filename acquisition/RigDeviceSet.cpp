@@ -18,7 +18,7 @@ RigDeviceSet RigDeviceSet::build(const RigConfig &config, const QString &session
     RigDeviceSet set;
     DeviceRegistry registry;
     RealDevices::registerTypes(registry);
-    std::shared_ptr<SimulatedRigHub> hub;
+    std::shared_ptr<SimulatedRigHub> &hub = set.hub;
     bool simulated = config.devices.isEmpty();
     for (const DeviceConfig &d : config.devices)
         simulated = simulated || RealDevices::isSimulated(d.type);

@@ -15,11 +15,14 @@
 
 namespace driftlab {
 
+class SimulatedRigHub;
+
 class RigDeviceSet {
 public:
     std::vector<std::unique_ptr<Device>> devices;
     SessionInfo session;
     bool realDevices = false;
+    std::shared_ptr<SimulatedRigHub> hub; // the simulated rig the simulated devices share (null: none)
 
     // Throws std::invalid_argument for settings a device refuses (names the device).
     static RigDeviceSet build(const RigConfig &config, const QString &sessionName);

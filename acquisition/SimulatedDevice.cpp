@@ -1,5 +1,7 @@
 #include "SimulatedDevice.h"
 
+#include "CompensationServer.h"
+
 #include "DeviceRegistry.h"
 #include "JsonFields.h"
 #include "SessionClock.h"
@@ -121,10 +123,31 @@ bool SimulatedDevice::failing() const
     return (m_failEvery_s > 0.0 ? std::fmod(since, m_failEvery_s) : since) < m_failFor_s;
 }
 
+SimulatedDevice::~SimulatedDevice() = default;
+
 void SimulatedDevice::open()
 {
     if (failing())
         throw DeviceError(QStringLiteral("%1: no answer on open").arg(m_id).toStdString());
+    if (m_group == SimulatedRigHub::Group::Cnc && !m_server) {
+        CompensationServerConfig cs;
+        m_hub->withRig([&](const SimulatedRig &rig) { cs = rig.config().compensationServer; });
+        if (cs.enabled) {
+            JsonFields f(cs.map, QStringLiteral("compensation_server.map"));
+            const OffsetRegisterMap map = OffsetRegisterMap::fromJson(f); // checked by the rig loader
+            std::weak_ptr<SimulatedRigHub> hub = m_hub;
+            auto server = std::make_unique<CompensationServer>(cs.host, cs.port, map, [hub, map](const QVector<double> &offsets) {
+                if (auto h = hub.lock())
+                    h->setAxisOffsets(map, offsets);
+            });
+            try {
+                server->start();
+            } catch (const std::runtime_error &e) {
+                throw DeviceError(QStringLiteral("%1: %2").arg(m_id, QString::fromUtf8(e.what())).toStdString());
+            }
+            m_server = std::move(server);
+        }
+    }
     m_open = true;
 }
 

@@ -11,6 +11,9 @@
 // correction are measurable. Failure injection: kill()/revive() or the settings
 // fail_at_s / fail_for_s [/ fail_every_s, repeating] (session seconds): while failed, read() and open() throw
 // DeviceError after a timeout, as a device that stopped answering.
+// When the rig file enables "compensation_server", "sim-cnc" opens a Modbus TCP server
+// (CompensationServer) at its first open(): offsets written to the rig axis's register pair
+// move the simulated axis (SimulatedRigHub::setAxisOffset_um) for as long as the device lives.
 //
 // Settings (JSON): latency_s (declared, default per type), true_latency_s (default = declared),
 // latency_jitter_s, stamping (device | receipt), rate_Hz (poll ticks; default the channels'
@@ -26,12 +29,14 @@
 
 namespace driftlab {
 
+class CompensationServer;
 class DeviceRegistry;
 class JsonFields;
 
 class SimulatedDevice : public Device {
 public:
     SimulatedDevice(const QString &id, const QString &type, std::shared_ptr<SimulatedRigHub> hub);
+    ~SimulatedDevice() override;
 
     QString id() const override { return m_id; }
     QString type() const override { return m_type; }
@@ -76,6 +81,7 @@ private:
     bool m_open = false;
     std::atomic<bool> m_killed{false};
     std::mt19937 m_rng{7};
+    std::unique_ptr<CompensationServer> m_server; // sim-cnc with a compensation server
 };
 
 } // namespace driftlab

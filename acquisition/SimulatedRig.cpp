@@ -230,6 +230,19 @@ double SimulatedRig::trueThermalError_um(double x) const
     return e;
 }
 
+void SimulatedRig::setAxisOffsets(const OffsetRegisterMap &map, const QVector<double> &entryOffsets_um)
+{
+    m_offsetMap = map;
+    m_entryOffsets_um = entryOffsets_um;
+}
+
+double SimulatedRig::axisOffsetAt_um(double axis_mm) const
+{
+    if (m_entryOffsets_um.isEmpty() || m_offsetMap.entriesOf(m_config.axis).isEmpty())
+        return 0.0;
+    return m_offsetMap.offsetAt(m_config.axis, axis_mm, m_entryOffsets_um);
+}
+
 void SimulatedRig::stepModel(double dt)
 {
     const RigThermal &th = m_config.thermal;
@@ -329,7 +342,8 @@ void SimulatedRig::sampleDue(double t, QVector<SampleBlock> &blocks)
         pt.t = ts;
         pt.run = m_nextRun;
         pt.position_mm = x;
-        pt.error_um = pitchError_um(x) + trueThermalError_um(x) + li.noise_um * m_unit(m_rngLaser) - (down ? li.reversal_um : 0.0);
+        pt.error_um = pitchError_um(x) + trueThermalError_um(x) + axisOffsetAt_um(x) + li.noise_um * m_unit(m_rngLaser) -
+                      (down ? li.reversal_um : 0.0);
         if (li.bidirectional)
             pt.direction = down ? QStringLiteral("-") : QStringLiteral("+");
         m_laser.push_back(pt);

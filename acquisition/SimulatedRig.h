@@ -12,6 +12,7 @@
 // c_off dT_bed and c_lin dT_bed (X - X_ref) to every positioning deviation.
 
 #include "InfraredRenderer.h"
+#include "OffsetRegisterMap.h"
 #include "RigConfig.h"
 #include "StorageTypes.h"
 #include "ScrewTruthModel.h"
@@ -58,6 +59,13 @@ public:
     double coolant_C(double t_s) const;
     double bedRise_K() const { return m_model.nodeTemperature_C(ScrewTruthModel::Bed) - m_bed0_C; }
     double pitchError_um(double axis_mm) const;
+    // External offsets applied to the axis (a compensation loop writing to the CNC): one value
+    // per entry of `map` (entries of other axes are ignored; support points are interpolated
+    // at the position, OffsetRegisterMap::offsetAt). The axis stands that far beyond its
+    // commanded position, so every interferometer reading from now on adds it; the CNC's
+    // position channel keeps the commanded position.
+    void setAxisOffsets(const OffsetRegisterMap &map, const QVector<double> &entryOffsets_um);
+    double axisOffsetAt_um(double axis_mm) const;
 
 private:
     void sampleDue(double t, QVector<SampleBlock> &blocks);
@@ -79,6 +87,8 @@ private:
     double m_walk_K = 0.0;
     double m_unitRise_K = 0.0; // neighbouring unit above ambient
     double m_ambient_C = 20.0;
+    OffsetRegisterMap m_offsetMap;
+    QVector<double> m_entryOffsets_um; // empty: no offset applied
     double m_bed0_C = 20.0;
     QVector<double> m_nextPt100;
     QVector<int> m_dropoutLeft;

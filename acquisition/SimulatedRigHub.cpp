@@ -105,6 +105,12 @@ void SimulatedRigHub::discardBefore(Group g, double t_s)
     // Programme events are kept: the CNC's programme log is read back on reconnect.
 }
 
+void SimulatedRigHub::setAxisOffsets(const OffsetRegisterMap &map, const QVector<double> &entryOffsets_um)
+{
+    std::lock_guard<std::mutex> lock(m_mutex);
+    m_rig.setAxisOffsets(map, entryOffsets_um);
+}
+
 void SimulatedRigHub::withRig(const std::function<void(const SimulatedRig &)> &fn) const
 {
     std::lock_guard<std::mutex> lock(m_mutex);

@@ -26,6 +26,8 @@ public:
     DeviceBlock collect(Group g, double until_s);
     // Drops this group's pending data with t < t_s (what a device that was away missed).
     void discardBefore(Group g, double t_s);
+    // Applies external offsets to the rig's axis from now on (SimulatedRig::setAxisOffsets).
+    void setAxisOffsets(const OffsetRegisterMap &map, const QVector<double> &entryOffsets_um);
     // Runs fn on the rig under the lock (truth queries in tests, machine description).
     void withRig(const std::function<void(const SimulatedRig &)> &fn) const;
 

@@ -10,11 +10,12 @@ namespace driftlab {
 
 SessionOffsetSource::SessionOffsetSource(const QString &databasePath, qint64 sessionId, const ExportableModel &model,
                                          const QString &positionChannel)
-    : m_path(databasePath), m_session(sessionId), m_model(model.dataDriven), m_positionChannel(positionChannel)
+    : m_path(databasePath), m_session(sessionId), m_exportable(model), m_model(model.dataDriven), m_positionChannel(positionChannel)
 {
-    if (model.physics)
-        throw std::invalid_argument("the live loop runs data-driven models (mlr, ridge, dynamic, exp, synthetic); a "
-                                    "fdm-seed000 model runs on the controller through 'export-model --target c'");
+    if (model.physics) {
+        m_fdm.emplace(model.geometry, model.parameters, model.grid); // checks geometry and grid
+        return;
+    }
     if (m_model.inputs.empty())
         throw std::invalid_argument("the model has no input channel");
     m_predictor.emplace(m_model); // checks the model's consistency
@@ -32,6 +33,21 @@ void SessionOffsetSource::open()
                 return c.id;
         return 0;
     };
+    if (m_fdm) {
+        // Position first: its samples are the schedule (the C export's step() calls).
+        for (const char *role : {"axis_position", "feed_rate", "ambient"}) {
+            qint64 id = 0;
+            for (const ChannelInfo &c : channels)
+                if (!id && c.role == QLatin1String(role))
+                    id = c.id;
+            if (!id)
+                throw std::invalid_argument(QStringLiteral("session %1 has no channel with role '%2', an input of the %3 model")
+                                                .arg(m_session)
+                                                .arg(QLatin1String(role), QString::fromStdString(m_exportable.kind()))
+                                                .toStdString());
+            m_channels.push_back(id);
+        }
+    }
     for (const ModelChannel &input : m_model.inputs) {
         const qint64 id = find(QString::fromStdString(input.id));
         if (!id)
@@ -53,6 +69,43 @@ void SessionOffsetSource::open()
     m_time_s = -1e300;
     m_pendT.clear();
     m_pendV.clear();
+}
+
+void SessionOffsetSource::stepTo(double t)
+{
+    const bool first = m_time_s <= -1e299;
+    if (m_fdm) {
+        // held = position, feed, ambient. Whole steps of dt up to t with the inputs at t.
+        const double dt = m_exportable.grid.dt_s;
+        if (first) {
+            m_fdm->reset(m_held[2]);
+            m_fdmStart_s = t;
+            m_fdmSteps = 0;
+        } else {
+            while (m_fdmStart_s + dt * static_cast<double>(m_fdmSteps + 1) <= t + 1e-9) {
+                m_fdm->step(m_held[0], m_held[1], m_held[2]);
+                ++m_fdmSteps;
+            }
+        }
+        m_error_um = m_fdm->thermalError_um(m_held[0]);
+    } else if (first) {
+        m_predictor->reset(m_held.data());
+        m_error_um = m_predictor->step(0.0, m_held.data());
+    } else {
+        m_error_um = m_predictor->step(t - m_time_s, m_held.data());
+    }
+    m_time_s = t;
+}
+
+double SessionOffsetSource::offsetAt(double position_mm) const
+{
+    if (m_time_s <= -1e299)
+        return std::nan("");
+    if (m_fdm)
+        return -m_fdm->thermalError_um(position_mm);
+    if (m_model.kind == "synthetic")
+        return -m_predictor->predictAt(position_mm, m_held.data());
+    return -m_error_um;
 }
 
 double SessionOffsetSource::update()
@@ -94,15 +147,8 @@ double SessionOffsetSource::update()
         bool complete = true;
         for (double v : m_held)
             complete = complete && std::isfinite(v);
-        if (complete) {
-            if (m_time_s <= -1e299) {
-                m_predictor->reset(m_held.data());
-                m_error_um = m_predictor->step(0.0, m_held.data());
-            } else {
-                m_error_um = m_predictor->step(t - m_time_s, m_held.data());
-            }
-            m_time_s = t;
-        }
+        if (complete)
+            stepTo(t);
         consumed0 = k + 1;
     }
     // Forget what was used (the other inputs keep their unconsumed samples).
@@ -114,7 +160,9 @@ double SessionOffsetSource::update()
     }
     if (m_time_s <= -1e299)
         return std::nan("");
-    if (m_model.kind == "synthetic") {
+    if (m_fdm) {
+        m_error_um = m_fdm->thermalError_um(m_held[0]);
+    } else if (m_model.kind == "synthetic") {
         const SampleBlock p = m_store->samples(m_positionId, m_time_s - 60.0, m_time_s);
         if (!p.v.isEmpty())
             m_position_mm = p.v.last();

@@ -5,11 +5,14 @@
 // calling thread), advances the model on the first input's sample times with the other inputs
 // held at their latest value (as the fitters' grid does), and returns the compensation -E in um
 // at the newest time every input has reached. The synthetic model is evaluated at the latest
-// position of its position channel. Physics (fdm-seed000) models are refused for now: they run
-// on a controller through the C export (docs/export.md).
+// position of its position channel. A physics model (fdm-seed000) reads the session's channels
+// by role (axis_position, feed_rate, ambient; the position drives the schedule) and advances the
+// explicit FdmScrewModel in whole steps of its grid dt up to each position sample, exactly as
+// the exported C code's step() does; E is the thermal error at the latest axis position.
 
 #include "DataDrivenPredictor.h"
 #include "ExportableModel.h"
+#include "FdmScrewModel.h"
 
 #include <QString>
 #include <QVector>
@@ -32,6 +35,10 @@ public:
     // Throws std::invalid_argument when the session lacks an input channel, StorageError when
     // the database cannot be read. NaN until every input has a sample.
     double update();
+    // The compensation -E at another axis position, at the model time of the last update() (for
+    // the support points of a live compensation table): the physics and synthetic models are
+    // position-dependent, the others give the same value everywhere. NaN before the first.
+    double offsetAt(double position_mm) const;
     double modelTime_s() const { return m_time_s; }
     double error_um() const { return m_error_um; } // the model's E at modelTime_s
 
@@ -40,7 +47,13 @@ private:
 
     QString m_path;
     qint64 m_session;
+    void stepTo(double t);
+
+    ExportableModel m_exportable;
     DataDrivenModel m_model;
+    std::optional<FdmScrewModel> m_fdm;
+    double m_fdmStart_s = 0.0;
+    long long m_fdmSteps = 0;
     QString m_positionChannel;
     std::unique_ptr<SessionStore> m_store;
     std::optional<DataDrivenPredictor> m_predictor;

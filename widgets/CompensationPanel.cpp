@@ -167,12 +167,13 @@ bool CompensationPanel::start()
         auto source = std::make_shared<SessionOffsetSource>(m_dbPath, m_sessionId, model);
         SessionStore(m_dbPath).session(m_sessionId);
         auto progress = std::make_shared<Progress>();
-        const int axes = o.map.axes.size();
-        const int axis = m_axisIndex;
-        m_loop = std::make_unique<CompensationLoop>(o, [source, progress, axes, axis](double) {
-            QVector<double> offsets(axes, std::nan(""));
+        const OffsetRegisterMap registers = o.map;
+        const QString axis = o.map.axes[m_axisIndex].name;
+        m_loop = std::make_unique<CompensationLoop>(o, [source, progress, registers, axis](double) {
+            QVector<double> offsets(registers.axes.size(), std::nan(""));
             try {
-                offsets[axis] = source->update();
+                const double here = source->update();
+                offsets = registers.requests(axis, here, [&](double x) { return source->offsetAt(x); });
                 progress->time_s = source->modelTime_s() > -1e299 ? source->modelTime_s() : std::nan("");
                 progress->error_um = source->error_um();
             } catch (const std::exception &) {
@@ -183,7 +184,7 @@ bool CompensationPanel::start()
         m_progress = progress;
         m_axisNames.clear();
         for (const OffsetRegisterMap::Axis &a : o.map.axes)
-            m_axisNames << a.name;
+            m_axisNames << a.label();
     } catch (const std::exception &e) {
         m_lastError = QString::fromUtf8(e.what());
         m_status->setText(tr("<span style='color:#b00020'>Cannot start: %1</span>").arg(m_lastError.toHtmlEscaped()));

@@ -47,7 +47,8 @@ QString CompensateCommand::summary() const
 {
     return QStringLiteral(
         "Run the live compensation loop: follow session ID of DB as it is recorded, run the fitted\n"
-        "data-driven model (MODEL.json from 'fit --model ... --out') on its input channels and write the\n"
+        "model (a data-driven MODEL.json from 'fit --model ... --out' on its input channels, or the\n"
+        "seed-000 screw model from 'fit --json' on the axis position, feed and ambient) and write the\n"
         "compensation -E of the chosen axis to a controller's Modbus TCP holding registers (--map: the\n"
         "preset m80, seed 003's R5700.. registers in 1 um steps, or a map file). Writing is off unless\n"
         "--enable; the offset is clamped to --max-offset, moves at most --max-rate and only in whole\n"
@@ -83,7 +84,7 @@ int CompensateCommand::run(const QStringList &args)
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
                                   QStringLiteral("file"));
     p.addOptions({modbus, mapOpt, axis, db, session, enable, duration, rate, maxOffset, maxRate, timeout, position, json});
-    p.addPositionalArgument(QStringLiteral("MODEL.json"), QStringLiteral("Fitted data-driven model."));
+    p.addPositionalArgument(QStringLiteral("MODEL.json"), QStringLiteral("Fitted model (data-driven or fdm-seed000)."));
     if (!parse(p, args))
         return 0;
 
@@ -139,7 +140,8 @@ int CompensateCommand::run(const QStringList &args)
     CompensationLoop loop(o, [&](double) {
         QVector<double> offsets(axes, std::nan(""));
         try {
-            offsets[axisIndex] = source->update();
+            const double here = source->update();
+            offsets = o.map.requests(o.map.axes[axisIndex].name, here, [&](double x) { return source->offsetAt(x); });
             modelTime = source->modelTime_s();
             error = source->error_um();
         } catch (const std::exception &e) {
@@ -199,7 +201,12 @@ int CompensateCommand::run(const QStringList &args)
     }
     QJsonArray written;
     for (int i = 0; i < axes; ++i)
-        written.append(QJsonObject{{QStringLiteral("axis"), o.map.axes[i].name}, {QStringLiteral("written_um"), jsonNumber(s.written_um[i])}});
+    {
+        QJsonObject a{{QStringLiteral("axis"), o.map.axes[i].name}, {QStringLiteral("written_um"), jsonNumber(s.written_um[i])}};
+        if (o.map.axes[i].isSupportPoint())
+            a.insert(QStringLiteral("position_mm"), o.map.axes[i].position_mm);
+        written.append(a);
+    }
     const QJsonObject result{{QStringLiteral("model"), modelPath},
                              {QStringLiteral("session"), static_cast<double>(sessionId)},
                              {QStringLiteral("enabled"), s.enabled},

@@ -129,6 +129,9 @@ int RecordCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("record: the rig has real instruments, which record in real time only (--speed 1)"));
     if (deviceList && speedValue <= 0.0)
         speedValue = 1.0; // a device list always records through the device threads
+    if (config.compensationServer.enabled && speedValue <= 0.0)
+        throw UsageError(QStringLiteral("record: the rig's compensation_server serves a live compensation loop, which needs a recording "
+                                        "on the session clock: give --speed (e.g. --speed 60)"));
     std::unique_ptr<SimulatedRig> simRig;
     try {
         simRig = std::make_unique<SimulatedRig>(config);
@@ -180,6 +183,10 @@ int RecordCommand::run(const QStringList &args)
         for (auto &d : set.devices)
             engine.addDevice(std::move(d));
         id = engine.start(path, info);
+        if (config.compensationServer.enabled)
+            CliSupport::progress(QStringLiteral("  the simulated CNC takes compensation offsets for axis %1 on Modbus TCP %2:%3")
+                                     .arg(config.axis, config.compensationServer.host)
+                                     .arg(config.compensationServer.port));
         g_interrupted = 0;
         const auto previousInt = std::signal(SIGINT, onInterrupt);
         const auto previousTerm = std::signal(SIGTERM, onInterrupt);

@@ -2,7 +2,12 @@
 // its compensation is written to an independent Modbus TCP server (libmodbus, modbus_peer
 // --log-writes). The value the controller ends with is checked against the model evaluated
 // here from its JSON on the session's last samples; a dry run writes nothing; the loop follows
-// a recording in progress; bad input exits 2 naming the option or field.
+// a recording in progress; bad input exits 2 naming the option or field. The seed-000 physics
+// model ('fit --json') follows the same session through a compensation table (support points):
+// each pair ends at -trunc(E(x)) of FdmScrewModel stepped here over the session's axis position,
+// feed and ambient on the schedule of the exported C code.
+#include "ExportableModelJson.h"
+#include "FdmScrewModel.h"
 #include "SessionStore.h"
 
 #include "../support/CliRunner.h"
@@ -28,6 +33,7 @@ private slots:
     void writesTheModelsCompensation();
     void dryRunWritesNothing();
     void followsARecordingInProgress();
+    void physicsModelWritesACompensationTable();
     void badInputExitsTwo_data();
     void badInputExitsTwo();
 
@@ -152,6 +158,85 @@ void TestCompensateCli::followsARecordingInProgress()
     const double reached = QJsonDocument::fromJson(r.out).object().value(QStringLiteral("model_time_s")).toDouble();
     QVERIFY2(reached > 600.0 && reached < 7200.0, qPrintable(QString::number(reached)));
     QVERIFY(!writes(peer).isEmpty());
+}
+
+void TestCompensateCli::physicsModelWritesACompensationTable()
+{
+    const QString fdm = m_dir.filePath(QStringLiteral("fdm.json"));
+    const clirunner::Result fit = run({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--json"), fdm});
+    QVERIFY2(fit.code == 0, fit.err.constData());
+    const ExportableModel model = ExportableModelJson::read(fdm);
+    QVERIFY(model.physics);
+
+    // The model stepped here: whole steps of the grid dt up to each axis-position sample, with
+    // the feed and ambient held at their latest sample (the C export's step() schedule).
+    SessionStore store(m_db);
+    SampleBlock x, feed, ambient;
+    for (const ChannelInfo &c : store.channels(1)) {
+        if (c.role == QLatin1String("axis_position") && x.t.isEmpty())
+            x = store.samples(c.id);
+        else if (c.role == QLatin1String("feed_rate") && feed.t.isEmpty())
+            feed = store.samples(c.id);
+        else if (c.role == QLatin1String("ambient") && ambient.t.isEmpty())
+            ambient = store.samples(c.id);
+    }
+    QVERIFY(!x.t.isEmpty() && !feed.t.isEmpty() && !ambient.t.isEmpty());
+    FdmScrewModel ref(model.geometry, model.parameters, model.grid);
+    int f = -1, a = -1;
+    bool started = false;
+    double t0 = 0.0;
+    long long steps = 0;
+    for (int k = 0; k < x.t.size(); ++k) {
+        while (f + 1 < feed.t.size() && feed.t[f + 1] <= x.t[k])
+            ++f;
+        while (a + 1 < ambient.t.size() && ambient.t[a + 1] <= x.t[k])
+            ++a;
+        if (f < 0 || a < 0)
+            continue;
+        if (!started) {
+            ref.reset(ambient.v[a]);
+            t0 = x.t[k];
+            started = true;
+            continue;
+        }
+        while (t0 + model.grid.dt_s * static_cast<double>(steps + 1) <= x.t[k] + 1e-9) {
+            ref.step(x.v[k], feed.v[f], ambient.v[a]);
+            ++steps;
+        }
+    }
+    const double support[3] = {0.0, 260.0, 520.0};
+    double expected[3];
+    for (int i = 0; i < 3; ++i)
+        expected[i] = -ref.thermalError_um(support[i]);
+    QVERIFY2(std::abs(expected[2] - expected[0]) > 5.0, "a position-dependent error"); // not a flat line
+
+    const QString map = m_dir.filePath(QStringLiteral("table.json"));
+    QFile mf(map);
+    QVERIFY(mf.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    mf.write(R"({"axes": [{"axis": "X", "address": 5700, "position_mm": 0}, {"axis": "X", "address": 5702, "position_mm": 260},
+                {"axis": "X", "address": 5704, "position_mm": 520}]})");
+    mf.close();
+    testpeers::Peer peer;
+    QVERIFY(peer.start(QStringLiteral(MODBUS_PEER), {QStringLiteral("--tcp"), QStringLiteral("0"), QStringLiteral("--log-writes")}));
+    const clirunner::Result r = run({QStringLiteral("compensate"), fdm, QStringLiteral("--modbus"), QStringLiteral("127.0.0.1:") + peer.ready(),
+                                     QStringLiteral("--map"), map, QStringLiteral("--db"), m_db, QStringLiteral("--session"), QStringLiteral("1"),
+                                     QStringLiteral("--enable"), QStringLiteral("--duration"), QStringLiteral("3"), QStringLiteral("--max-rate"),
+                                     QStringLiteral("200"), QStringLiteral("--max-offset"), QStringLiteral("200"), QStringLiteral("--json"),
+                                     QStringLiteral("-")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const QJsonObject result = QJsonDocument::fromJson(r.out).object();
+    QCOMPARE(result.value(QStringLiteral("model_time_s")).toDouble(), x.t.last());
+    // The last write of each pair: -trunc(E) at its support point.
+    QMap<int, qint32> last;
+    for (const QString &line : writes(peer)) {
+        const QStringList w = line.split(QLatin1Char(' '));
+        last[w.value(2).toInt()] = static_cast<qint32>((w.value(4).toUInt() << 16) | w.value(3).toUInt());
+    }
+    for (int i = 0; i < 3; ++i)
+        QCOMPARE(static_cast<double>(last.value(5700 + 2 * i, 12345)), std::trunc(expected[i]));
+    const QJsonArray axes = result.value(QStringLiteral("axes")).toArray();
+    QCOMPARE(axes.size(), 3);
+    QCOMPARE(axes[1].toObject().value(QStringLiteral("position_mm")).toDouble(), 260.0);
 }
 
 void TestCompensateCli::badInputExitsTwo_data()
