@@ -87,8 +87,10 @@ void SampleChannels::flushLevelRow(qint64 channelId, int level, SampleMipmap::Ro
 {
     if (!row.dirty || row.entries.isEmpty())
         return;
-    QSqlQuery &q = cached("INSERT OR REPLACE INTO sample_levels(channel_id, level, seq, t_first, t_last, n_raw, data) "
-                          "VALUES(?, ?, ?, ?, ?, ?, ?)");
+    // An upsert both SQLite (>= 3.24) and PostgreSQL understand.
+    QSqlQuery &q = cached("INSERT INTO sample_levels(channel_id, level, seq, t_first, t_last, n_raw, data) "
+                          "VALUES(?, ?, ?, ?, ?, ?, ?) ON CONFLICT(channel_id, level, seq) DO UPDATE SET "
+                          "t_first = excluded.t_first, t_last = excluded.t_last, n_raw = excluded.n_raw, data = excluded.data");
     q.bindValue(0, channelId);
     q.bindValue(1, level);
     q.bindValue(2, row.seq);

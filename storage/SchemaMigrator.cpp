@@ -3,6 +3,7 @@
 #include "StorageError.h"
 
 #include <QSqlError>
+#include <QRegularExpression>
 #include <QSqlQuery>
 #include <QStringList>
 #include <QVariant>
@@ -148,9 +149,35 @@ int SchemaMigrator::currentVersion()
     return static_cast<int>(migrations().size());
 }
 
+bool SchemaMigrator::isPostgres(const QSqlDatabase &db)
+{
+    return db.driverName() == QLatin1String("QPSQL");
+}
+
+QString SchemaMigrator::forPostgres(const QString &sqliteDdl)
+{
+    QString s = sqliteDdl;
+    s.replace(QStringLiteral("DEFAULT (strftime('%Y-%m-%dT%H:%M:%SZ','now'))"),
+              QStringLiteral("DEFAULT (to_char(now() AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS\"Z\"'))"));
+    s.replace(QRegularExpression(QStringLiteral("\\bid INTEGER PRIMARY KEY\\b")), QStringLiteral("id BIGSERIAL PRIMARY KEY"));
+    s.replace(QRegularExpression(QStringLiteral("\\bINTEGER\\b")), QStringLiteral("BIGINT"));
+    s.replace(QRegularExpression(QStringLiteral("\\bREAL\\b")), QStringLiteral("DOUBLE PRECISION"));
+    s.replace(QRegularExpression(QStringLiteral("\\bBLOB\\b")), QStringLiteral("BYTEA"));
+    return s;
+}
+
 int SchemaMigrator::version(QSqlDatabase &db)
 {
     QSqlQuery q(db);
+    if (isPostgres(db)) {
+        if (!q.exec(QStringLiteral("SELECT to_regclass('driftlab_schema') IS NOT NULL")) || !q.next())
+            throw StorageError(QStringLiteral("%1: cannot read schema version: %2").arg(db.databaseName(), q.lastError().text()).toStdString());
+        if (!q.value(0).toBool())
+            return 0;
+        if (!q.exec(QStringLiteral("SELECT version FROM driftlab_schema")) || !q.next())
+            throw StorageError(QStringLiteral("%1: cannot read schema version: %2").arg(db.databaseName(), q.lastError().text()).toStdString());
+        return q.value(0).toInt();
+    }
     if (!q.exec(QStringLiteral("PRAGMA user_version")) || !q.next())
         throw StorageError(QStringLiteral("%1: cannot read schema version: %2")
                                .arg(db.databaseName(), q.lastError().text())
@@ -159,6 +186,24 @@ int SchemaMigrator::version(QSqlDatabase &db)
 }
 
 void SchemaMigrator::migrate(QSqlDatabase &db, const DataStep &dataStep)
+{
+    if (isPostgres(db)) {
+        // Several clients may open a new central store at once: one migrates, the others wait
+        // and then find it current.
+        exec(db, QStringLiteral("SELECT pg_advisory_lock(727274)"));
+        try {
+            migrateLocked(db, dataStep);
+        } catch (...) {
+            QSqlQuery(db).exec(QStringLiteral("SELECT pg_advisory_unlock(727274)"));
+            throw;
+        }
+        exec(db, QStringLiteral("SELECT pg_advisory_unlock(727274)"));
+        return;
+    }
+    migrateLocked(db, dataStep);
+}
+
+void SchemaMigrator::migrateLocked(QSqlDatabase &db, const DataStep &dataStep)
 {
     const int have = version(db);
     if (have > currentVersion())
@@ -174,14 +219,23 @@ void SchemaMigrator::migrate(QSqlDatabase &db, const DataStep &dataStep)
                                    .toStdString());
         try {
             // QSqlQuery runs one statement at a time.
-            const QStringList statements = migrations().at(v).split(QLatin1Char(';'), Qt::SkipEmptyParts);
+            const bool pg = isPostgres(db);
+            const QString ddl = pg ? forPostgres(migrations().at(v)) : migrations().at(v);
+            const QStringList statements = ddl.split(QLatin1Char(';'), Qt::SkipEmptyParts);
             for (const QString &s : statements) {
                 if (!s.trimmed().isEmpty())
                     exec(db, s);
             }
             if (dataStep)
                 dataStep(v + 1);
-            exec(db, QStringLiteral("PRAGMA user_version = %1").arg(v + 1));
+            if (!pg) {
+                exec(db, QStringLiteral("PRAGMA user_version = %1").arg(v + 1));
+            } else {
+                if (v == 0)
+                    exec(db, QStringLiteral("CREATE TABLE driftlab_schema (version INTEGER NOT NULL)"));
+                exec(db, QStringLiteral("DELETE FROM driftlab_schema"));
+                exec(db, QStringLiteral("INSERT INTO driftlab_schema(version) VALUES (%1)").arg(v + 1));
+            }
         } catch (...) {
             db.rollback();
             throw;

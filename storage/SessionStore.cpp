@@ -54,9 +54,27 @@ QVariant optionalReal(const std::optional<double> &v)
 
 } // namespace
 
-SessionStore::SessionStore(const QString &path) : m_path(path)
+bool SessionStore::isCentral(const QString &path)
+{
+    return path.startsWith(QLatin1String("postgresql://")) || path.startsWith(QLatin1String("postgres://"));
+}
+
+QString SessionStore::displayPath(const QString &path)
+{
+    if (!isCentral(path))
+        return path;
+    QUrl url(path);
+    url.setPassword(QString());
+    return url.toString();
+}
+
+SessionStore::SessionStore(const QString &path) : m_path(displayPath(path))
 {
     m_connection = QStringLiteral("driftlab-store-%1").arg(++g_connectionCounter);
+    if (isCentral(path)) {
+        openCentral(path);
+        return;
+    }
     m_db = QSqlDatabase::addDatabase(QStringLiteral("QSQLITE"), m_connection);
     const QFileInfo file(path);
     const QFileInfo dir(file.absolutePath());
@@ -113,6 +131,36 @@ SessionStore::SessionStore(const QString &path) : m_path(path)
         if (toVersion == 3)
             assignMissingUuids();
     });
+}
+
+void SessionStore::openCentral(const QString &url)
+{
+    // postgresql://[user[:password]@]host[:port]/database: libpq finds a password the URL
+    // lacks in PGPASSWORD or ~/.pgpass (PGPASSFILE), so none needs to be written in a file of ours.
+    const QUrl u(url);
+    if (!u.isValid() || u.host().isEmpty() || u.path().size() < 2)
+        throw StorageError(QStringLiteral("%1: expected postgresql://[USER@]HOST[:PORT]/DATABASE").arg(m_path).toStdString());
+    if (!QSqlDatabase::isDriverAvailable(QStringLiteral("QPSQL")))
+        throw StorageError(QStringLiteral("%1: Qt's PostgreSQL driver (QPSQL) is not installed (Debian package libqt5sql5-psql)")
+                               .arg(m_path)
+                               .toStdString());
+    m_central = true;
+    m_db = QSqlDatabase::addDatabase(QStringLiteral("QPSQL"), m_connection);
+    m_db.setHostName(u.host());
+    m_db.setPort(u.port(5432));
+    m_db.setDatabaseName(u.path().mid(1));
+    if (!u.userName().isEmpty())
+        m_db.setUserName(u.userName());
+    if (!u.password().isEmpty())
+        m_db.setPassword(u.password());
+    QString options = QStringLiteral("connect_timeout=5");
+    if (u.hasQuery())
+        options += QLatin1Char(';') + u.query().replace(QLatin1Char('&'), QLatin1Char(';'));
+    m_db.setConnectOptions(options);
+    if (!m_db.open())
+        SqlSupport::fail(m_path, QStringLiteral("cannot connect to the central store"), m_db.lastError());
+    m_samples = std::make_unique<SampleChannels>(m_db, m_path);
+    SchemaMigrator::migrate(m_db); // a new central store has nothing to convert
 }
 
 void SessionStore::failSql(const QString &what, const QSqlError &error) const
@@ -268,7 +316,7 @@ qint64 SessionStore::createSession(const SessionInfo &info)
     q.addBindValue(uuid);
     q.addBindValue(text(info.contentSha256));
     SqlSupport::run(q, m_path, QStringLiteral("cannot create session"));
-    return q.lastInsertId().toLongLong();
+    return SqlSupport::insertedId(q, m_db, m_path);
 }
 
 void SessionStore::updateSessionText(qint64 sessionId, const char *column, const QString &value)
@@ -340,7 +388,7 @@ qint64 SessionStore::addChannel(qint64 sessionId, const ChannelInfo &c)
     q.addBindValue(text(c.role));
     q.addBindValue(optionalReal(c.screwPosition_m));
     SqlSupport::run(q, m_path, QStringLiteral("cannot add channel '%1'").arg(c.key));
-    return q.lastInsertId().toLongLong();
+    return SqlSupport::insertedId(q, m_db, m_path);
 }
 
 qint64 SessionStore::addIrFrame(qint64 sessionId, const IrFrame &frame)
@@ -364,7 +412,7 @@ qint64 SessionStore::addCompressedIrFrame(qint64 sessionId, const IrFrame &frame
     q.bindValue(5, text(frame.sourceName));
     q.bindValue(6, compressed);
     SqlSupport::run(q, m_path, QStringLiteral("cannot store infrared frame at %1 s").arg(frame.t));
-    return q.lastInsertId().toLongLong();
+    return SqlSupport::insertedId(q, m_db, m_path);
 }
 
 void SessionStore::addInterferometerPoints(qint64 sessionId, const QVector<InterferometerPoint> &points)
@@ -386,17 +434,23 @@ void SessionStore::addInterferometerPoints(qint64 sessionId, const QVector<Inter
 
 qint64 SessionStore::addFittedModel(qint64 sessionId, const FittedModel &model)
 {
+    // A copy keeps the model's creation time; a new model gets the store's clock.
     QSqlQuery q = SqlSupport::prepared(m_db, m_path,
-                           QStringLiteral("INSERT INTO fitted_models(session_id, model, parameters_json, uncertainties_json, "
-                                          "provenance_json, metrics_json) VALUES(?, ?, ?, ?, ?, ?)"));
+                           model.created.isEmpty()
+                               ? QStringLiteral("INSERT INTO fitted_models(session_id, model, parameters_json, uncertainties_json, "
+                                                "provenance_json, metrics_json) VALUES(?, ?, ?, ?, ?, ?)")
+                               : QStringLiteral("INSERT INTO fitted_models(session_id, model, parameters_json, uncertainties_json, "
+                                                "provenance_json, metrics_json, created) VALUES(?, ?, ?, ?, ?, ?, ?)"));
     q.addBindValue(sessionId);
     q.addBindValue(text(model.model));
     q.addBindValue(json(model.parameters));
     q.addBindValue(json(model.uncertainties));
     q.addBindValue(json(model.provenance));
     q.addBindValue(json(model.metrics));
+    if (!model.created.isEmpty())
+        q.addBindValue(model.created);
     SqlSupport::run(q, m_path, QStringLiteral("cannot store fitted model '%1'").arg(model.model));
-    return q.lastInsertId().toLongLong();
+    return SqlSupport::insertedId(q, m_db, m_path);
 }
 
 void SessionStore::forEachSampleBlock(qint64 channelId,
@@ -442,15 +496,18 @@ void SessionStore::setComplete(qint64 sessionId, bool complete)
     SqlSupport::run(q, m_path, QStringLiteral("cannot mark session %1").arg(sessionId));
 }
 
-qint64 SessionStore::addAnalysisResult(qint64 sessionId, const QString &kind, const QJsonObject &result)
+qint64 SessionStore::addAnalysisResult(qint64 sessionId, const QString &kind, const QJsonObject &result, const QString &created)
 {
     QSqlQuery q = SqlSupport::prepared(m_db, m_path,
-                           QStringLiteral("INSERT INTO analysis_results(session_id, kind, result_json) VALUES(?, ?, ?)"));
+                           created.isEmpty() ? QStringLiteral("INSERT INTO analysis_results(session_id, kind, result_json) VALUES(?, ?, ?)")
+                                             : QStringLiteral("INSERT INTO analysis_results(session_id, kind, result_json, created) VALUES(?, ?, ?, ?)"));
     q.addBindValue(sessionId);
     q.addBindValue(text(kind));
     q.addBindValue(QString::fromUtf8(QJsonDocument(result).toJson(QJsonDocument::Compact)));
+    if (!created.isEmpty())
+        q.addBindValue(created);
     SqlSupport::run(q, m_path, QStringLiteral("cannot store analysis result"));
-    return q.lastInsertId().toLongLong();
+    return SqlSupport::insertedId(q, m_db, m_path);
 }
 
 namespace {
@@ -611,6 +668,8 @@ QVector<FittedModel> SessionStore::fittedModels(qint64 sessionId) const
 
 void SessionStore::setSizeLimit(qint64 bytes)
 {
+    if (m_central)
+        throw StorageError(QStringLiteral("%1: a size limit is for SQLite files only").arg(m_path).toStdString());
     QSqlQuery q(m_db);
     if (!q.exec(QStringLiteral("PRAGMA page_size")) || !q.next())
         failSql(QStringLiteral("cannot read page size"), q.lastError());
@@ -622,6 +681,8 @@ void SessionStore::setSizeLimit(qint64 bytes)
 
 QString SessionStore::integrityCheck() const
 {
+    if (m_central)
+        return QStringLiteral("ok"); // the server keeps its own pages consistent
     QSqlQuery q(m_db);
     if (!q.exec(QStringLiteral("PRAGMA integrity_check")))
         failSql(QStringLiteral("cannot run integrity check"), q.lastError());
@@ -639,6 +700,18 @@ QVector<EventRecord> SessionStore::events(qint64 sessionId) const
     QVector<EventRecord> out;
     while (q.next())
         out.push_back({q.value(0).toDouble(), q.value(1).toString()});
+    return out;
+}
+
+QVector<AnalysisResult> SessionStore::analysisResults(qint64 sessionId) const
+{
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
+                           QStringLiteral("SELECT kind, created, result_json FROM analysis_results WHERE session_id = ? ORDER BY id"));
+    q.addBindValue(sessionId);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot read analysis results"));
+    QVector<AnalysisResult> out;
+    while (q.next())
+        out.push_back({q.value(0).toString(), q.value(1).toString(), object(q.value(2))});
     return out;
 }
 

@@ -20,8 +20,12 @@ class SampleChannels;
 
 class SessionStore {
 public:
-    // Opens (creating if needed) and migrates the database. Throws StorageError.
+    // Opens (creating if needed) and migrates the database. Throws StorageError. A path
+    // "postgresql://[USER@]HOST[:PORT]/DATABASE" opens a central store on a PostgreSQL server
+    // (same schema and behaviour; docs/storage.md).
     explicit SessionStore(const QString &path);
+    static bool isCentral(const QString &path);     // a postgresql:// address
+    static QString displayPath(const QString &path); // the address without a password
     ~SessionStore();
     SessionStore(const SessionStore &) = delete;
     SessionStore &operator=(const SessionStore &) = delete;
@@ -29,6 +33,7 @@ public:
     QString path() const { return m_path; }
     // Opened read-only because the file or its folder cannot be written (read-only media).
     bool isReadOnly() const { return m_readOnly; }
+    bool isCentralStore() const { return m_central; }
 
     // Creates a session; an empty info.uuid gets a new random UUID. Throws StorageError if
     // the UUID is malformed or already names a session.
@@ -56,7 +61,8 @@ public:
     qint64 addFittedModel(qint64 sessionId, const FittedModel &model);
     void addEvent(qint64 sessionId, const EventRecord &event);
     void setComplete(qint64 sessionId, bool complete);
-    qint64 addAnalysisResult(qint64 sessionId, const QString &kind, const QJsonObject &result);
+    // created: empty = now (a copy passes the original's time).
+    qint64 addAnalysisResult(qint64 sessionId, const QString &kind, const QJsonObject &result, const QString &created = QString());
 
     // Groups several writes into one transaction (nesting is not supported).
     void begin();
@@ -86,6 +92,7 @@ public:
     QVector<FittedModel> fittedModels(qint64 sessionId) const;
     QVector<EventRecord> events(qint64 sessionId) const;
     QJsonObject latestAnalysisResult(qint64 sessionId, const QString &kind) const;
+    QVector<AnalysisResult> analysisResults(qint64 sessionId) const; // every one, oldest first
 
     // Caps the database file (PRAGMA max_page_count) for quotas and disk-full tests; a
     // write past it fails with a StorageError saying the disk is full.
@@ -97,6 +104,7 @@ private:
     QSqlQuery &cached(const char *sql);
     // Runs work in the open transaction, or in one of its own (rolled back if work throws).
     void inTransaction(const std::function<void()> &work);
+    void openCentral(const QString &url);
     void convertLegacySamples();
     void assignMissingUuids();
     void updateSessionText(qint64 sessionId, const char *column, const QString &value);
@@ -104,6 +112,7 @@ private:
 
     QString m_path;
     bool m_readOnly = false;
+    bool m_central = false;
     QString m_connection;
     QSqlDatabase m_db;
     bool m_inTransaction = false;

@@ -3,6 +3,7 @@
 #include "StorageError.h"
 
 #include <QSqlError>
+#include <QVariant>
 
 namespace driftlab {
 
@@ -37,6 +38,16 @@ void SqlSupport::run(QSqlQuery &q, const QString &path, const QString &what)
 {
     if (!q.exec())
         fail(path, what, q.lastError());
+}
+
+qint64 SqlSupport::insertedId(QSqlQuery &q, const QSqlDatabase &db, const QString &path)
+{
+    if (db.driverName() != QLatin1String("QPSQL"))
+        return q.lastInsertId().toLongLong();
+    QSqlQuery last(db);
+    if (!last.exec(QStringLiteral("SELECT lastval()")) || !last.next())
+        fail(path, QStringLiteral("cannot read the new row's id"), last.lastError());
+    return last.value(0).toLongLong();
 }
 
 } // namespace driftlab

@@ -79,6 +79,13 @@ struct InterferometerPoint {
     QString direction;        // "+", "-" or empty
 };
 
+// An analysis result stored with a session (diagnosis, compensation run, ...).
+struct AnalysisResult {
+    QString kind;
+    QString created;          // ISO 8601, UTC
+    QJsonObject result;
+};
+
 // A model fitted to a session: parameters, their uncertainties, where it came from
 // (data window, channels, software version) and fit metrics (RMS, R^2, ...).
 struct FittedModel {

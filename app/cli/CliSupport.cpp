@@ -1,5 +1,7 @@
 #include "CliSupport.h"
 
+#include "SessionStore.h"
+
 #include "CliCommand.h"
 
 #include <QDir>
@@ -25,6 +27,8 @@ QString CliSupport::databasePath(const QString &option, const QString &fallback,
 {
     const QString named = !option.isEmpty() ? option : fallback;
     const QString path = !named.isEmpty() ? named : defaultDatabasePath();
+    if (SessionStore::isCentral(path))
+        return path; // a central store: the server answers for it when it is opened
     if (mustExist && !QFileInfo::exists(path))
         throw UsageError(QStringLiteral("database %1 does not exist").arg(path));
     if (QFileInfo(path).isDir())

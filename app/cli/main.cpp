@@ -13,6 +13,8 @@
 #include "ImportRtlCommand.h"
 #include "InfoCommand.h"
 #include "ListCommand.h"
+#include "PullCommand.h"
+#include "PushCommand.h"
 #include "NewBundleCommand.h"
 #include "PlotCommand.h"
 #include "RecordCommand.h"
@@ -56,6 +58,8 @@ std::vector<std::unique_ptr<CliCommand>> commands()
     list.push_back(std::make_unique<BatchCommand>());
     list.push_back(std::make_unique<ExportModelCommand>());
     list.push_back(std::make_unique<CompensateCommand>());
+    list.push_back(std::make_unique<PushCommand>());
+    list.push_back(std::make_unique<PullCommand>());
     return list;
 }
 
