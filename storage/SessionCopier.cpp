@@ -174,9 +174,9 @@ SessionCopier::Result SessionCopier::copy(const SessionStore &from, qint64 sessi
     try {
         SessionInfo copyInfo = info;
         copyInfo.id = 0;
+        // Complete and content hash go in with the session: a copy never updates a session row
+        // (rig accounts of a central store may only add).
         const qint64 id = to.createSession(copyInfo);
-        if (!info.contentSha256.isEmpty())
-            to.setContentSha256(id, info.contentSha256);
         for (const ChannelInfo &ch : channels) {
             ChannelInfo c = ch;
             c.id = 0;
@@ -208,7 +208,6 @@ SessionCopier::Result SessionCopier::copy(const SessionStore &from, qint64 sessi
             to.addFittedModel(id, m);
         for (const AnalysisResult &a : from.analysisResults(sessionId))
             to.addAnalysisResult(id, a.kind, a.result, a.created);
-        to.setComplete(id, info.complete);
         // Read the copy back inside the transaction: the same counts and digest, or nothing.
         Counts c;
         const QString got = digest(to, id, &c);

@@ -539,6 +539,37 @@ QVector<SessionInfo> SessionStore::sessions() const
     return out;
 }
 
+QVector<SessionSummary> SessionStore::sessionSummaries() const
+{
+    // One query for the whole list (a central store may hold 10,000 sessions): the counts are
+    // grouped once per table, not looked up per session.
+    QSqlQuery q = SqlSupport::prepared(
+        m_db, m_path,
+        QStringLiteral("SELECT s.id, s.uuid, s.name, s.started, s.complete, coalesce(c.n, 0), coalesce(b.n, 0), coalesce(f.n, 0) "
+                       "FROM sessions s "
+                       "LEFT JOIN (SELECT session_id, count(*) AS n FROM channels GROUP BY session_id) c ON c.session_id = s.id "
+                       "LEFT JOIN (SELECT ch.session_id, sum(sb.n) AS n FROM sample_blocks sb JOIN channels ch ON sb.channel_id = ch.id "
+                       "GROUP BY ch.session_id) b ON b.session_id = s.id "
+                       "LEFT JOIN (SELECT session_id, count(*) AS n FROM ir_frames GROUP BY session_id) f ON f.session_id = s.id "
+                       "ORDER BY s.id"));
+    q.setForwardOnly(true);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot list sessions"));
+    QVector<SessionSummary> out;
+    while (q.next()) {
+        SessionSummary m;
+        m.id = q.value(0).toLongLong();
+        m.uuid = q.value(1).toString();
+        m.name = q.value(2).toString();
+        m.started = q.value(3).toString();
+        m.complete = q.value(4).toInt() != 0;
+        m.channels = q.value(5).toInt();
+        m.samples = q.value(6).toLongLong();
+        m.irFrames = q.value(7).toInt();
+        out.push_back(m);
+    }
+    return out;
+}
+
 SessionInfo SessionStore::session(qint64 sessionId) const
 {
     QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT %1 FROM sessions WHERE id = ?").arg(QLatin1String(kSessionColumns)));

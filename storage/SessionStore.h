@@ -70,6 +70,8 @@ public:
     void rollback();
 
     QVector<SessionInfo> sessions() const;
+    // The session list with channel, sample and frame counts, in one query.
+    QVector<SessionSummary> sessionSummaries() const;
     SessionInfo session(qint64 sessionId) const; // throws StorageError if absent
     QVector<ChannelInfo> channels(qint64 sessionId) const;
     // Samples of a channel with t0 <= t <= t1, in time order.

@@ -79,6 +79,18 @@ struct InterferometerPoint {
     QString direction;        // "+", "-" or empty
 };
 
+// A line of the session list: identity and counts, without the session's blocks.
+struct SessionSummary {
+    qint64 id = 0;
+    QString uuid;
+    QString name;
+    QString started;
+    bool complete = false;
+    int channels = 0;
+    qint64 samples = 0;
+    int irFrames = 0;
+};
+
 // An analysis result stored with a session (diagnosis, compensation run, ...).
 struct AnalysisResult {
     QString kind;

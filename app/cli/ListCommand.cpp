@@ -31,30 +31,25 @@ int ListCommand::run(const QStringList &args)
     SessionStore store(path);
     QJsonArray list;
     QTextStream out(stdout);
-    for (const SessionInfo &s : store.sessions()) {
-        const QVector<ChannelInfo> channels = store.channels(s.id);
-        qint64 samples = 0;
-        for (const ChannelInfo &c : channels)
-            samples += store.sampleCount(c.id);
-        const int frames = store.irFrames(s.id).size();
+    for (const SessionSummary &s : store.sessionSummaries()) {
         list.append(QJsonObject{{QStringLiteral("id"), static_cast<double>(s.id)},
                                 {QStringLiteral("uuid"), s.uuid},
                                 {QStringLiteral("name"), s.name},
                                 {QStringLiteral("started"), s.started},
                                 {QStringLiteral("complete"), s.complete},
-                                {QStringLiteral("channels"), channels.size()},
-                                {QStringLiteral("samples"), static_cast<double>(samples)},
-                                {QStringLiteral("ir_frames"), frames}});
+                                {QStringLiteral("channels"), s.channels},
+                                {QStringLiteral("samples"), static_cast<double>(s.samples)},
+                                {QStringLiteral("ir_frames"), s.irFrames}});
         if (!p.isSet(json))
             out << QStringLiteral("%1  %2  %3%4  %5 channels, %6 samples, %7 frames\n")
                        .arg(s.id)
                        .arg(s.started, s.name, s.complete ? QString() : QStringLiteral(" [INCOMPLETE]"))
-                       .arg(channels.size())
-                       .arg(samples)
-                       .arg(frames);
+                       .arg(s.channels)
+                       .arg(s.samples)
+                       .arg(s.irFrames);
     }
     if (p.isSet(json))
-        CliSupport::writeJson(QJsonDocument(QJsonObject{{QStringLiteral("database"), path}, {QStringLiteral("sessions"), list}}),
+        CliSupport::writeJson(QJsonDocument(QJsonObject{{QStringLiteral("database"), store.path()}, {QStringLiteral("sessions"), list}}),
                               p.value(json));
     return 0;
 }

@@ -9,6 +9,7 @@
 
 #include "../support/PostgresServer.h"
 
+#include <QFile>
 #include <QJsonObject>
 #include <QTemporaryDir>
 #include <QtTest>
@@ -79,6 +80,7 @@ private slots:
     void cancelledPushLeavesNothing();
     void incompleteSessionIsNotPushed();
     void clearErrors();
+    void rigAccountsOnlyAdd();
     void cleanupTestCase() { m_server.stop(); }
 
 private:
@@ -254,6 +256,52 @@ void TestCentralStore::clearErrors()
         QVERIFY(s.sessions().isEmpty());
     }
     qunsetenv("PGPASSWORD");
+}
+
+void TestCentralStore::rigAccountsOnlyAdd()
+{
+    // The grants of resources/sql/central-roles.sql, as docs/storage.md tells a lab to apply them.
+    QCOMPARE(m_server.sql(QStringLiteral("CREATE DATABASE roles")), QString());
+    { SessionStore owner(m_server.url(QStringLiteral("roles"))); } // the owner creates the schema
+    QFile file(QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/sql/central-roles.sql"));
+    QVERIFY(file.open(QIODevice::ReadOnly));
+    QString script;
+    for (const QString &line : QString::fromUtf8(file.readAll()).split(QLatin1Char('\n')))
+        if (!line.trimmed().startsWith(QLatin1String("--")))
+            script += line + QLatin1Char('\n');
+    for (const QString &statement : script.split(QLatin1Char(';'), Qt::SkipEmptyParts))
+        if (!statement.trimmed().isEmpty())
+            QCOMPARE(m_server.sql(statement, QStringLiteral("roles")), QString());
+    QCOMPARE(m_server.sql(QStringLiteral("CREATE ROLE rig7 LOGIN IN ROLE driftlab_rig")), QString());
+    QCOMPARE(m_server.sql(QStringLiteral("CREATE ROLE anna LOGIN IN ROLE driftlab_reviewer")), QString());
+
+    SessionStore local(m_dir.filePath(QStringLiteral("rig7.sqlite")));
+    const qint64 id = fillSession(local, 5000);
+    SessionStore rig(m_server.url(QStringLiteral("roles"), QStringLiteral("rig7")));
+    const SessionCopier::Result pushed = SessionCopier::copy(local, id, rig); // adding works
+    QVERIFY(!pushed.alreadyThere);
+    const auto refused = [](const std::function<void()> &f) {
+        try {
+            f();
+        } catch (const StorageError &e) {
+            return QString::fromUtf8(e.what()).contains(QStringLiteral("permission denied"));
+        }
+        return false;
+    };
+    QVERIFY(refused([&] { rig.deleteSession(pushed.targetId); }));
+    QVERIFY(refused([&] { rig.renameSession(pushed.targetId, QStringLiteral("mine now")); }));
+    QVERIFY(refused([&] { rig.setComplete(pushed.targetId, false); }));
+    QCOMPARE(rig.session(pushed.targetId).name, local.session(id).name);
+
+    SessionStore reviewer(m_server.url(QStringLiteral("roles"), QStringLiteral("anna")));
+    QCOMPARE(reviewer.sessionSummaries().size(), 1);
+    FittedModel m;
+    m.model = QStringLiteral("mlr");
+    QVERIFY(reviewer.addFittedModel(pushed.targetId, m) > 0); // a fit is stored with the session
+    QVERIFY(refused([&] { reviewer.deleteSession(pushed.targetId); }));
+    SessionStore other(m_dir.filePath(QStringLiteral("desk.sqlite")));
+    const qint64 otherId = fillSession(other, 100);
+    QVERIFY(refused([&] { SessionCopier::copy(other, otherId, reviewer); })); // reviewers do not push
 }
 
 QTEST_GUILESS_MAIN(TestCentralStore)
