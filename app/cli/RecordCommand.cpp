@@ -1,5 +1,7 @@
 #include "RecordCommand.h"
 
+#include "SessionTransferRun.h"
+
 #include "AcquisitionEngine.h"
 #include "BundleTransfer.h"
 #include "CliSupport.h"
@@ -44,7 +46,8 @@ QString RecordCommand::summary() const
                           "runs one acquisition thread per simulated device on a session clock N times faster\n"
                           "than real time. A rig file with a \"devices\" list (real instruments: Modbus, serial,\n"
                           "infrared camera, MTConnect; see docs/acquisition.md) records those devices in real\n"
-                          "time; Ctrl-C stops early and keeps everything recorded.");
+                          "time; Ctrl-C stops early and keeps everything recorded. --push-to copies the finished\n"
+                          "session to a central store (docs/storage.md); the local copy stays either way.");
 }
 
 int RecordCommand::run(const QStringList &args)
@@ -72,7 +75,10 @@ int RecordCommand::run(const QStringList &args)
                                        QStringLiteral("bundle"));
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
                                   QStringLiteral("file"));
-    p.addOptions({sim, rig, listRigs, duration, speed, out, feed, seed, name, exportOpt, json});
+    const QCommandLineOption pushTo(QStringLiteral("push-to"),
+                                    QStringLiteral("After the recording, push the session to a central store (postgresql://...)."),
+                                    QStringLiteral("url"));
+    p.addOptions({sim, rig, listRigs, duration, speed, out, feed, seed, name, exportOpt, pushTo, json});
     if (!parse(p, args))
         return 0;
     if (!p.positionalArguments().isEmpty())
@@ -101,6 +107,8 @@ int RecordCommand::run(const QStringList &args)
         CliSupport::checkOutput(p.value(exportOpt), QStringLiteral("--export"), true);
     if (p.isSet(json))
         CliSupport::checkOutput(p.value(json), QStringLiteral("--json"), false);
+    if (p.isSet(pushTo) && !SessionStore::isCentral(p.value(pushTo)))
+        throw UsageError(QStringLiteral("record: --push-to must be a central store, postgresql://[USER@]HOST[:PORT]/DATABASE"));
 
     RigConfig config;
     if (p.isSet(rig)) {
@@ -282,11 +290,26 @@ int RecordCommand::run(const QStringList &args)
         CliSupport::progress(QStringLiteral("exported session %1 to %2").arg(id).arg(p.value(exportOpt)));
         result.insert(QStringLiteral("bundle"), p.value(exportOpt));
     }
+    int code = 0;
+    if (p.isSet(pushTo)) {
+        // The recording is kept whatever happens to the push (recording never depends on the network).
+        try {
+            SessionStore central(p.value(pushTo));
+            const QJsonArray pushed = SessionTransferRun::run(QStringLiteral("push"), *store, {QString::number(id)}, central);
+            result.insert(QStringLiteral("pushed"), pushed.at(0));
+        } catch (const std::exception &e) {
+            CliSupport::progress(QStringLiteral("record: session %1 is recorded and kept in %2, but the push to %3 failed: %4")
+                                     .arg(id)
+                                     .arg(path, SessionStore::displayPath(p.value(pushTo)), QString::fromUtf8(e.what())));
+            result.insert(QStringLiteral("push_error"), QString::fromUtf8(e.what()));
+            code = 1;
+        }
+    }
     if (p.isSet(json))
         CliSupport::writeJson(QJsonDocument(result), p.value(json));
     else
         QTextStream(stdout) << "session " << id << " in " << path << '\n';
-    return 0;
+    return code;
 }
 
 } // namespace driftlab

@@ -20,6 +20,7 @@ private slots:
     void initTestCase();
     void pushListFitPull();
     void threeRigsPushWhileAReviewerLists();
+    void recordPushesWhenAsked();
     void badInput_data();
     void badInput();
     void cleanupTestCase() { m_server.stop(); }
@@ -145,6 +146,25 @@ void TestCentralCli::threeRigsPushWhileAReviewerLists()
     for (const QJsonValue &v : sessions)
         uuids.insert(v.toObject().value(QStringLiteral("uuid")).toString());
     QCOMPARE(uuids.size(), 6);
+}
+
+void TestCentralCli::recordPushesWhenAsked()
+{
+    const QString db = m_dir.filePath(QStringLiteral("auto.sqlite"));
+    clirunner::Result r = run({QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("0:20:00"),
+                               QStringLiteral("--out"), db, QStringLiteral("--push-to"), m_url, QStringLiteral("--json"), QStringLiteral("-")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const QJsonObject pushed = QJsonDocument::fromJson(r.out).object().value(QStringLiteral("pushed")).toObject();
+    QVERIFY(!pushed.value(QStringLiteral("already_there")).toBool());
+    QVERIFY(pushed.value(QStringLiteral("samples")).toDouble() > 1000);
+    // The store is down: the recording is kept, the push failure is said and exits 1.
+    const QString kept = m_dir.filePath(QStringLiteral("kept.sqlite"));
+    r = run({QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("0:10:00"), QStringLiteral("--out"),
+             kept, QStringLiteral("--push-to"), QStringLiteral("postgresql://driftlab@127.0.0.1:1/lab")});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("is recorded and kept in"), r.err.constData());
+    r = run({QStringLiteral("list"), QStringLiteral("--db"), kept, QStringLiteral("--json"), QStringLiteral("-")});
+    QCOMPARE(QJsonDocument::fromJson(r.out).object().value(QStringLiteral("sessions")).toArray().size(), 1);
 }
 
 void TestCentralCli::badInput_data()
