@@ -9,6 +9,7 @@
 #include "DuplicateSessionError.h"
 #include "ErrorSurface3D.h"
 #include "ModelExportDialog.h"
+#include "CentralStoreActions.h"
 #include "ModelsPanel.h"
 #include "PlotExporter.h"
 #include "ReviewWorkspace.h"
@@ -87,6 +88,8 @@ MainWindow::MainWindow(QWidget *parent)
     setCorner(Qt::BottomRightCorner, Qt::RightDockWidgetArea);
     setDockOptions(dockOptions() | QMainWindow::AllowTabbedDocks);
 
+    m_central = new CentralStoreActions(
+        this, [this] { return m_store.get(); }, [this] { return m_sessionId; }, [this](const QString &a) { return openDatabase(a); });
     buildMenus();
     addPanelDock(tr("Sessions"), QStringLiteral("SessionsDock"), m_browser, Qt::LeftDockWidgetArea,
                  QKeySequence(Qt::CTRL + Qt::Key_1));
@@ -182,6 +185,7 @@ void MainWindow::buildMenus()
     file->addAction(tr("&Open database..."), this, &MainWindow::chooseDatabase, QKeySequence::Open);
     m_recentMenu = file->addMenu(tr("Open &recent"));
     refreshRecentMenu();
+    m_central->addTo(file);
     file->addSeparator();
     file->addAction(tr("&Import recording bundle..."), this, &MainWindow::chooseBundle, QKeySequence(Qt::CTRL + Qt::Key_I));
     file->addAction(tr("Import &CSV table..."), this, &MainWindow::importCsv)->setObjectName(QStringLiteral("ImportCsvAction"));
@@ -244,7 +248,7 @@ void MainWindow::rememberDatabase(const QString &path)
 {
     QSettings settings;
     QStringList recent = settings.value(QLatin1String(kRecentKey)).toStringList();
-    const QString abs = QFileInfo(path).absoluteFilePath();
+    const QString abs = SessionStore::isCentral(path) ? SessionStore::displayPath(path) : QFileInfo(path).absoluteFilePath();
     recent.removeAll(abs);
     recent.prepend(abs);
     while (recent.size() > kMaxRecent)
@@ -320,11 +324,14 @@ bool MainWindow::openDatabase(const QString &path)
         m_comparison->hide();
         m_sessionId = 0;
         m_store = std::move(store);
-        m_acquisition->setDatabasePath(QFileInfo(path).absoluteFilePath());
-        setWindowTitle(tr("DriftLab - %1").arg(QFileInfo(path).fileName()));
+        // A central store is for review: recordings keep going to the local database.
+        const bool central = m_store->isCentralStore();
+        if (!central)
+            m_acquisition->setDatabasePath(QFileInfo(path).absoluteFilePath());
+        setWindowTitle(tr("DriftLab - %1").arg(central ? m_store->path() : QFileInfo(path).fileName()));
         rememberDatabase(path);
         refreshSessions(0);
-        statusBar()->showMessage(tr("%1: %n session(s)", nullptr, m_store->sessions().size()).arg(path));
+        statusBar()->showMessage(tr("%1: %n session(s)", nullptr, m_store->sessions().size()).arg(m_store->path()));
         return true;
     } catch (const StorageError &e) {
         reportError(QString::fromStdString(e.what()));

@@ -20,6 +20,7 @@ namespace driftlab {
 
 class AcquisitionPanel;
 class AnalysisPanel;
+class CentralStoreActions;
 class CompensationPanel;
 class DiagnosisPanel;
 class ModelsPanel;
@@ -77,6 +78,7 @@ public:
     qint64 currentSession() const { return m_sessionId; }
     // File > Test report: the application connects it to the report dialog (report/ sits above widgets/).
     QAction *reportAction() const { return m_reportAction; }
+    CentralStoreActions *centralStore() const { return m_central; }
     QString lastError() const { return m_lastError; }
     QStringList recentDatabases() const;
 
@@ -120,6 +122,7 @@ private:
     QMenu *m_recentMenu = nullptr;
     QMenu *m_viewMenu = nullptr;
     QAction *m_reportAction = nullptr;
+    CentralStoreActions *m_central = nullptr;
     QAction *m_viewDocksEnd = nullptr;
     qint64 m_sessionId = 0;
     QString m_lastError;

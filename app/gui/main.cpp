@@ -134,7 +134,7 @@ int main(int argc, char **argv)
         ReportDialog dialog(window.store(), window.currentSession(), &window);
         dialog.exec();
     });
-    if (QFileInfo::exists(path)) {
+    if (QFileInfo::exists(path) || SessionStore::isCentral(path)) {
         if (!window.openDatabase(path))
             return usageError(window.lastError());
     } else if (p.isSet(db)) {

@@ -1,6 +1,8 @@
 // The main window opened on a recorded session plots exactly the recorded samples.
 
+#include "AcquisitionPanel.h"
 #include "BundleTransfer.h"
+#include "CentralStoreActions.h"
 #include "MainWindow.h"
 #include "ReviewWorkspace.h"
 #include "SessionBrowser.h"
@@ -19,6 +21,8 @@
 #include <QUndoStack>
 #include <QTemporaryDir>
 #include <QtTest>
+
+#include "../support/PostgresServer.h"
 
 #include <qwt_plot_curve.h>
 #include <qwt_series_data.h>
@@ -39,6 +43,8 @@ private slots:
     void fitsA1366x768Screen();
     void duplicateImportAsks();
     void renameNotesUndoAndDelete();
+    // Issue 20: the central store in the GUI.
+    void pushesAndBrowsesTheCentralStore();
 
 private:
     QTemporaryDir m_dir;
@@ -294,6 +300,43 @@ void TestMainWindow::renameNotesUndoAndDelete()
     QVERIFY(check.channels(second).isEmpty());
     QVERIFY(check.irFrames(second).isEmpty());
     QCOMPARE(check.sessions().size(), 1);
+}
+
+void TestMainWindow::pushesAndBrowsesTheCentralStore()
+{
+    const QString why = testpeers::PostgresServer::skipReason();
+    if (!why.isEmpty())
+        QSKIP(qPrintable(why));
+    testpeers::PostgresServer server;
+    QString error;
+    QVERIFY2(server.start(&error), qPrintable(error));
+    QCOMPARE(server.sql(QStringLiteral("CREATE DATABASE lab")), QString());
+    const QString url = server.url(QStringLiteral("lab"));
+
+    MainWindow window;
+    QVERIFY(window.openDatabase(m_db));
+    window.showSession(m_session);
+    QString message;
+    QVERIFY2(window.centralStore()->push(url, m_session, &message, false), qPrintable(message));
+    QVERIFY2(message.contains(QStringLiteral("verified")), qPrintable(message));
+    QVERIFY(window.centralStore()->push(url, m_session, &message, false));
+    QVERIFY2(message.contains(QStringLiteral("nothing changed")), qPrintable(message));
+    // The address is remembered without a password.
+    CentralStoreActions::setAddress(QStringLiteral("postgresql://driftlab:pw@127.0.0.1:%1/lab").arg(server.port()));
+    QCOMPARE(CentralStoreActions::address(), url);
+
+    // Browse it like a file: the session list shows the pushed session, its samples plot.
+    QVERIFY2(window.openDatabase(url), qPrintable(window.lastError()));
+    QVERIFY(window.windowTitle().contains(QStringLiteral("postgresql://")));
+    QListWidget *list = window.findChild<SessionBrowser *>()->sessionList();
+    QCOMPARE(list->count(), 1);
+    QVERIFY(list->item(0)->text().contains(QStringLiteral("gui test")));
+    // Recording still goes to the local file.
+    QCOMPARE(window.findChild<AcquisitionPanel *>()->targetDatabase(), QFileInfo(m_db).absoluteFilePath());
+    // A store that cannot be reached is reported, and the window keeps what it had open.
+    QVERIFY(!window.openDatabase(QStringLiteral("postgresql://driftlab@127.0.0.1:1/lab")));
+    QVERIFY(window.lastError().contains(QStringLiteral("cannot connect to the central store")));
+    QCOMPARE(list->count(), 1);
 }
 
 QTEST_MAIN(TestMainWindow)
