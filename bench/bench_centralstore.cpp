@@ -131,9 +131,18 @@ int main(int argc, char **argv)
     auto a = Clock::now();
     const SessionCopier::Result r = SessionCopier::copy(from, session, central);
     const double push_s = since(a);
+    a = Clock::now();
+    SessionCopier::digest(central, r.targetId);
+    const double readCentral_s = since(a);
+    a = Clock::now();
+    SessionCopier::digest(from, session);
+    const double readLocal_s = since(a);
+    std::printf("  of which reading and hashing everything: central %.1f s, local %.1f s (done once each for the verification)\n",
+                readCentral_s, readLocal_s);
     // Reference: the raw block bytes as bytea rows, one transaction.
     QSqlDatabase raw = connect(pg, QStringLiteral("push"), QStringLiteral("raw"));
     exec(raw, QStringLiteral("CREATE TABLE raw_blocks (id BIGSERIAL PRIMARY KEY, data BYTEA NOT NULL)"));
+    exec(raw, QStringLiteral("ALTER TABLE raw_blocks ALTER COLUMN data SET STORAGE EXTERNAL")); // as the store's blocks
     QSqlDatabase lite = QSqlDatabase::addDatabase(QStringLiteral("QSQLITE"), QStringLiteral("lite"));
     lite.setDatabaseName(local);
     lite.open();

@@ -51,6 +51,7 @@ private:
 
     QSqlDatabase m_db;
     QString m_path;
+    bool m_pgBinary = false; // blocks and mipmap rows go to PostgreSQL as binary bytea (PgBinaryStatement)
     QHash<qint64, ChannelState> m_state;
     QHash<const char *, QSqlQuery> m_queries; // prepared write statements, reused
 };

@@ -231,6 +231,18 @@ void SchemaMigrator::migrateLocked(QSqlDatabase &db, const DataStep &dataStep)
             if (!pg) {
                 exec(db, QStringLiteral("PRAGMA user_version = %1").arg(v + 1));
             } else {
+                // Sample blocks, mipmap rows and frames are compressed by DriftLab already (or do
+                // not compress): the server stores them out of line without compressing again
+                // (pglz on every block would cost more than sending it).
+                QSqlQuery cols(db);
+                if (!cols.exec(QStringLiteral("SELECT table_name, column_name FROM information_schema.columns "
+                                              "WHERE table_schema = current_schema() AND data_type = 'bytea'")))
+                    throw StorageError(QStringLiteral("%1: cannot list bytea columns: %2").arg(db.databaseName(), cols.lastError().text()).toStdString());
+                QStringList alter;
+                while (cols.next())
+                    alter << QStringLiteral("ALTER TABLE %1 ALTER COLUMN %2 SET STORAGE EXTERNAL").arg(cols.value(0).toString(), cols.value(1).toString());
+                for (const QString &a : alter)
+                    exec(db, a);
                 if (v == 0)
                     exec(db, QStringLiteral("CREATE TABLE driftlab_schema (version INTEGER NOT NULL)"));
                 exec(db, QStringLiteral("DELETE FROM driftlab_schema"));

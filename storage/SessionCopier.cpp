@@ -64,16 +64,95 @@ void describe(Digest &d, const SessionInfo &s)
 
 } // namespace
 
-QString SessionCopier::digest(const SessionStore &store, qint64 sessionId, Counts *counts)
+// Writes what walk() hands it into the target store, in the target's open transaction.
+class SessionCopier::Writer {
+public:
+    Writer(SessionStore &to, const Progress &progress, double total, const QString &cancelled)
+        : m_to(to), m_progress(progress), m_total(total), m_cancelled(cancelled)
+    {
+    }
+    void session(const SessionInfo &info)
+    {
+        SessionInfo copy = info;
+        copy.id = 0;
+        // Complete and content hash go in with the session: a copy never updates a session row
+        // (rig accounts of a central store may only add).
+        m_id = m_to.createSession(copy);
+    }
+    void channel(const ChannelInfo &ch)
+    {
+        ChannelInfo c = ch;
+        c.id = 0;
+        c.sessionId = m_id;
+        m_channel = m_to.addChannel(m_id, c);
+        m_pending = 0;
+    }
+    void samples(const QVector<double> &t, const QVector<double> &v)
+    {
+        m_to.appendSamples(m_channel, t, v);
+        m_pending += t.size();
+        bytes += 16LL * t.size();
+        if (m_pending >= 1000000) { // bounded memory: write the buffered blocks
+            m_to.flushSamples();
+            m_pending = 0;
+        }
+        step(static_cast<double>(t.size()));
+    }
+    void channelsDone() { m_to.flushSamples(); }
+    void frame(const IrFrame &f)
+    {
+        m_to.addIrFrame(m_id, f);
+        bytes += 2LL * f.pixels.size();
+        step(10000.0);
+    }
+    void rest(const QVector<InterferometerPoint> &points, const QVector<EventRecord> &events, const QVector<FittedModel> &models,
+              const QVector<AnalysisResult> &results)
+    {
+        m_to.addInterferometerPoints(m_id, points);
+        for (const EventRecord &e : events)
+            m_to.addEvent(m_id, e);
+        for (const FittedModel &m : models)
+            m_to.addFittedModel(m_id, m);
+        for (const AnalysisResult &a : results)
+            m_to.addAnalysisResult(m_id, a.kind, a.result, a.created);
+    }
+    qint64 id() const { return m_id; }
+    qint64 bytes = 0;
+
+private:
+    void step(double amount)
+    {
+        m_done += amount;
+        if (m_progress && !m_progress(std::min(1.0, m_done / m_total)))
+            throw StorageError(m_cancelled.toStdString());
+    }
+    SessionStore &m_to;
+    const Progress &m_progress;
+    double m_total;
+    QString m_cancelled;
+    qint64 m_id = 0;
+    qint64 m_channel = 0;
+    qint64 m_pending = 0;
+    double m_done = 0.0;
+};
+
+// Walks a session in digest order, hashing everything; with a target, writes each part there
+// as it goes (so a copy reads its source once).
+QString SessionCopier::walk(const SessionStore &store, qint64 sessionId, Counts *counts, Writer *writer)
 {
     Digest d;
     Counts c;
-    describe(d, store.session(sessionId));
+    const SessionInfo info = store.session(sessionId);
+    describe(d, info);
+    if (writer)
+        writer->session(info);
     for (const ChannelInfo &ch : store.channels(sessionId)) {
         ++c.channels;
         for (const QString &s : {ch.key, ch.kind, ch.sensor, ch.unit, ch.location, ch.role})
             d.text(s);
         d.real(ch.screwPosition_m ? *ch.screwPosition_m : std::nan(""));
+        if (writer)
+            writer->channel(ch);
         qint64 n = 0;
         // Sample by sample, so that the digest does not depend on how the samples are blocked.
         store.forEachSampleBlock(ch.id, [&](const QVector<double> &t, const QVector<double> &v) {
@@ -82,10 +161,14 @@ QString SessionCopier::digest(const SessionStore &store, qint64 sessionId, Count
                 d.real(v[k]);
             }
             n += t.size();
+            if (writer)
+                writer->samples(t, v);
         });
         d.integer(n);
         c.samples += n;
     }
+    if (writer)
+        writer->channelsDone();
     for (const IrFrame &f : store.irFrames(sessionId)) {
         ++c.frames;
         const IrFrame full = store.irFrame(f.id);
@@ -95,8 +178,11 @@ QString SessionCopier::digest(const SessionStore &store, qint64 sessionId, Count
         d.text(full.sourceName);
         d.integer(full.pixels.size());
         d.words(full.pixels);
+        if (writer)
+            writer->frame(full);
     }
-    for (const InterferometerPoint &p : store.interferometerPoints(sessionId)) {
+    const QVector<InterferometerPoint> points = store.interferometerPoints(sessionId);
+    for (const InterferometerPoint &p : points) {
         ++c.points;
         d.real(p.t);
         d.integer(p.run);
@@ -104,12 +190,14 @@ QString SessionCopier::digest(const SessionStore &store, qint64 sessionId, Count
         d.real(p.error_um);
         d.text(p.direction);
     }
-    for (const EventRecord &e : store.events(sessionId)) {
+    const QVector<EventRecord> events = store.events(sessionId);
+    for (const EventRecord &e : events) {
         ++c.events;
         d.real(e.t);
         d.text(e.label);
     }
-    for (const FittedModel &m : store.fittedModels(sessionId)) {
+    const QVector<FittedModel> models = store.fittedModels(sessionId);
+    for (const FittedModel &m : models) {
         ++c.models;
         d.text(m.model);
         d.text(m.created);
@@ -118,15 +206,23 @@ QString SessionCopier::digest(const SessionStore &store, qint64 sessionId, Count
         d.json(m.provenance);
         d.json(m.metrics);
     }
-    for (const AnalysisResult &r : store.analysisResults(sessionId)) {
+    const QVector<AnalysisResult> results = store.analysisResults(sessionId);
+    for (const AnalysisResult &r : results) {
         ++c.results;
         d.text(r.kind);
         d.text(r.created);
         d.json(r.result);
     }
+    if (writer)
+        writer->rest(points, events, models, results);
     if (counts)
         *counts = c;
     return d.hex();
+}
+
+QString SessionCopier::digest(const SessionStore &store, qint64 sessionId, Counts *counts)
+{
+    return walk(store, sessionId, counts, nullptr);
 }
 
 SessionCopier::Result SessionCopier::copy(const SessionStore &from, qint64 sessionId, SessionStore &to, const Progress &progress)
@@ -141,13 +237,14 @@ SessionCopier::Result SessionCopier::copy(const SessionStore &from, qint64 sessi
                                .arg(from.path())
                                .arg(sessionId)
                                .toStdString());
-    r.sha256 = digest(from, sessionId, &r.counts);
+    // Already there? Then the source's digest decides (read once, nothing written).
     const auto already = [&]() -> bool {
         const qint64 there = to.sessionByUuid(info.uuid);
         if (!there)
             return false;
-        Counts c;
-        if (digest(to, there, &c) != r.sha256)
+        if (r.sha256.isEmpty())
+            r.sha256 = digest(from, sessionId, &r.counts);
+        if (digest(to, there) != r.sha256)
             throw StorageError(QStringLiteral("%1: session %2 has UUID %3 but other content than session %4 of %5; nothing was copied")
                                    .arg(to.path())
                                    .arg(there)
@@ -162,55 +259,19 @@ SessionCopier::Result SessionCopier::copy(const SessionStore &from, qint64 sessi
     if (already())
         return r;
 
-    const QVector<ChannelInfo> channels = from.channels(sessionId);
-    const double total = static_cast<double>(std::max<qint64>(1, r.counts.samples + r.counts.frames * 10000LL));
-    double done = 0.0;
-    const auto step = [&](double amount) {
-        done += amount;
-        if (progress && !progress(std::min(1.0, done / total)))
-            throw StorageError(QStringLiteral("%1: copy of session %2 cancelled; nothing was copied").arg(to.path()).arg(sessionId).toStdString());
-    };
+    qint64 samples = 0;
+    for (const ChannelInfo &ch : from.channels(sessionId))
+        samples += from.sampleCount(ch.id);
+    const double total = static_cast<double>(std::max<qint64>(1, samples + from.irFrames(sessionId).size() * 10000LL));
+    Writer writer(to, progress, total,
+                  QStringLiteral("%1: copy of session %2 cancelled; nothing was copied").arg(to.path()).arg(sessionId));
     to.begin();
     try {
-        SessionInfo copyInfo = info;
-        copyInfo.id = 0;
-        // Complete and content hash go in with the session: a copy never updates a session row
-        // (rig accounts of a central store may only add).
-        const qint64 id = to.createSession(copyInfo);
-        for (const ChannelInfo &ch : channels) {
-            ChannelInfo c = ch;
-            c.id = 0;
-            c.sessionId = id;
-            const qint64 target = to.addChannel(id, c);
-            qint64 pending = 0;
-            from.forEachSampleBlock(ch.id, [&](const QVector<double> &t, const QVector<double> &v) {
-                to.appendSamples(target, t, v);
-                pending += t.size();
-                r.bytes += 16LL * t.size();
-                if (pending >= 1000000) { // bounded memory: write the buffered blocks
-                    to.flushSamples();
-                    pending = 0;
-                }
-                step(static_cast<double>(t.size()));
-            });
-        }
-        to.flushSamples();
-        for (const IrFrame &f : from.irFrames(sessionId)) {
-            const IrFrame full = from.irFrame(f.id);
-            to.addIrFrame(id, full);
-            r.bytes += 2LL * full.pixels.size();
-            step(10000.0);
-        }
-        to.addInterferometerPoints(id, from.interferometerPoints(sessionId));
-        for (const EventRecord &e : from.events(sessionId))
-            to.addEvent(id, e);
-        for (const FittedModel &m : from.fittedModels(sessionId))
-            to.addFittedModel(id, m);
-        for (const AnalysisResult &a : from.analysisResults(sessionId))
-            to.addAnalysisResult(id, a.kind, a.result, a.created);
+        r.sha256 = walk(from, sessionId, &r.counts, &writer);
+        r.bytes = writer.bytes;
         // Read the copy back inside the transaction: the same counts and digest, or nothing.
         Counts c;
-        const QString got = digest(to, id, &c);
+        const QString got = digest(to, writer.id(), &c);
         if (!(c == r.counts) || got != r.sha256)
             throw StorageError(QStringLiteral("%1: the copy of session %2 does not read back as the original (%3 samples against %4, "
                                               "digest %5 against %6); nothing was copied")
@@ -221,11 +282,12 @@ SessionCopier::Result SessionCopier::copy(const SessionStore &from, qint64 sessi
                                    .arg(got.left(12), r.sha256.left(12))
                                    .toStdString());
         to.commit();
-        r.targetId = id;
+        r.targetId = writer.id();
     } catch (const StorageError &) {
         to.rollback();
         // Another writer may have committed the same session meanwhile (two pushes at once).
         try {
+            r.sha256.clear();
             if (already())
                 return r;
         } catch (const StorageError &) {

@@ -52,6 +52,10 @@ public:
     // The content digest and counts of a session (ids of the store excluded, so a copy has
     // the digest of its original).
     static QString digest(const SessionStore &store, qint64 sessionId, Counts *counts = nullptr);
+
+private:
+    class Writer;
+    static QString walk(const SessionStore &store, qint64 sessionId, Counts *counts, Writer *writer);
 };
 
 } // namespace driftlab
