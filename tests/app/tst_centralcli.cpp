@@ -4,6 +4,7 @@
 // no session lost or duplicated; bad input exits 2 and an unreachable store 1, said clearly.
 #include "../support/CliRunner.h"
 #include "../support/PostgresServer.h"
+#include "../support/TestPeers.h"
 
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -21,6 +22,7 @@ private slots:
     void pushListFitPull();
     void threeRigsPushWhileAReviewerLists();
     void recordPushesWhenAsked();
+    void killedPushLeavesNothing();
     void badInput_data();
     void badInput();
     void cleanupTestCase() { m_server.stop(); }
@@ -165,6 +167,43 @@ void TestCentralCli::recordPushesWhenAsked()
     QVERIFY2(r.err.contains("is recorded and kept in"), r.err.constData());
     r = run({QStringLiteral("list"), QStringLiteral("--db"), kept, QStringLiteral("--json"), QStringLiteral("-")});
     QCOMPARE(QJsonDocument::fromJson(r.out).object().value(QStringLiteral("sessions")).toArray().size(), 1);
+}
+
+void TestCentralCli::killedPushLeavesNothing()
+{
+    // A push killed while it writes (SIGKILL: no cleanup of ours runs) leaves no part of the
+    // session on the server: PostgreSQL aborts the open transaction with the connection.
+    const QString rig = m_dir.filePath(QStringLiteral("killed.sqlite"));
+    QCOMPARE(record(rig, 5, QStringLiteral("8:00:00")), QString());
+    const clirunner::Result listed = run({QStringLiteral("list"), QStringLiteral("--db"), rig, QStringLiteral("--json"), QStringLiteral("-")});
+    const QString uuid = QJsonDocument::fromJson(listed.out).object().value(QStringLiteral("sessions")).toArray().at(0).toObject().value(QStringLiteral("uuid")).toString();
+    QVERIFY(!uuid.isEmpty());
+    QProcess push;
+    push.start(QStringLiteral(DRIFTLAB_CLI), {QStringLiteral("push"), QStringLiteral("1"), QStringLiteral("--db"), rig, QStringLiteral("--to"), m_url});
+    QByteArray err;
+    QVERIFY(testpeers::waitFor([&] {
+        push.waitForReadyRead(10);
+        err += push.readAllStandardError();
+        return err.contains(" %\n") || push.state() == QProcess::NotRunning;
+    }, 30000));
+    QVERIFY2(push.state() != QProcess::NotRunning, "the push finished before it could be killed");
+    push.kill(); // SIGKILL while copying
+    QVERIFY(push.waitForFinished(5000));
+    const auto centralUuids = [&] {
+        QSet<QString> uuids;
+        const clirunner::Result r = run({QStringLiteral("list"), QStringLiteral("--db"), m_url, QStringLiteral("--json"), QStringLiteral("-")});
+        for (const QJsonValue &v : QJsonDocument::fromJson(r.out).object().value(QStringLiteral("sessions")).toArray())
+            uuids.insert(v.toObject().value(QStringLiteral("uuid")).toString());
+        return uuids;
+    };
+    // The server notices the dropped connection and rolls back (at once on loopback).
+    QVERIFY(testpeers::waitFor([&] { return !centralUuids().contains(uuid); }, 10000));
+    QTest::qWait(500);
+    QVERIFY(!centralUuids().contains(uuid));
+    // Pushing again starts over and succeeds.
+    const clirunner::Result again = run({QStringLiteral("push"), QStringLiteral("1"), QStringLiteral("--db"), rig, QStringLiteral("--to"), m_url});
+    QVERIFY2(again.code == 0, again.err.constData());
+    QVERIFY(centralUuids().contains(uuid));
 }
 
 void TestCentralCli::badInput_data()
