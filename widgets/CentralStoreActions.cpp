@@ -4,6 +4,7 @@
 #include "SessionStore.h"
 #include "StorageError.h"
 
+#include <QAction>
 #include <QApplication>
 #include <QInputDialog>
 #include <QMenu>
@@ -25,6 +26,38 @@ void CentralStoreActions::addTo(QMenu *file)
     file->addAction(tr("Open &central store..."), this, &CentralStoreActions::askOpen)->setObjectName(QStringLiteral("OpenCentralAction"));
     file->addAction(tr("&Push session to central store..."), this, &CentralStoreActions::askPush)
         ->setObjectName(QStringLiteral("PushSessionAction"));
+    QAction *automatic = file->addAction(tr("Push recordings &automatically"));
+    automatic->setObjectName(QStringLiteral("AutoPushAction"));
+    automatic->setCheckable(true);
+    automatic->setChecked(autoPush());
+    automatic->setToolTip(tr("After each recording, push the session to the central store last used"));
+    connect(automatic, &QAction::toggled, this, [this](bool on) {
+        if (on && address().isEmpty()) {
+            QMessageBox::information(m_parent, tr("Push recordings automatically"),
+                                     tr("Push a session once (File > Push session to central store) so that DriftLab knows where to."));
+        }
+        setAutoPush(on);
+    });
+}
+
+bool CentralStoreActions::autoPush()
+{
+    return QSettings().value(QStringLiteral("pushAfterRecording"), false).toBool();
+}
+
+void CentralStoreActions::setAutoPush(bool on)
+{
+    QSettings().setValue(QStringLiteral("pushAfterRecording"), on);
+}
+
+bool CentralStoreActions::afterRecording(qint64 sessionId, QString *message)
+{
+    if (!autoPush() || address().isEmpty()) {
+        if (message)
+            *message = tr("Automatic push is off");
+        return false;
+    }
+    return push(address(), sessionId, message, false);
 }
 
 QString CentralStoreActions::address()

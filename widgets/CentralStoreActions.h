@@ -4,7 +4,9 @@
 // libpq takes it from PGPASSWORD or ~/.pgpass) and opens it in the session browser like a file;
 // File > Push session to central store... copies the selected session of the open local
 // database there (SessionCopier: one transaction, verified, idempotent) with a progress dialog
-// whose Cancel leaves nothing on the server.
+// whose Cancel leaves nothing on the server. File > Push recordings automatically (a setting)
+// pushes each recording the Acquisition panel finishes; a failure is said and the recording
+// stays in the local file.
 
 #include <QObject>
 #include <QString>
@@ -34,6 +36,12 @@ public:
     // cancel. `interactive` shows a progress dialog with Cancel.
     bool push(const QString &address, qint64 sessionId, QString *message, bool interactive = true);
     QString lastMessage() const { return m_lastMessage; }
+    // The automatic push after a recording (QSettings "pushAfterRecording").
+    static bool autoPush();
+    static void setAutoPush(bool on);
+    // Called when a recording into the open (local) store has finished: pushes it when the
+    // setting is on and an address is known; false when nothing was pushed (*message says why).
+    bool afterRecording(qint64 sessionId, QString *message);
 
 private:
     void askOpen();

@@ -116,10 +116,15 @@ MainWindow::MainWindow(QWidget *parent)
     // A finished recording appears in the session list of the database it went to.
     connect(m_acquisition, &AcquisitionPanel::recordingStopped, this, [this](qint64 id) {
         const QString db = m_acquisition->databasePath();
-        if (m_store && QFileInfo(m_store->path()).absoluteFilePath() == QFileInfo(db).absoluteFilePath())
-            refreshSessions(id);
-        else if (openDatabase(db))
-            refreshSessions(id);
+        bool open = m_store && QFileInfo(m_store->path()).absoluteFilePath() == QFileInfo(db).absoluteFilePath();
+        if (!open)
+            open = openDatabase(db);
+        if (!open)
+            return;
+        refreshSessions(id);
+        QString message;
+        if (CentralStoreActions::autoPush())
+            statusBar()->showMessage(m_central->afterRecording(id, &message) ? message : tr("Automatic push: %1").arg(message));
     });
     connect(m_browser, &SessionBrowser::sessionSelected, this, &MainWindow::showSession);
     connect(m_browser, &SessionBrowser::channelsChanged, this, &MainWindow::showChannels);

@@ -325,6 +325,13 @@ void TestMainWindow::pushesAndBrowsesTheCentralStore()
     CentralStoreActions::setAddress(QStringLiteral("postgresql://driftlab:pw@127.0.0.1:%1/lab").arg(server.port()));
     QCOMPARE(CentralStoreActions::address(), url);
 
+    // After a recording, with the automatic push on: pushed (here the session is already there).
+    QVERIFY(!window.centralStore()->afterRecording(m_session, &message)); // off by default
+    CentralStoreActions::setAutoPush(true);
+    QVERIFY2(window.centralStore()->afterRecording(m_session, &message), qPrintable(message));
+    QVERIFY2(message.contains(QStringLiteral("nothing changed")), qPrintable(message));
+    CentralStoreActions::setAutoPush(false);
+
     // Browse it like a file: the session list shows the pushed session, its samples plot.
     QVERIFY2(window.openDatabase(url), qPrintable(window.lastError()));
     QVERIFY(window.windowTitle().contains(QStringLiteral("postgresql://")));
