@@ -160,9 +160,7 @@ double SessionOffsetSource::update()
     }
     if (m_time_s <= -1e299)
         return std::nan("");
-    if (m_fdm) {
-        m_error_um = m_fdm->thermalError_um(m_held[0]);
-    } else if (m_model.kind == "synthetic") {
+    if (m_model.kind == "synthetic") { // (a physics model's E was set by stepTo)
         const SampleBlock p = m_store->samples(m_positionId, m_time_s - 60.0, m_time_s);
         if (!p.v.isEmpty())
             m_position_mm = p.v.last();

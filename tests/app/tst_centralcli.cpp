@@ -40,9 +40,7 @@ void TestCentralCli::initTestCase()
     if (!why.isEmpty())
         QSKIP(qPrintable(why));
     QString error;
-    QVERIFY2(m_server.start(&error), qPrintable(error));
-    QCOMPARE(m_server.sql(QStringLiteral("CREATE DATABASE lab")), QString());
-    m_url = m_server.url(QStringLiteral("lab"));
+    QVERIFY2(m_server.startWithDatabase(QStringLiteral("lab"), &m_url, &error), qPrintable(error));
 }
 
 QString TestCentralCli::record(const QString &db, int seed, const QString &duration)

@@ -95,9 +95,7 @@ void TestCentralStore::initTestCase()
     if (!why.isEmpty())
         QSKIP(qPrintable(why));
     QString error;
-    QVERIFY2(m_server.start(&error), qPrintable(error));
-    QCOMPARE(m_server.sql(QStringLiteral("CREATE DATABASE lab")), QString());
-    m_central = m_server.url(QStringLiteral("lab"));
+    QVERIFY2(m_server.startWithDatabase(QStringLiteral("lab"), &m_central, &error), qPrintable(error));
 }
 
 void TestCentralStore::sameBehaviourAsSqlite()

@@ -86,6 +86,17 @@ public:
         m_running = true;
         return true;
     }
+    // start() and CREATE DATABASE `database`; *url gets its address.
+    bool startWithDatabase(const QString &database, QString *url, QString *error)
+    {
+        if (!start(error))
+            return false;
+        const QString failed = sql(QStringLiteral("CREATE DATABASE %1").arg(database));
+        if (!failed.isEmpty())
+            return fail(error, failed);
+        *url = this->url(database);
+        return true;
+    }
     void stop()
     {
         if (m_running)
