@@ -49,7 +49,7 @@ CompensationPanel::CompensationPanel(QWidget *parent)
       m_log(new QPlainTextEdit(this)),
       m_timer(new QTimer(this))
 {
-    m_model->setPlaceholderText(tr("MODEL.json (fit --model ... --out, or the Analysis dock)"));
+    m_model->setPlaceholderText(tr("MODEL.json (fit --json, fit --model ... --out, or the Analysis dock)"));
     auto *browse = new QPushButton(tr("Browse..."), this);
     connect(browse, &QPushButton::clicked, this, [this] {
         const QString f = QFileDialog::getOpenFileName(this, tr("Fitted model"), QString(), tr("Model (*.json)"));
