@@ -11,7 +11,8 @@
 //  3. Overview: a 2000-point min/max overview of a pushed channel (SessionStore::decimated) from
 //     the central store; reference: the same from the local SQLite file.
 //
-//   bench_centralstore [SAMPLES_PER_CHANNEL (default 4000000)] [CHANNELS (default 4)] [WORK_DIR (default /tmp)]
+//   bench_centralstore [SAMPLES_PER_CHANNEL (default 4000000)] [CHANNELS (default 4)] [WORK_DIR (default /tmp)] [push]
+//   (a fourth argument `push` stops after the push, for profiling it)
 
 #include "SessionCopier.h"
 #include "SessionStore.h"
@@ -164,6 +165,8 @@ int main(int argc, char **argv)
     std::printf("push: %d channels x %lld samples (%.0f MB SQLite file, %.0f MB of samples): %.1f s = %.1f MB/s of file "
                 "(%.1f MB/s of samples); reference raw bytea insert %.1f s; ratio %.2f\n",
                 channels, perChannel, fileMB, r.bytes / 1e6, push_s, fileMB / push_s, r.bytes / 1e6 / push_s, raw_s, push_s / raw_s);
+    if (argc > 4 && qstrcmp(argv[4], "push") == 0)
+        return 0;
 
     // 3. Overview.
     const qint64 centralChannel = central.channels(r.targetId).at(0).id;

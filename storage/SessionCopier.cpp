@@ -1,9 +1,9 @@
 #include "SessionCopier.h"
 
 #include "SessionStore.h"
+#include "Sha256.h"
 #include "StorageError.h"
 
-#include <QCryptographicHash>
 #include <QJsonDocument>
 #include <QtEndian>
 
@@ -21,13 +21,13 @@ public:
     {
         const QByteArray b = s.toUtf8();
         integer(b.size());
-        m_hash.addData(b);
+        m_hash.add(b);
     }
     void json(const QJsonObject &o) { text(QString::fromUtf8(QJsonDocument(o).toJson(QJsonDocument::Compact))); }
     void integer(qint64 v)
     {
         const qint64 le = qToLittleEndian(v);
-        m_hash.addData(reinterpret_cast<const char *>(&le), sizeof le);
+        m_hash.add(&le, sizeof le);
     }
     void real(double v)
     {
@@ -38,15 +38,30 @@ public:
     }
     void words(const QVector<quint16> &w)
     {
-        for (quint16 x : w) {
-            const quint16 le = qToLittleEndian(x);
-            m_hash.addData(reinterpret_cast<const char *>(&le), sizeof le);
-        }
+        m_buffer.resize(2 * w.size());
+        for (int i = 0; i < w.size(); ++i)
+            qToLittleEndian(w[i], m_buffer.data() + 2 * i);
+        m_hash.add(m_buffer);
     }
-    QString hex() { return QString::fromLatin1(m_hash.result().toHex()); }
+    // Time and value of each sample in turn, as real() would add them one by one.
+    void samples(const QVector<double> &t, const QVector<double> &v)
+    {
+        m_buffer.resize(16 * t.size());
+        char *out = m_buffer.data();
+        for (int k = 0; k < t.size(); ++k) {
+            quint64 bits[2];
+            std::memcpy(&bits[0], &t[k], 8);
+            std::memcpy(&bits[1], &v[k], 8);
+            qToLittleEndian(bits[0], out + 16 * k);
+            qToLittleEndian(bits[1], out + 16 * k + 8);
+        }
+        m_hash.add(m_buffer);
+    }
+    QString hex() { return m_hash.hex(); }
 
 private:
-    QCryptographicHash m_hash{QCryptographicHash::Sha256};
+    Sha256 m_hash;
+    QByteArray m_buffer;
 };
 
 void describe(Digest &d, const SessionInfo &s)
@@ -156,10 +171,7 @@ QString SessionCopier::walk(const SessionStore &store, qint64 sessionId, Counts 
         qint64 n = 0;
         // Sample by sample, so that the digest does not depend on how the samples are blocked.
         store.forEachSampleBlock(ch.id, [&](const QVector<double> &t, const QVector<double> &v) {
-            for (int k = 0; k < t.size(); ++k) {
-                d.real(t[k]);
-                d.real(v[k]);
-            }
+            d.samples(t, v);
             n += t.size();
             if (writer)
                 writer->samples(t, v);
