@@ -12,7 +12,7 @@ PACKAGES=(
   libqwt-qt5-dev libeigen3-dev libopencv-dev libsqlite3-dev
   libceres-dev libnlopt-cxx-dev libzip-dev zlib1g-dev libmodbus-dev qt5-image-formats-plugins
   xvfb xauth fonts-dejavu-core sqlite3 python3 socat ccache poppler-utils clang libclang-rt-14-dev
-  linuxcnc-uspace postgresql libqt5sql5-psql libpq-dev
+  linuxcnc-uspace postgresql libqt5sql5-psql libpq-dev libssl-dev
 )
 
 missing=()
