@@ -1,5 +1,7 @@
 #include "DiagnosisEngine.h"
 
+#include "CandidateAcceptance.h"
+#include "DiscrepancyTerm.h"
 #include "ResidualLocator.h"
 
 #include <algorithm>
@@ -57,31 +59,6 @@ ScrewRecording window(const ScrewRecording &r, double a, double b, bool inside)
     return out;
 }
 
-std::string fmt(double v, int prec = 3)
-{
-    std::ostringstream o;
-    o.setf(std::ios::fixed);
-    o.precision(prec);
-    o << v;
-    return o.str();
-}
-
-// Empty when the fit reports none of the effect's size parameters or one reaches its minimum;
-// otherwise the sizes found, e.g. "G_nut_contact = 0.09 (needs 0.50)".
-std::string sizeShortfall(const CandidateEffect &effect, const IdentificationResult &fit)
-{
-    std::string sizes;
-    bool reached = false;
-    for (const IdentifiedParameter &p : fit.all)
-        for (const auto &[name, least] : effect.minimumSize) {
-            if (p.name != name)
-                continue;
-            reached = reached || std::fabs(p.value) >= least;
-            sizes += (sizes.empty() ? "" : ", ") + p.name + " = " + fmt(p.value, 2) + " (needs " + fmt(least, 2) + ")";
-        }
-    return reached ? std::string() : sizes;
-}
-
 } // namespace
 
 DiagnosisEngine::DiagnosisEngine(const ScrewGeometry &geometry, const DiagnosisOptions &options)
@@ -91,10 +68,7 @@ DiagnosisEngine::DiagnosisEngine(const ScrewGeometry &geometry, const DiagnosisO
 
 double DiagnosisEngine::plausibilityDistance(const FdmParameters &p, double drawing) const
 {
-    double d = std::max(0.0, std::fabs(std::log2(std::max(p.conductivity_W_mK, 1e-9) / m_options.steelConductivity_W_mK)) - 0.5);
-    if (std::isfinite(drawing))
-        d += std::max(0.0, std::fabs(p.fixedEndPosition_mm - drawing) - 10.0) / 20.0;
-    return d;
+    return CandidateAcceptance(m_options).plausibilityDistance(p, drawing);
 }
 
 double DiagnosisEngine::screwTimeConstant_s(double h) const
@@ -103,7 +77,7 @@ double DiagnosisEngine::screwTimeConstant_s(double h) const
 }
 
 double DiagnosisEngine::crossValidate(const CandidateModel *model, const DiagnosisRecording &train,
-                                      const IdentificationOptions &options)
+                                      const IdentificationOptions &options, std::vector<ObservationFit> *outOfFold)
 {
     const ScrewRecording &rec = train.screw;
     if (rec.interferometer.empty() || m_options.cvFolds < 2)
@@ -140,6 +114,10 @@ double DiagnosisEngine::crossValidate(const CandidateModel *model, const Diagnos
         try {
             const IdentificationResult r = id.fit({fitRec});
             const FitStatistics s = id.predict(r, {held});
+            if (outOfFold)
+                for (const ObservationFit &p : s.points)
+                    if (!p.elongation && !p.temperature)
+                        outOfFold->push_back(p);
             sq += s.interferometerRms_um * s.interferometerRms_um * s.interferometerPoints;
             n += s.interferometerPoints;
         } catch (const std::runtime_error &) {
@@ -187,17 +165,50 @@ std::vector<ObservationFit> DiagnosisEngine::predictTemperatures(ScrewModelIdent
     }
 }
 
-DiagnosisEngine::Evaluated DiagnosisEngine::evaluate(const CandidateEffect *effect, const DiagnosisRecording &train,
-                                                     const DiagnosisRecording &validate,
-                                                     const IdentificationOptions &options, double effectiveN,
-                                                     std::vector<std::string> *amplitudeNames)
+CandidateFit DiagnosisEngine::evaluate(const std::vector<ForwardSelection::Choice> &accepted, const CandidateEffect *candidate,
+                                       const DiagnosisRecording &train, const DiagnosisRecording &validate,
+                                       const IdentificationOptions &options, double effectiveN)
 {
-    Evaluated out;
+    // The accepted effects' components (fresh ones: a fit changes its components' state).
+    auto extended = [&](CandidateModel m) {
+        std::vector<std::function<void(const DiagnosisRecording &)>> binds;
+        for (const ForwardSelection::Choice &a : accepted) {
+            CandidateModel more = a.effect->create(train, a.start);
+            m.sources.insert(m.sources.end(), more.sources.begin(), more.sources.end());
+            m.terms.insert(m.terms.end(), more.terms.begin(), more.terms.end());
+            if (more.bind)
+                binds.push_back(more.bind);
+        }
+        if (m.bind)
+            binds.push_back(m.bind);
+        if (!binds.empty())
+            m.bind = [binds](const DiagnosisRecording &r) {
+                for (const auto &b : binds)
+                    b(r);
+            };
+        return m;
+    };
+    CandidateFit out;
     CandidateModel model;
     std::unique_ptr<ScrewModelIdentifier> best;
-    const int starts = effect ? std::max(1, effect->starts) : 1;
+    const int starts = candidate ? std::max(1, candidate->starts) : 1;
     for (int start = 0; start < starts; ++start) {
-        CandidateModel m = effect ? effect->create(train, start) : CandidateModel{};
+        CandidateModel own = candidate ? candidate->create(train, start) : CandidateModel{};
+        if (candidate) {
+            for (const auto &s : own.sources) {
+                out.bounded.push_back(s->amplitude());
+                for (const ParameterSpec &q : s->nonlinearParameters())
+                    out.bounded.push_back(q);
+            }
+            for (const auto &t : own.terms)
+                out.bounded.push_back(t->amplitude());
+        }
+        std::vector<std::string> amplitudes;
+        for (const auto &s : own.sources)
+            amplitudes.push_back(s->amplitude().name);
+        if (!own.terms.empty()) // the first error term is the candidate's main one
+            amplitudes.push_back(own.terms.front()->amplitude().name);
+        CandidateModel m = extended(std::move(own));
         auto id = std::make_unique<ScrewModelIdentifier>(m_geometry, options);
         for (const auto &s : m.sources)
             id->addHeatSource(s);
@@ -208,15 +219,11 @@ DiagnosisEngine::Evaluated DiagnosisEngine::evaluate(const CandidateEffect *effe
         IdentificationResult fit = id->fit({train.screw});
         if (!best || fit.weightedRms < out.fit.weightedRms) {
             out.fit = std::move(fit);
+            out.start = start;
+            out.amplitudeNames = amplitudes;
             model = std::move(m);
             best = std::move(id);
         }
-    }
-    if (amplitudeNames) {
-        for (const auto &s : model.sources)
-            amplitudeNames->push_back(s->amplitude().name);
-        if (!model.terms.empty()) // the first error term is the candidate's main one
-            amplitudeNames->push_back(model.terms.front()->amplitude().name);
     }
     ScrewModelIdentifier &id = *best;
     if (model.bind)
@@ -240,8 +247,26 @@ DiagnosisEngine::Evaluated DiagnosisEngine::evaluate(const CandidateEffect *effe
     // Cross-validation warm-started at this fit's optimum.
     IdentificationOptions warm = options;
     warm.initial = out.fit.parameters;
-    e.cvRms_um = crossValidate(effect ? &model : nullptr, train, warm);
+    const bool any = candidate || !accepted.empty();
+    e.cvRms_um = crossValidate(any ? &model : nullptr, train, warm, &out.outOfFold);
     return out;
+}
+
+IdentificationOptions DiagnosisEngine::baselineOptions(const DiagnosisRecording &train) const
+{
+    IdentificationOptions opts = m_options.identification;
+    opts.simulator.temperatureSigma_K = m_options.screwTemperatureSigma_K;
+    if (m_options.physicalBounds) {
+        opts.lambdaLower = m_options.lambdaLower_W_mK;
+        opts.lambdaUpper = m_options.lambdaUpper_W_mK;
+        opts.initial.conductivity_W_mK = std::clamp(m_options.steelConductivity_W_mK, opts.lambdaLower, opts.lambdaUpper);
+        if (std::isfinite(train.drawingFixedEnd_mm)) {
+            opts.fixedEndLower_mm = train.drawingFixedEnd_mm - m_options.fixedEndTolerance_mm;
+            opts.fixedEndUpper_mm = train.drawingFixedEnd_mm + m_options.fixedEndTolerance_mm;
+            opts.initial.fixedEndPosition_mm = train.drawingFixedEnd_mm;
+        }
+    }
+    return opts;
 }
 
 DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const DiagnosisRecording &validate,
@@ -271,31 +296,19 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
         if (m_options.effects.empty() ||
             std::find(m_options.effects.begin(), m_options.effects.end(), e.code) != m_options.effects.end())
             library.push_back(e);
-    const double steps = 2.0 + static_cast<double>(library.size());
-    auto tick = [&](double done, const std::string &stage) {
-        if (progress && !progress(std::min(1.0, done / steps), stage)) {
+    // Progress: baseline 0-10 %, residual analysis 10-15 %, selection 15-100 %.
+    auto tick = [&](double fraction, const std::string &stage) {
+        if (progress && !progress(std::min(1.0, fraction), stage)) {
             report.cancelled = true;
             return false;
         }
         return true;
     };
 
-    // 1. Baseline.
+    // 1. Baseline and where it disagrees.
     if (!tick(0.0, "baseline identification"))
         return report;
-    IdentificationOptions opts = m_options.identification;
-    opts.simulator.temperatureSigma_K = m_options.screwTemperatureSigma_K;
-    if (m_options.physicalBounds) {
-        opts.lambdaLower = m_options.lambdaLower_W_mK;
-        opts.lambdaUpper = m_options.lambdaUpper_W_mK;
-        opts.initial.conductivity_W_mK = std::clamp(m_options.steelConductivity_W_mK, opts.lambdaLower, opts.lambdaUpper);
-        if (std::isfinite(train.drawingFixedEnd_mm)) {
-            opts.fixedEndLower_mm = train.drawingFixedEnd_mm - m_options.fixedEndTolerance_mm;
-            opts.fixedEndUpper_mm = train.drawingFixedEnd_mm + m_options.fixedEndTolerance_mm;
-            opts.initial.fixedEndPosition_mm = train.drawingFixedEnd_mm;
-        }
-    }
-    Evaluated base;
+    IdentificationOptions opts = baselineOptions(train);
     double effectiveN = 0.0;
     {
         // First pass only to get the residual autocorrelation for the effective sample size.
@@ -304,242 +317,74 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
         effectiveN = std::max(10.0, ResidualLocator::effectiveSampleSize(first.fit.points));
         opts.initial = first.parameters; // later fits start here
     }
-    base = evaluate(nullptr, train, validate, opts, effectiveN, nullptr);
+    const CandidateFit base = evaluate({}, nullptr, train, validate, opts, effectiveN);
     report.baseline = base.eval;
     report.location = ResidualLocator::locate(train, base.fit.fit.points);
     ResidualLocator::locateTemperatures(train, base.temperatures, m_geometry.length_m, report.location);
     ResidualLocator::checkPlausibility(base.fit, opts, train.drawingFixedEnd_mm, report.location);
     ResidualLocator::summarise(report.location);
-    if (!tick(1.0, "residual analysis"))
+    if (!tick(0.15, "residual analysis"))
         return report;
 
-    // 2.-3. Candidates.
-    std::vector<Evaluated> evaluated(library.size());
-    std::vector<std::vector<std::string>> amplitudeNamesOf(library.size());
-    std::vector<std::string> failure(library.size()), inapplicable(library.size());
-    for (size_t c = 0; c < library.size(); ++c)
-        inapplicable[c] = library[c].notApplicable(train, validate);
-    {
-        std::atomic<size_t> next{0};
-        std::atomic<bool> stop{false};
-        std::atomic<int> finished{0};
-        auto worker = [&]() {
-            for (;;) {
-                const size_t c = next++;
-                if (c >= library.size() || stop)
-                    return;
-                if (inapplicable[c].empty()) {
-                    try {
-                        evaluated[c] = evaluate(&library[c], train, validate, opts, effectiveN, &amplitudeNamesOf[c]);
-                    } catch (const std::exception &ex) {
-                        failure[c] = ex.what();
-                    }
-                }
-                ++finished;
-            }
-        };
-        int threads = m_options.threads > 0 ? m_options.threads : static_cast<int>(std::thread::hardware_concurrency());
-        threads = std::clamp(threads, 1, std::max(1, static_cast<int>(library.size())));
-        std::vector<std::thread> pool;
-        if (threads > 1)
-            for (int t = 0; t < threads; ++t)
-                pool.emplace_back(worker);
-        if (threads == 1) {
-            // Serial: progress between candidates from this thread.
-            for (size_t c = 0; c < library.size(); ++c) {
-                if (!tick(2.0 + static_cast<double>(c), "candidate " + library[c].code)) {
-                    stop = true;
-                    break;
-                }
-                if (inapplicable[c].empty()) {
-                    try {
-                        evaluated[c] = evaluate(&library[c], train, validate, opts, effectiveN, &amplitudeNamesOf[c]);
-                    } catch (const std::exception &ex) {
-                        failure[c] = ex.what();
-                    }
-                }
-            }
-        } else {
-            // Parallel: this thread reports progress and honours cancel.
-            int reported = -1, polls = 0;
-            while (finished < static_cast<int>(library.size()) && !stop) {
-                if (finished != reported) {
-                    reported = finished;
-                    size_t running = std::min(next.load(), library.size() - 1);
-                    if (!tick(2.0 + reported, "candidates: " + std::to_string(reported) + " of " +
-                                                  std::to_string(library.size()) + " refitted, now " +
-                                                  library[running].code)) {
-                        stop = true;
-                        break;
-                    }
-                }
-                std::this_thread::sleep_for(std::chrono::milliseconds(50));
-                if (++polls % 10 == 0 && progress && !progress(std::min(1.0, (2.0 + finished) / steps), "refitting candidates")) {
-                    report.cancelled = true;
-                    stop = true;
-                }
-            }
-        }
-        for (std::thread &t : pool)
-            t.join();
-        if (stop || report.cancelled) {
-            report.cancelled = true;
-            return report;
-        }
+    // 2.-3. Candidates, forward: each accepted effect extends the model the next are tested on.
+    const ForwardSelection selection(m_options, library);
+    const ForwardSelection::Result chosen = selection.run(
+        base, train, validate, effectiveN,
+        [&](const std::vector<ForwardSelection::Choice> &accepted, const CandidateEffect &candidate) {
+            return evaluate(accepted, &candidate, train, validate, opts, effectiveN);
+        },
+        [&](double f, const std::string &stage) { return tick(0.15 + 0.85 * f, stage); });
+    if (chosen.cancelled) {
+        report.cancelled = true;
+        return report;
     }
-    const double baseDistance = plausibilityDistance(base.fit.parameters, train.drawingFixedEnd_mm);
-    for (size_t c = 0; c < library.size(); ++c) {
-        const CandidateEffect &effect = library[c];
-        CandidateOutcome out;
-        out.effect = effect.code;
-        out.explanation = effect.explanation;
-        if (!inapplicable[c].empty()) {
-            out.applicable = false;
-            out.notApplicableReason = inapplicable[c];
-            out.reasons.push_back("not applicable: " + inapplicable[c]);
-            report.candidates.push_back(out);
-            continue;
-        }
-        if (!failure[c].empty()) {
-            out.applicable = false;
-            out.notApplicableReason = failure[c];
-            out.reasons.push_back("refit failed: " + failure[c]);
-            report.candidates.push_back(out);
-            continue;
-        }
-        const std::vector<std::string> &amplitudeNames = amplitudeNamesOf[c];
-        const Evaluated &ev = evaluated[c];
-        out.evaluation = ev.eval;
-        const ModelEvaluation &b = report.baseline;
-        out.heldoutImprovement = b.heldoutRms_um > 0 ? 1.0 - ev.eval.heldoutRms_um / b.heldoutRms_um : 0.0;
-        out.cvImprovement = (std::isfinite(b.cvRms_um) && std::isfinite(ev.eval.cvRms_um) && b.cvRms_um > 0)
-                                ? 1.0 - ev.eval.cvRms_um / b.cvRms_um
-                                : 0.0;
-        out.deltaIc = ev.eval.informationCriterion - b.informationCriterion;
-        // Amplitudes: significance and bounds; nonlinear candidate parameters: bounds.
-        std::vector<ParameterSpec> bounded;
-        for (int start = 0; start < std::max(1, effect.starts); ++start) {
-            const CandidateModel specs = effect.create(train, start);
-            for (const auto &s : specs.sources) {
-                bounded.push_back(s->amplitude());
-                for (const ParameterSpec &q : s->nonlinearParameters())
-                    bounded.push_back(q);
-            }
-            for (const auto &t : specs.terms)
-                bounded.push_back(t->amplitude());
-        }
-        double zMax = 0.0;
-        for (const IdentifiedParameter &p : ev.fit.all) {
-            if (std::find(amplitudeNames.begin(), amplitudeNames.end(), p.name) != amplitudeNames.end() &&
-                p.standardError > 0)
-                zMax = std::max(zMax, std::fabs(p.value) / p.standardError);
-            for (const ParameterSpec &s : bounded)
-                if (s.name == p.name && p.fitted) {
-                    const double tol = 1e-6 * std::max(s.upper - s.lower, 1e-12);
-                    const bool atLower = std::isfinite(s.lower) && p.value <= s.lower + tol && s.lower != 0.0;
-                    const bool atUpper = std::isfinite(s.upper) && p.value >= s.upper - tol;
-                    if (atLower || atUpper) {
-                        out.insideBounds = false;
-                        out.reasons.push_back(p.name + " = " + fmt(p.value, 6) + " at its bound");
-                    }
-                }
-        }
-        out.minAmplitudeZ = zMax;
-        const std::string tooSmall = sizeShortfall(effect, ev.fit);
-        const bool sizeOk = tooSmall.empty();
-        if (!sizeOk)
-            out.reasons.push_back("too small to be the effect: " + tooSmall);
-        const bool restores = base.fit.parameters.k2 < m_options.minPlausibleK2_W_m2K &&
-                              ev.fit.parameters.k2 >= m_options.minPlausibleK2_W_m2K;
-        const double heldNeeded = restores ? 0.0 : m_options.minHeldoutImprovement;
-        const bool heldOk = out.heldoutImprovement >= heldNeeded;
-        if (restores)
-            out.reasons.push_back("restores a plausible convection: k2 " + fmt(base.fit.parameters.k2, 1) + " -> " +
-                                  fmt(ev.fit.parameters.k2, 1) + " W/(m^2 K) (baseline below " +
-                                  fmt(m_options.minPlausibleK2_W_m2K, 0) +
-                                  "), so a held-out RMS no worse than the baseline's suffices");
-        const bool cvPassed = !std::isfinite(b.cvRms_um) || out.cvImprovement >= m_options.minCvImprovement;
-        const bool cvWaived = !cvPassed && out.heldoutImprovement >= m_options.cvWaiverHeldoutImprovement;
-        const bool cvOk = cvPassed || cvWaived;
-        const bool icOk = out.deltaIc <= m_options.maxDeltaIc;
-        const bool zOk = zMax >= m_options.minAmplitudeZ;
-        out.plausibilityDistance = plausibilityDistance(ev.fit.parameters, train.drawingFixedEnd_mm);
-        const bool plausibleOk = out.plausibilityDistance <= baseDistance + m_options.maxPlausibilityLoss;
-        if (!plausibleOk)
-            ++report.location.implausibleRefits;
-        out.reasons.push_back("physical plausibility: lambda " + fmt(ev.fit.parameters.conductivity_W_mK, 1) +
-                              " W/(m K), P_f " + fmt(ev.fit.parameters.fixedEndPosition_mm, 1) + " mm, distance " +
-                              fmt(out.plausibilityDistance, 2) + " vs baseline " + fmt(baseDistance, 2) +
-                              (plausibleOk ? "" : " (the refit bends the seed-000 parameters away from physics)"));
-        out.reasons.push_back("held-out RMS " + fmt(ev.eval.heldoutRms_um) + " um vs baseline " + fmt(b.heldoutRms_um) +
-                              " um (" + fmt(100.0 * out.heldoutImprovement, 1) + " % better" +
-                              (heldOk ? ")" : ", below the " + fmt(100.0 * heldNeeded, 0) + " % needed)"));
-        out.reasons.push_back("cross-validation RMS " + fmt(ev.eval.cvRms_um) + " um vs " + fmt(b.cvRms_um) + " um (" +
-                              fmt(100.0 * out.cvImprovement, 1) + " % better" +
-                              (cvPassed ? ")"
-                               : cvWaived
-                                   ? ", not enough; waived: the held-out gain on the independent recording is " +
-                                         fmt(100.0 * out.heldoutImprovement, 0) + " % >= " +
-                                         fmt(100.0 * m_options.cvWaiverHeldoutImprovement, 0) +
-                                         " % — the training blocks do not cover what the validation run does)"
-                                   : ", not enough)"));
-        out.reasons.push_back("AICc change " + fmt(out.deltaIc, 1) + " at effective n = " + fmt(effectiveN, 0) +
-                              (icOk ? "" : " (not enough)"));
-        out.reasons.push_back("main amplitude |value|/SE = " + fmt(zMax, 1) + (zOk ? "" : " (confidence interval includes zero)"));
-        // Plausibility is evidence, not a veto: a refit that drives lambda / P_f further from
-        // physics scores lower.
-        out.accepted = heldOk && cvOk && icOk && zOk && sizeOk && out.insideBounds;
-        const double cvTerm = cvWaived ? std::max(out.cvImprovement, 0.0) : out.cvImprovement;
-        out.score = out.heldoutImprovement + 0.5 * cvTerm -
-                    0.05 * std::max(0.0, out.plausibilityDistance - baseDistance);
-        report.candidates.push_back(out);
-    }
+    report.location.implausibleRefits = chosen.implausibleRefits;
+    assemble(report, chosen, base, train, validate);
+    tick(1.0, "done");
+    report.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return report;
+}
 
-    // Winner.
-    int best = -1;
-    for (size_t c = 0; c < report.candidates.size(); ++c) {
-        const CandidateOutcome &o = report.candidates[c];
-        if (o.accepted && (best < 0 || o.score > report.candidates[static_cast<size_t>(best)].score))
-            best = static_cast<int>(c);
+void DiagnosisEngine::assemble(DiagnosisReport &report, const ForwardSelection::Result &chosen, const CandidateFit &base,
+                               const DiagnosisRecording &train, const DiagnosisRecording &validate) const
+{
+    report.candidates = chosen.firstRound;
+    report.rounds = chosen.rounds;
+    const CandidateFit *final = chosen.steps.empty() ? nullptr : &chosen.steps.back().fit;
+    for (const ForwardSelection::Step &s : chosen.steps) {
+        DiagnosisStep step;
+        step.effect = s.outcome.effect;
+        step.explanation = s.outcome.explanation;
+        // The effect's own parameters in the final model.
+        for (const ParameterValue &p : (final ? final->eval : s.fit.eval).parameters)
+            for (const ParameterSpec &b : s.fit.bounded)
+                if (b.name == p.name && std::none_of(step.parameters.begin(), step.parameters.end(),
+                                                     [&](const ParameterValue &q) { return q.name == p.name; }))
+                    step.parameters.push_back(p);
+        step.heldoutAfter_um = s.outcome.evaluation.heldoutRms_um;
+        step.heldoutBefore_um = s.outcome.heldoutImprovement < 1.0 ? step.heldoutAfter_um / (1.0 - s.outcome.heldoutImprovement) : 0.0;
+        step.heldoutImprovement = s.outcome.heldoutImprovement;
+        step.cvImprovement = s.outcome.cvImprovement;
+        step.deltaIc = s.outcome.deltaIc;
+        step.reasons = s.outcome.reasons;
+        step.candidatesTried = s.candidatesTried;
+        report.steps.push_back(std::move(step));
     }
-    // Parsimony: an accepted simpler candidate nested in the winner takes its place unless the
-    // winner's extra freedom buys a clearly lower AICc.
-    for (bool changed = best >= 0; changed;) {
-        changed = false;
-        CandidateOutcome &w = report.candidates[static_cast<size_t>(best)];
-        const auto lib = std::find_if(library.begin(), library.end(),
-                                      [&](const CandidateEffect &e) { return e.code == w.effect; });
-        if (lib == library.end())
-            break;
-        for (size_t c = 0; c < report.candidates.size(); ++c) {
-            CandidateOutcome &s = report.candidates[c];
-            if (!s.accepted || std::find(lib->nests.begin(), lib->nests.end(), s.effect) == lib->nests.end())
-                continue;
-            if (w.deltaIc - s.deltaIc > m_options.maxDeltaIc) {
-                s.reasons.push_back("named instead of " + w.effect + ", which contains it: the larger model's AICc "
-                                    "differs by " + fmt(w.deltaIc - s.deltaIc, 1) + ", not below " +
-                                    fmt(m_options.maxDeltaIc, 0));
-                w.reasons.push_back("contains " + s.effect + " and its AICc differs from it by only " +
-                                    fmt(w.deltaIc - s.deltaIc, 1) + " (needs " + fmt(m_options.maxDeltaIc, 0) +
-                                    " or lower): the simpler model is named");
-                best = static_cast<int>(c);
-                changed = true;
-                break;
-            }
+    if (final) {
+        report.effect.clear();
+        for (const DiagnosisStep &s : report.steps)
+            report.effect += (report.effect.empty() ? "" : "+") + s.effect;
+        if (report.steps.size() == 1) {
+            report.explanation = report.steps.front().explanation;
+        } else {
+            report.explanation = "Several effects the seed-000 model leaves out, accepted one after another (each tested on "
+                                 "top of the ones before):";
+            for (size_t k = 0; k < report.steps.size(); ++k)
+                report.explanation += " " + std::to_string(k + 1) + ". " + report.steps[k].effect + ": " + report.steps[k].explanation;
         }
-    }
-    const Evaluated *winner = nullptr;
-    if (best >= 0) {
-        const CandidateOutcome &w = report.candidates[static_cast<size_t>(best)];
-        report.effect = w.effect;
-        report.explanation = w.explanation;
-        for (size_t c = 0; c < library.size(); ++c)
-            if (library[c].code == w.effect)
-                winner = &evaluated[c];
-        report.corrected = w.evaluation;
-        report.correctedLocation = ResidualLocator::locate(train, winner->fit.fit.points);
-        ResidualLocator::locateTemperatures(train, winner->temperatures, m_geometry.length_m,
-                                            report.correctedLocation);
+        report.corrected = final->eval;
+        report.correctedLocation = ResidualLocator::locate(train, final->fit.fit.points);
+        ResidualLocator::locateTemperatures(train, final->temperatures, m_geometry.length_m, report.correctedLocation);
         ResidualLocator::summarise(report.correctedLocation);
     } else {
         report.effect = "none";
@@ -550,20 +395,21 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
         report.corrected = report.baseline;
         report.correctedLocation = report.location;
     }
-    std::stable_sort(report.candidates.begin(), report.candidates.end(),
-                     [&report](const CandidateOutcome &a, const CandidateOutcome &b) {
-                         if ((a.effect == report.effect) != (b.effect == report.effect))
-                             return a.effect == report.effect; // the named effect first
-                         if (a.accepted != b.accepted)
-                             return a.accepted;
-                         if (a.applicable != b.applicable)
-                             return a.applicable;
-                         return a.score > b.score;
-                     });
+    const std::vector<double> rest = explainRest(report, final ? *final : base, train, validate);
+    const std::string first = report.steps.empty() ? std::string() : report.steps.front().effect;
+    std::stable_sort(report.candidates.begin(), report.candidates.end(), [&first](const CandidateOutcome &a, const CandidateOutcome &b) {
+        if ((a.effect == first) != (b.effect == first))
+            return a.effect == first; // the first named effect first
+        if (a.accepted != b.accepted)
+            return a.accepted;
+        if (a.applicable != b.applicable)
+            return a.applicable;
+        return a.score > b.score;
+    });
 
     // Validation predictions (interferometer points of B, in the recording's order).
     const FitStatistics &bh = base.heldout;
-    const FitStatistics &ch = winner ? winner->heldout : base.heldout;
+    const FitStatistics &ch = final ? final->heldout : base.heldout;
     const auto &vi = validate.screw.interferometer;
     size_t k = 0;
     for (size_t i = 0; i < bh.points.size() && i < ch.points.size(); ++i) {
@@ -574,7 +420,7 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
         p.position_mm = bh.points[i].position_mm;
         p.measured_um = bh.points[i].measured_um;
         p.baseline_um = bh.points[i].predicted_um;
-        p.corrected_um = ch.points[i].predicted_um;
+        p.corrected_um = ch.points[i].predicted_um + (k < rest.size() ? rest[k] : 0.0);
         if (k < vi.size()) {
             const double ref = std::isfinite(vi[k].referenceTime_s) ? vi[k].referenceTime_s : validate.screw.referenceTime_s;
             p.reference = std::isfinite(ref) && std::fabs(ref - p.t_s) < 1e-6;
@@ -582,9 +428,98 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
         ++k;
         report.predictions.push_back(p);
     }
-    tick(steps, "done");
-    report.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return report;
+}
+
+std::vector<double> DiagnosisEngine::explainRest(DiagnosisReport &report, const CandidateFit &final, const DiagnosisRecording &train,
+                                                 const DiagnosisRecording &validate) const
+{
+    DiagnosisDiscrepancy &d = report.discrepancy;
+    const DiscrepancyTerm term;
+    // Fitted on the model's out-of-fold residuals of the time-blocked cross-validation: the
+    // in-sample residual hides what the refit absorbed (a missing effect the parameters bend
+    // to follow in training, then fail to predict).
+    const DiscrepancyTerm::Fit fit = term.fit(train, final.outOfFold);
+    d.tried = true;
+    d.cvBefore_um = fit.cvRmsBefore_um;
+    d.cvAfter_um = fit.cvRmsAfter_um;
+    if (fit.empty()) {
+        d.reasons.push_back("no driver term lowers the time-blocked cross-validation RMS of the residual (" +
+                            std::to_string(fit.points) + " points) by 5 % or more");
+        d.heldoutBefore_um = d.heldoutAfter_um = final.eval.heldoutRms_um;
+        return {};
+    }
+    // Held-out: B's interferometer points with and without the term, as the model's RMS counts them.
+    const std::vector<double> correction = term.predict(fit, validate, final.heldout.points);
+    double before = 0.0, after = 0.0;
+    size_t n = 0, k = 0;
+    for (const ObservationFit &p : final.heldout.points) {
+        if (p.elongation || p.temperature)
+            continue;
+        const double e = p.measured_um - p.predicted_um;
+        const double c = k < correction.size() ? correction[k] : 0.0;
+        ++k;
+        before += e * e;
+        after += (e - c) * (e - c);
+        ++n;
+    }
+    d.heldoutBefore_um = n ? std::sqrt(before / static_cast<double>(n)) : 0.0;
+    d.heldoutAfter_um = n ? std::sqrt(after / static_cast<double>(n)) : 0.0;
+    for (size_t j = 0; j < fit.terms.size(); ++j) {
+        d.terms.push_back(fit.terms[j].describe());
+        d.coefficients.push_back(fit.coefficients[j]);
+    }
+    d.hypothesis = DiscrepancyTerm::hypothesis(fit, final.fit.parameters.fixedEndPosition_mm);
+    const double heldGain = d.heldoutBefore_um > 0 ? 1.0 - d.heldoutAfter_um / d.heldoutBefore_um : 0.0;
+    const double cvGain = d.cvBefore_um > 0 ? 1.0 - d.cvAfter_um / d.cvBefore_um : 0.0;
+    const bool heldOk = heldGain >= m_options.minHeldoutImprovement;
+    const bool cvOk = cvGain >= m_options.minCvImprovement;
+    // Located: the final model's training residual is not white, or follows a driver.
+    const ResidualLocation &left = report.correctedLocation;
+    bool followsDriver = false;
+    for (const ChannelCorrelation &c : left.correlations)
+        if (c.channel.rfind("feed", 0) != 0 && c.channel != "time" && c.channel != "position")
+            followsDriver = followsDriver || std::fabs(c.correlation) >= 0.5;
+    const bool located = !left.white || followsDriver;
+    auto um = [](double v) {
+        std::ostringstream o;
+        o.setf(std::ios::fixed);
+        o.precision(3);
+        o << v;
+        return o.str();
+    };
+    auto pct = [](double v) { return std::to_string(static_cast<int>(std::lround(100.0 * v))) + " %"; };
+    d.reasons.push_back("held-out RMS " + um(d.heldoutBefore_um) + " -> " + um(d.heldoutAfter_um) + " um (" + pct(heldGain) +
+                        " better" + (heldOk ? ")" : ", below the " + pct(m_options.minHeldoutImprovement) + " needed)"));
+    d.reasons.push_back("time-blocked cross-validation RMS of the residual " + um(d.cvBefore_um) + " -> " + um(d.cvAfter_um) +
+                        " um (" + pct(cvGain) + " better" + (cvOk ? ")" : ", below the " + pct(m_options.minCvImprovement) + " needed)"));
+    if (!located)
+        d.reasons.push_back("the model's training residual looks white and correlates with no driver (|r| < 0.5): noise, not a "
+                            "located discrepancy");
+    d.accepted = heldOk && cvOk && located;
+    if (!d.accepted)
+        return {};
+    DiagnosisStep step;
+    step.effect = "unexplained";
+    step.explanation = d.hypothesis;
+    for (size_t j = 0; j < d.terms.size(); ++j)
+        step.parameters.push_back({d.terms[j], "um/K", d.coefficients[j], 0.0, true});
+    step.heldoutBefore_um = d.heldoutBefore_um;
+    step.heldoutAfter_um = d.heldoutAfter_um;
+    step.heldoutImprovement = heldGain;
+    step.cvImprovement = cvGain;
+    step.reasons = d.reasons;
+    report.steps.push_back(step);
+    report.effect = (report.effect == "none" ? std::string() : report.effect + "+") + "unexplained";
+    if (report.steps.size() == 1) {
+        report.explanation = "A significant, located discrepancy that no library effect explains. " + d.hypothesis;
+    } else {
+        report.explanation = "Several things the seed-000 model leaves out, accepted one after another (each tested on top "
+                             "of the ones before):";
+        for (size_t j = 0; j < report.steps.size(); ++j)
+            report.explanation += " " + std::to_string(j + 1) + ". " + report.steps[j].effect + ": " + report.steps[j].explanation;
+    }
+    report.corrected.heldoutRms_um = d.heldoutAfter_um;
+    return correction;
 }
 
 } // namespace driftlab

@@ -4,17 +4,19 @@
 //     disagrees (ResidualLocator);
 //  2. refits baseline + each applicable candidate effect (CandidateEffectLibrary) with every
 //     parameter free;
-//  3. selects with a protocol that resists overfitting: held-out RMS on the validation
-//     recording, time-blocked cross-validation on the training recording (gaps of a few
-//     thermal time constants around each held-out block), AICc with the effective sample
-//     size of autocorrelated residuals, candidate amplitudes inside their bounds with
-//     confidence intervals excluding zero. "none" wins unless a candidate passes all tests.
+//  3. selects with a protocol that resists overfitting (CandidateAcceptance: held-out RMS on
+//     the validation recording, time-blocked cross-validation on the training recording,
+//     AICc with the effective sample size, significant in-bounds amplitudes), forward: after
+//     the best accepted effect the others are tested again on top of it (ForwardSelection).
+//     "none" wins unless a candidate passes all tests.
 // Refits reuse the identifier's unit-response structure (variable projection) and start
 // from the baseline's optimum.
 
 #include "CandidateEffect.h"
+#include "CandidateFit.h"
+#include "DiagnosisOptions.h"
 #include "DiagnosisTypes.h"
-#include "ParameterPlausibility.h"
+#include "ForwardSelection.h"
 #include "ScrewModelIdentifier.h"
 
 #include <functional>
@@ -22,51 +24,6 @@
 #include <vector>
 
 namespace driftlab {
-
-struct DiagnosisOptions {
-    IdentificationOptions identification; // start values, bounds, grid (dt 30 s is plenty)
-    int cvFolds = 3;
-    // < 0: three thermal time constants of the screw, at most a sixth of the recording (a
-    // low fitted k2 would otherwise leave nothing to fit on).
-    double cvGap_s = -1.0;
-    int cvMaxIterations = 10;
-    // Acceptance thresholds of a candidate.
-    double minHeldoutImprovement = 0.25;  // relative reduction of the validation RMS
-    double minCvImprovement = 0.10;       // relative reduction of the cross-validation RMS
-    // A held-out gain this large on the independent validation recording stands in for the
-    // cross-validation: blocks of one training recording may not span the operating range
-    // (e.g. two feed levels for a feed-law term), and then the folds extrapolate wildly.
-    double cvWaiverHeldoutImprovement = 0.50;
-    double maxDeltaIc = -10.0;            // AICc(candidate) - AICc(baseline)
-    double minAmplitudeZ = 3.0;           // |value| / standard error of its main amplitude
-    // Physical plausibility of the refit's seed-000 parameters (see plausibilityDistance): a
-    // candidate further from physics than the baseline by more than this is reported so.
-    double maxPlausibilityLoss = 1.0;
-    // Still-air convection k2 below this (W/(m^2 K)) is below natural convection plus
-    // radiation of a bare steel screw: the refit made the screw slower and cooler than physics
-    // allows to absorb something (a heat-path lag does exactly this). A candidate that brings
-    // k2 back above it is "restoring" and needs only a held-out RMS no worse than the
-    // baseline's (its other tests unchanged): implausibility counts as evidence.
-    double minPlausibleK2_W_m2K = ParameterPlausibility::kMinK2_W_m2K;
-    double steelConductivity_W_mK = ParameterPlausibility::kSteelConductivity_W_mK;
-    int threads = 0;                      // candidates refitted in parallel (0 = hardware)
-    // Physical bounds of the refits (issue 7: "parameters inside physical bounds"): lambda of
-    // a steel screw (the 1-D model's simplifications allowed for), P_f within this distance
-    // of the drawing (the recording's drawingFixedEnd_mm; ignored when unknown). With free
-    // lambda in [5, 5000] a far-too-conductive screw makes every heat location alike and
-    // hides where the heat enters.
-    bool physicalBounds = true;
-    double lambdaLower_W_mK = 20.0, lambdaUpper_W_mK = 120.0;
-    double fixedEndTolerance_mm = 40.0;
-    std::vector<std::string> effects;     // restrict the library (empty: all)
-    // Fit the recording's screw temperatures (infrared profile, surface PT100s) with the
-    // interferometer and the probe, residual weight 1 / sigma (K). Selection still uses the
-    // interferometer RMS only.
-    // Off by default: on the rig's "none" sessions it moved lambda and P_f to the truth but
-    // raised the held-out interferometer RMS by half (docs/diagnosis.md).
-    bool fitScrewTemperatures = false;
-    double screwTemperatureSigma_K = 0.3;
-};
 
 class DiagnosisEngine {
 public:
@@ -87,20 +44,25 @@ public:
     double screwTimeConstant_s(double h_W_m2K) const;
 
 private:
-    struct Evaluated {
-        ModelEvaluation eval;
-        IdentificationResult fit;
-        FitStatistics heldout;
-        std::vector<ObservationFit> temperatures; // training screw temperatures, predicted
-    };
-    Evaluated evaluate(const CandidateEffect *effect, const DiagnosisRecording &train,
-                       const DiagnosisRecording &validate, const IdentificationOptions &options, double effectiveN,
-                       std::vector<std::string> *amplitudeNames);
+    // The baseline extended by `accepted` and `candidate` (none: the baseline), fitted on the
+    // training recording (each of the candidate's starts; the best kept), predicting the
+    // validation recording, cross-validated.
+    CandidateFit evaluate(const std::vector<ForwardSelection::Choice> &accepted, const CandidateEffect *candidate,
+                          const DiagnosisRecording &train, const DiagnosisRecording &validate,
+                          const IdentificationOptions &options, double effectiveN);
+    IdentificationOptions baselineOptions(const DiagnosisRecording &train) const;
+    void assemble(DiagnosisReport &report, const ForwardSelection::Result &selection, const CandidateFit &base,
+                  const DiagnosisRecording &train, const DiagnosisRecording &validate) const;
+    // Tries the empirical discrepancy term on the final model's residual; when it passes, the
+    // answer gains "unexplained" and the corrected predictions include it. Returns the term's
+    // value at B's interferometer points (empty when not accepted).
+    std::vector<double> explainRest(DiagnosisReport &report, const CandidateFit &final, const DiagnosisRecording &train,
+                                    const DiagnosisRecording &validate) const;
     std::vector<ObservationFit> predictTemperatures(ScrewModelIdentifier &id, const IdentificationResult &fit,
                                                     const CandidateModel &model,
                                                     const DiagnosisRecording &train) const;
     double crossValidate(const CandidateModel *model, const DiagnosisRecording &train,
-                         const IdentificationOptions &options);
+                         const IdentificationOptions &options, std::vector<ObservationFit> *outOfFold = nullptr);
 
     ScrewGeometry m_geometry;
     DiagnosisOptions m_options;

@@ -114,6 +114,7 @@ struct CandidateOutcome {
     double minAmplitudeZ = 0.0;       // largest |value / standard error| of its amplitudes
     bool insideBounds = true;
     double plausibilityDistance = 0.0; // of the refit's lambda and P_f (DiagnosisEngine)
+    double temperatureRms_K = std::numeric_limits<double>::quiet_NaN(); // predicted screw temperatures
     bool accepted = false;
     std::vector<std::string> reasons; // why accepted / rejected
 };
@@ -128,14 +129,48 @@ struct DiagnosisPrediction {
     bool reference = false; // measured in the reference run (thermal error 0 by definition)
 };
 
+// One effect accepted by the forward selection, tested against the model before it (the
+// seed-000 baseline for the first, baseline + the effects accepted before for the others).
+struct DiagnosisStep {
+    std::string effect;
+    std::string explanation;
+    std::vector<ParameterValue> parameters;  // the effect's own parameters in the model after this step
+    double heldoutBefore_um = 0.0;           // validation RMS of the model before the step
+    double heldoutAfter_um = 0.0;
+    double heldoutImprovement = 0.0;         // 1 - after / before
+    double cvImprovement = 0.0;
+    double deltaIc = 0.0;
+    std::vector<std::string> reasons;        // the evidence that accepted it
+    int candidatesTried = 0;                 // candidates refitted in this step
+};
+
+// The empirical discrepancy term tried on the final model's residual (DiscrepancyTerm): named
+// "unexplained" when it passes, never a library effect.
+struct DiagnosisDiscrepancy {
+    bool tried = false;
+    bool accepted = false;
+    std::string hypothesis;               // in words, labelled empirical
+    std::vector<std::string> terms;       // e.g. "lag60min[dT(hydraulic_unit)] * x"
+    std::vector<double> coefficients;     // um per K (times the scaled position factor)
+    double heldoutBefore_um = 0.0, heldoutAfter_um = 0.0;
+    double cvBefore_um = 0.0, cvAfter_um = 0.0;
+    std::vector<std::string> reasons;
+};
+
 struct DiagnosisReport {
+    // Accepted effect codes joined by '+' in the order of acceptance, "none" when none was,
+    // "unexplained" for a located discrepancy no candidate explains.
     std::string effect = "none";
+    std::vector<DiagnosisStep> steps;   // the accepted effects, in order (an "unexplained" one last)
+    DiagnosisDiscrepancy discrepancy;
     std::string explanation;
     ResidualLocation location;          // of the baseline on the training recording
     ResidualLocation correctedLocation; // of the corrected model on the training recording
     ModelEvaluation baseline;
-    ModelEvaluation corrected;          // == baseline when the answer is "none"
-    std::vector<CandidateOutcome> candidates; // sorted by score, best first
+    ModelEvaluation corrected;          // the final model (== baseline when the answer is "none")
+    std::vector<CandidateOutcome> candidates; // against the baseline, sorted by score, best first
+    // Every round of the forward selection: its candidates against the model of that round.
+    std::vector<std::vector<CandidateOutcome>> rounds;
     std::vector<DiagnosisPrediction> predictions;
     double wallTime_s = 0.0;
     bool cancelled = false;

@@ -263,8 +263,22 @@ void DiagnosisPanel::finish(bool ok, const QString &error)
     const DiagnosisReport &r = m_report;
     m_resultTrain = m_runTrain;
     m_resultValidate = m_runValidate;
+    // Several effects: the steps of the forward selection, each with its gain over the model
+    // before it; one effect: its explanation.
+    QString what = QString::fromStdString(r.explanation).toHtmlEscaped();
+    if (r.steps.size() > 1) {
+        what = tr("several effects, accepted one after another:") + QStringLiteral("<ol>");
+        for (const DiagnosisStep &s : r.steps)
+            what += tr("<li><b>%1</b>: held-out RMS %2 → %3 µm (%4 % better than the model before it) — %5</li>")
+                        .arg(QString::fromStdString(s.effect))
+                        .arg(s.heldoutBefore_um, 0, 'f', 2)
+                        .arg(s.heldoutAfter_um, 0, 'f', 2)
+                        .arg(100.0 * s.heldoutImprovement, 0, 'f', 0)
+                        .arg(QString::fromStdString(s.explanation).toHtmlEscaped());
+        what += QStringLiteral("</ol>");
+    }
     m_resultText = (tr("<b>%1</b> — %2<br>Held-out RMS %3 µm → %4 µm (%5 s).<br>%6")
-                          .arg(QString::fromStdString(r.effect), QString::fromStdString(r.explanation).toHtmlEscaped())
+                          .arg(QString::fromStdString(r.effect), what)
                           .arg(r.baseline.heldoutRms_um, 0, 'f', 2)
                           .arg(r.corrected.heldoutRms_um, 0, 'f', 2)
                           .arg(r.wallTime_s, 0, 'f', 1)

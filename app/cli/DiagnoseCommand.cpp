@@ -109,7 +109,11 @@ QString DiagnoseCommand::summary() const
         "channel, implausible parameters), refits it with each candidate effect (motor heat, free-end\n"
         "bearing, nonlinear feed heat, heat-path lag, holding heat, structure offset/linear, coolant) and\n"
         "names the effect that improves held-out, cross-validated and information-criterion fit with a\n"
-        "significant amplitude, or 'none'. A and B: bundle directories, .zip bundles or session ids in --db.");
+        "significant amplitude; then tests the others again on top of it (forward selection: 'effect' is\n"
+        "the accepted codes joined by '+'). A located discrepancy no candidate explains is fitted by an\n"
+        "empirical term over the recorded temperatures and answered 'unexplained' with a hypothesis in\n"
+        "words; 'none' when the residual is noise. A and B: bundle directories, .zip bundles or session\n"
+        "ids in --db.");
 }
 
 QJsonObject DiagnoseCommand::reportJson(const DiagnosisReport &r)
@@ -134,13 +138,65 @@ QJsonObject DiagnoseCommand::reportJson(const DiagnosisReport &r)
                       {QStringLiteral("amplitude_z"), c.minAmplitudeZ},
                       {QStringLiteral("inside_bounds"), c.insideBounds},
                       {QStringLiteral("plausibility_distance"), c.plausibilityDistance},
+                      {QStringLiteral("screw_temperature_rms_K"), number(c.temperatureRms_K)},
                       {QStringLiteral("evidence"), reasons},
                       {QStringLiteral("explanation"), QString::fromStdString(c.explanation)}};
         cands.append(o);
     }
     QJsonObject loc = locationJson(r.location);
     loc.insert(QStringLiteral("corrected"), locationJson(r.correctedLocation));
+    // The accepted effects in order, each with its held-out gain over the model before it.
+    QJsonArray steps;
+    for (const DiagnosisStep &s : r.steps) {
+        QJsonArray reasons;
+        for (const std::string &e : s.reasons)
+            reasons.append(QString::fromStdString(e));
+        steps.append(QJsonObject{{QStringLiteral("code"), QString::fromStdString(s.effect)},
+                                 {QStringLiteral("explanation"), QString::fromStdString(s.explanation)},
+                                 {QStringLiteral("parameters"), parametersJson(s.parameters)},
+                                 {QStringLiteral("standard_errors"), errorsJson(s.parameters)},
+                                 {QStringLiteral("heldout_rms_before_um"), number(s.heldoutBefore_um)},
+                                 {QStringLiteral("heldout_rms_after_um"), number(s.heldoutAfter_um)},
+                                 {QStringLiteral("heldout_gain"), s.heldoutImprovement},
+                                 {QStringLiteral("cv_improvement"), s.cvImprovement},
+                                 {QStringLiteral("delta_aicc"), s.deltaIc},
+                                 {QStringLiteral("candidates_tried"), s.candidatesTried},
+                                 {QStringLiteral("evidence"), reasons}});
+    }
+    QJsonArray rounds;
+    for (const std::vector<CandidateOutcome> &round : r.rounds) {
+        QJsonArray cs;
+        for (const CandidateOutcome &c : round)
+            if (c.applicable)
+                cs.append(QJsonObject{{QStringLiteral("effect"), QString::fromStdString(c.effect)},
+                                      {QStringLiteral("accepted"), c.accepted},
+                                      {QStringLiteral("heldout_improvement"), c.heldoutImprovement},
+                                      {QStringLiteral("cv_improvement"), c.cvImprovement},
+                                      {QStringLiteral("delta_aicc"), c.deltaIc},
+                                      {QStringLiteral("amplitude_z"), c.minAmplitudeZ}});
+        rounds.append(cs);
+    }
+    const DiagnosisDiscrepancy &dd = r.discrepancy;
+    QJsonArray ddTerms, ddReasons;
+    for (size_t j = 0; j < dd.terms.size(); ++j)
+        ddTerms.append(QJsonObject{{QStringLiteral("term"), QString::fromStdString(dd.terms[j])},
+                                   {QStringLiteral("coefficient_um_K"), dd.coefficients[j]}});
+    for (const std::string &e : dd.reasons)
+        ddReasons.append(QString::fromStdString(e));
+    const QJsonObject discrepancy{{QStringLiteral("label"), QStringLiteral("empirical")},
+                                  {QStringLiteral("tried"), dd.tried},
+                                  {QStringLiteral("accepted"), dd.accepted},
+                                  {QStringLiteral("hypothesis"), QString::fromStdString(dd.hypothesis)},
+                                  {QStringLiteral("terms"), ddTerms},
+                                  {QStringLiteral("heldout_rms_before_um"), number(dd.heldoutBefore_um)},
+                                  {QStringLiteral("heldout_rms_after_um"), number(dd.heldoutAfter_um)},
+                                  {QStringLiteral("cv_rms_before_um"), number(dd.cvBefore_um)},
+                                  {QStringLiteral("cv_rms_after_um"), number(dd.cvAfter_um)},
+                                  {QStringLiteral("evidence"), ddReasons}};
     return QJsonObject{{QStringLiteral("effect"), QString::fromStdString(r.effect)},
+                       {QStringLiteral("effects"), steps},
+                       {QStringLiteral("discrepancy"), discrepancy},
+                       {QStringLiteral("selection_rounds"), rounds},
                        {QStringLiteral("explanation"), QString::fromStdString(r.explanation)},
                        {QStringLiteral("location"), loc},
                        {QStringLiteral("candidates"), cands},

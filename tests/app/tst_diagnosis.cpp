@@ -24,6 +24,36 @@ namespace {
 const char *const kEffects[] = {"none",          "motor_heat_fixed_end", "free_end_bearing_heat",
                                 "nonlinear_feed_heat", "heat_path_lag", "holding_heat",
                                 "structure_offset", "structure_linear", "screw_coolant"};
+// Two effects at once (issue 18): the forward selection must name both, in any order.
+const char *const kPairs[] = {"free_end_bearing_heat+structure_offset", "holding_heat+screw_coolant",
+                              "motor_heat_fixed_end+structure_linear", "nonlinear_feed_heat+screw_coolant"};
+
+// Physics no candidate models (issue 18): the answer must be "unexplained", never a library code.
+const char *const kUnexplained[] = {"ambient_gradient", "neighbour_radiation"};
+
+// What the diagnosis should answer for a truth: its codes, with effects outside the library
+// as "unexplained", in any order.
+QStringList expectedCodes(const QString &truth)
+{
+    QStringList out;
+    for (const QString &part : truth.split(QLatin1Char('+'))) {
+        const bool outside = std::any_of(std::begin(kUnexplained), std::end(kUnexplained),
+                                         [&](const char *u) { return part == QLatin1String(u); });
+        const QString code = outside ? QStringLiteral("unexplained") : part;
+        if (!out.contains(code))
+            out << code;
+    }
+    out.sort();
+    return out;
+}
+
+// The same effects, whatever the order of acceptance.
+bool sameEffects(const QString &answer, const QString &truth)
+{
+    QStringList x = answer.split(QLatin1Char('+'));
+    x.sort();
+    return x == expectedCodes(truth);
+}
 
 struct Outcome {
     QString truth, answer;
@@ -87,34 +117,46 @@ QJsonObject TestDiagnosis::rig(const QString &effect, unsigned seed, bool valida
         o.insert(QStringLiteral("enabled"), true);
         effects.insert(QLatin1String(name), o);
     };
-    // Magnitudes are drawn for the machine (same in training and validation: rng is re-seeded).
-    if (effect == QLatin1String("motor_heat_fixed_end"))
-        on("motor_coupling", {{QStringLiteral("conductance_W_K"), uni(0.8, 2.0)}});
-    else if (effect == QLatin1String("free_end_bearing_heat"))
-        on("free_bearing_heat", {{QStringLiteral("coefficient_W_per_mm_min"), uni(0.0005, 0.001)}});
-    else if (effect == QLatin1String("nonlinear_feed_heat")) {
-        const double n = uni(1.6, 2.0);
-        on("superlinear_heat", {{QStringLiteral("bearing_exponent"), n}, {QStringLiteral("nut_exponent"), n},
-                                {QStringLiteral("reference_feed_mm_min"), 6000}});
-    } else if (effect == QLatin1String("heat_path_lag"))
-        // Heat stored in well-insulated housings (time constants C / (contact + losses) of
-        // 0.6-1.8 h) before it reaches the screw: a slow path the refit cannot turn into a
-        // direct one. The housings' own losses are set low below.
-        on("heat_path_lag", {{QStringLiteral("fraction"), uni(0.8, 1.0)},
-                             {QStringLiteral("bearing_contact_W_K"), uni(2.0, 4.0)},
-                             {QStringLiteral("nut_contact_W_K"), uni(2.0, 4.0)},
-                             {QStringLiteral("bearing_housing_capacity_J_K"), uni(8000, 16000)},
-                             {QStringLiteral("nut_housing_capacity_J_K"), uni(8000, 16000)}});
-    else if (effect == QLatin1String("holding_heat"))
-        on("holding_heat", {{QStringLiteral("power_W"), uni(3.0, 6.0)}});
-    else if (effect == QLatin1String("structure_offset"))
-        on("structure_offset", {{QStringLiteral("coefficient_um_K"), (u(rng) < 0.5 ? -1 : 1) * uni(5, 15)}});
-    else if (effect == QLatin1String("structure_linear"))
-        on("structure_linear", {{QStringLiteral("coefficient_um_m_K"), (u(rng) < 0.5 ? -1 : 1) * uni(10, 30)},
-                                {QStringLiteral("reference_position_mm"), uni(20, 500)}});
-    else if (effect == QLatin1String("screw_coolant"))
-        on("coolant", {{QStringLiteral("conductance_W_mK"), uni(5, 15)}, {QStringLiteral("mean_C"), uni(18.5, 19.5)},
-                       {QStringLiteral("amplitude_K"), uni(0.3, 0.8)}, {QStringLiteral("period_s"), uni(1500, 3600)}});
+    // Magnitudes are drawn for the machine (same in training and validation: rng is re-seeded);
+    // "a+b" switches on both, drawn in that order.
+    for (const QString &part : effect.split(QLatin1Char('+'))) {
+        if (part == QLatin1String("motor_heat_fixed_end"))
+            on("motor_coupling", {{QStringLiteral("conductance_W_K"), uni(0.8, 2.0)}});
+        else if (part == QLatin1String("free_end_bearing_heat"))
+            on("free_bearing_heat", {{QStringLiteral("coefficient_W_per_mm_min"), uni(0.0005, 0.001)}});
+        else if (part == QLatin1String("nonlinear_feed_heat")) {
+            const double n = uni(1.6, 2.0);
+            on("superlinear_heat", {{QStringLiteral("bearing_exponent"), n}, {QStringLiteral("nut_exponent"), n},
+                                    {QStringLiteral("reference_feed_mm_min"), 6000}});
+        } else if (part == QLatin1String("heat_path_lag"))
+            // Heat stored in well-insulated housings (time constants C / (contact + losses) of
+            // 0.6-1.8 h) before it reaches the screw: a slow path the refit cannot turn into a
+            // direct one. The housings' own losses are set low below.
+            on("heat_path_lag", {{QStringLiteral("fraction"), uni(0.8, 1.0)},
+                                 {QStringLiteral("bearing_contact_W_K"), uni(2.0, 4.0)},
+                                 {QStringLiteral("nut_contact_W_K"), uni(2.0, 4.0)},
+                                 {QStringLiteral("bearing_housing_capacity_J_K"), uni(8000, 16000)},
+                                 {QStringLiteral("nut_housing_capacity_J_K"), uni(8000, 16000)}});
+        else if (part == QLatin1String("holding_heat"))
+            on("holding_heat", {{QStringLiteral("power_W"), uni(3.0, 6.0)}});
+        else if (part == QLatin1String("structure_offset"))
+            on("structure_offset", {{QStringLiteral("coefficient_um_K"), (u(rng) < 0.5 ? -1 : 1) * uni(5, 15)}});
+        else if (part == QLatin1String("structure_linear"))
+            on("structure_linear", {{QStringLiteral("coefficient_um_m_K"), (u(rng) < 0.5 ? -1 : 1) * uni(10, 30)},
+                                    {QStringLiteral("reference_position_mm"), uni(20, 500)}});
+        else if (part == QLatin1String("ambient_gradient"))
+            // The air along the screw warmed by the unit towards the free end.
+            on("ambient_gradient", {{QStringLiteral("fraction"), uni(0.25, 0.45)}});
+        else if (part == QLatin1String("neighbour_radiation")) {
+            // The unit radiates onto a 0.2 m section of the screw.
+            const double start = uni(0.2, 0.5);
+            on("neighbour_radiation", {{QStringLiteral("conductance_W_mK"), uni(1.5, 3.0)},
+                                       {QStringLiteral("start_m"), start},
+                                       {QStringLiteral("end_m"), start + 0.2}});
+        } else if (part == QLatin1String("screw_coolant"))
+            on("coolant", {{QStringLiteral("conductance_W_mK"), uni(5, 15)}, {QStringLiteral("mean_C"), uni(18.5, 19.5)},
+                           {QStringLiteral("amplitude_K"), uni(0.3, 0.8)}, {QStringLiteral("period_s"), uni(1500, 3600)}});
+    }
     // Bed heat so the structure temperature moves (a machine warming up nearby).
     const double bedHeat = uni(2.0, 8.0);
     const double interval = 60.0 * std::round(uni(20, 30));
@@ -145,6 +187,17 @@ QJsonObject TestDiagnosis::rig(const QString &effect, unsigned seed, bool valida
     // (the diagnosis finds drivers by role only).
     std::vector<const char *> locations{"ambient", "fixed_bearing", "nut", "free_bearing", "motor", "bed", "coolant"};
     std::shuffle(locations.begin(), locations.end(), rng);
+    // A hydraulic unit beside the axis cycles on every machine (its own random stream, so the
+    // draws above are those of the single-effect sweep); only the two effects outside the
+    // library let it reach the screw. Its PT100 is one more driver the diagnosis may use.
+    locations.push_back("hydraulic_unit");
+    std::mt19937 unitRng(seed * 7919u + 13u);
+    std::uniform_real_distribution<double> uu(0.0, 1.0);
+    const QJsonObject unit{{QStringLiteral("rise_K"), 4.0 + 4.0 * uu(unitRng)},
+                           {QStringLiteral("period_s"), 5400.0 + 3600.0 * uu(unitRng)},
+                           {QStringLiteral("duty"), 0.5},
+                           {QStringLiteral("time_constant_s"), 1200.0},
+                           {QStringLiteral("phase_s"), 3600.0 * uu(unitRng)}};
     QJsonArray pt100;
     for (size_t k = 0; k < locations.size(); ++k)
         pt100.append(QJsonObject{{QStringLiteral("id"), QStringLiteral("TC%1").arg(k + 1, 2, 10, QLatin1Char('0'))},
@@ -153,7 +206,7 @@ QJsonObject TestDiagnosis::rig(const QString &effect, unsigned seed, bool valida
                                  {QStringLiteral("rate_Hz"), 1}});
     // Housing-to-screw contact: small (the seed-000 model's adiabatic bearing/nut contact is
     // then nearly right, as "none" requires); heat_path_lag raises it in the rig.
-    const bool lag = effect == QLatin1String("heat_path_lag");
+    const bool lag = effect.split(QLatin1Char('+')).contains(QLatin1String("heat_path_lag"));
     auto housing = [&] {
         QJsonObject o{{QStringLiteral("to_screw_W_K"), uni(0.0, 0.1)}};
         if (lag) {
@@ -170,6 +223,7 @@ QJsonObject TestDiagnosis::rig(const QString &effect, unsigned seed, bool valida
         {QStringLiteral("seed"), static_cast<double>(seed)},
         {QStringLiteral("machine"), QJsonObject{{QStringLiteral("travel_mm"), QJsonArray{20, 500}}}},
         {QStringLiteral("thermal"), QJsonObject{{QStringLiteral("bed_heat_W"), bedHeat},
+                                                 {QStringLiteral("hydraulic_unit"), unit},
                                                  {QStringLiteral("fixed_bearing_housing"), fixedHousing},
                                                  {QStringLiteral("free_bearing_housing"), freeHousing},
                                                  {QStringLiteral("nut_housing"), nutHousing}}},
@@ -205,7 +259,12 @@ void TestDiagnosis::concealedEffects_data()
     const int seeds = qEnvironmentVariableIsSet("DRIFTLAB_DIAG_SEEDS") ? qEnvironmentVariableIntValue("DRIFTLAB_DIAG_SEEDS") : 1;
     const int first = qEnvironmentVariableIsSet("DRIFTLAB_DIAG_FIRST_SEED") ? qEnvironmentVariableIntValue("DRIFTLAB_DIAG_FIRST_SEED") : 1;
     const QString only = qEnvironmentVariable("DRIFTLAB_DIAG_EFFECTS");
-    for (const char *e : kEffects) {
+    std::vector<const char *> all(std::begin(kEffects), std::end(kEffects));
+    if (!qEnvironmentVariableIsSet("DRIFTLAB_DIAG_NO_PAIRS"))
+        all.insert(all.end(), std::begin(kPairs), std::end(kPairs));
+    if (!qEnvironmentVariableIsSet("DRIFTLAB_DIAG_NO_UNEXPLAINED"))
+        all.insert(all.end(), std::begin(kUnexplained), std::end(kUnexplained));
+    for (const char *e : all) {
         if (!only.isEmpty() && !only.split(QLatin1Char(',')).contains(QLatin1String(e)))
             continue;
         for (int s = first; s < first + seeds; ++s)
@@ -286,7 +345,7 @@ void TestDiagnosis::concealedEffects()
     }
     // Named: the held-out RMS must improve (a candidate accepted for restoring a plausible
     // convection may improve it only a little; all others improved it by >= 25 %).
-    if (o.answer == effect)
+    if (sameEffects(o.answer, effect))
         QVERIFY2(o.correctedHeldout < o.baselineHeldout, "held-out RMS did not improve");
     else
         qWarning("%s seed %d named %s (counted in ciAccuracy)", qPrintable(effect), seed, qPrintable(o.answer));
@@ -299,15 +358,18 @@ void TestDiagnosis::ciAccuracy()
 {
     if (qEnvironmentVariableIsSet("DRIFTLAB_DIAG_NO_ASSERT") || qEnvironmentVariableIsSet("DRIFTLAB_DIAG_EFFECTS"))
         QSKIP("sweep or partial run");
-    int effects = 0, right = 0;
+    int effects = 0, right = 0, pairs = 0, pairsRight = 0;
     for (const Outcome &o : m_outcomes) {
         if (o.truth == QLatin1String("none"))
             continue;
-        ++effects;
-        right += o.answer == o.truth ? 1 : 0;
+        const bool pair = o.truth.contains(QLatin1Char('+'));
+        (pair ? pairs : effects) += 1;
+        (pair ? pairsRight : right) += sameEffects(o.answer, o.truth) ? 1 : 0;
     }
     QVERIFY(effects >= 8);
     QVERIFY2(right >= effects - 2, qPrintable(QStringLiteral("%1 of %2 effects named").arg(right).arg(effects)));
+    if (pairs > 0)
+        QVERIFY2(pairsRight >= pairs - 1, qPrintable(QStringLiteral("%1 of %2 pairs named").arg(pairsRight).arg(pairs)));
 }
 
 void TestDiagnosis::cleanupTestCase()

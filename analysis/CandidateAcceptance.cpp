@@ -1,0 +1,190 @@
+#include "CandidateAcceptance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace driftlab {
+
+namespace {
+
+std::string fmt(double v, int prec = 3)
+{
+    std::ostringstream o;
+    o.setf(std::ios::fixed);
+    o.precision(prec);
+    o << v;
+    return o.str();
+}
+
+// Empty when the fit reports none of the effect's size parameters or one reaches its minimum;
+// otherwise the sizes found, e.g. "G_nut_contact = 0.09 (needs 0.50)".
+std::string sizeShortfall(const CandidateEffect &effect, const IdentificationResult &fit)
+{
+    std::string sizes;
+    bool reached = false;
+    for (const IdentifiedParameter &p : fit.all)
+        for (const auto &[name, least] : effect.minimumSize) {
+            if (p.name != name)
+                continue;
+            reached = reached || std::fabs(p.value) >= least;
+            sizes += (sizes.empty() ? "" : ", ") + p.name + " = " + fmt(p.value, 2) + " (needs " + fmt(least, 2) + ")";
+        }
+    return reached ? std::string() : sizes;
+}
+
+// RMS of model - measured over predicted screw temperatures (K); NaN with fewer than 20.
+double temperatureRms(const std::vector<ObservationFit> &points)
+{
+    double sq = 0.0;
+    for (const ObservationFit &p : points)
+        sq += (p.predicted_um - p.measured_um) * (p.predicted_um - p.measured_um);
+    return points.size() >= 20 ? std::sqrt(sq / static_cast<double>(points.size())) : std::nan("");
+}
+
+} // namespace
+
+double CandidateAcceptance::heldoutImprovementP(const FitStatistics &reference, const FitStatistics &candidate)
+{
+    // Paired squared errors on the validation recording's interferometer points, in time
+    // order; autocorrelated, so the sample size is corrected by the lag-1 autocorrelation.
+    std::vector<double> d;
+    for (size_t i = 0; i < reference.points.size() && i < candidate.points.size(); ++i) {
+        const ObservationFit &a = reference.points[i], &b = candidate.points[i];
+        if (a.elongation || a.temperature)
+            continue;
+        const double ea = a.measured_um - a.predicted_um, eb = b.measured_um - b.predicted_um;
+        d.push_back(ea * ea - eb * eb);
+    }
+    const double n = static_cast<double>(d.size());
+    if (d.size() < 10)
+        return 1.0;
+    double mean = 0.0;
+    for (double x : d)
+        mean += x;
+    mean /= n;
+    double var = 0.0, lag = 0.0;
+    for (size_t i = 0; i < d.size(); ++i) {
+        var += (d[i] - mean) * (d[i] - mean);
+        if (i > 0)
+            lag += (d[i] - mean) * (d[i - 1] - mean);
+    }
+    if (var <= 0.0)
+        return mean > 0 ? 0.0 : 1.0;
+    const double rho = std::clamp(lag / var, 0.0, 0.95);
+    const double nEff = std::max(2.0, n * (1.0 - rho) / (1.0 + rho));
+    const double se = std::sqrt(var / (n - 1.0)) / std::sqrt(nEff);
+    const double z = mean / se;
+    return 0.5 * std::erfc(z / std::sqrt(2.0)); // one-sided: the candidate predicts better
+}
+
+CandidateAcceptance::CandidateAcceptance(const DiagnosisOptions &options) : m_options(options) {}
+
+double CandidateAcceptance::plausibilityDistance(const FdmParameters &p, double drawing) const
+{
+    double d = std::max(0.0, std::fabs(std::log2(std::max(p.conductivity_W_mK, 1e-9) / m_options.steelConductivity_W_mK)) - 0.5);
+    if (std::isfinite(drawing))
+        d += std::max(0.0, std::fabs(p.fixedEndPosition_mm - drawing) - 10.0) / 20.0;
+    return d;
+}
+
+CandidateOutcome CandidateAcceptance::judge(const CandidateEffect &effect, const CandidateFit &ev, const CandidateFit &reference,
+                                            double effectiveN, double drawing, bool laterStep) const
+{
+    CandidateOutcome out;
+    out.effect = effect.code;
+    out.explanation = effect.explanation;
+    out.evaluation = ev.eval;
+    const ModelEvaluation &b = reference.eval;
+    out.heldoutImprovement = b.heldoutRms_um > 0 ? 1.0 - ev.eval.heldoutRms_um / b.heldoutRms_um : 0.0;
+    out.cvImprovement = (std::isfinite(b.cvRms_um) && std::isfinite(ev.eval.cvRms_um) && b.cvRms_um > 0)
+                            ? 1.0 - ev.eval.cvRms_um / b.cvRms_um
+                            : 0.0;
+    out.deltaIc = ev.eval.informationCriterion - b.informationCriterion;
+    // Amplitudes: significance and bounds; nonlinear candidate parameters: bounds.
+    double zMax = 0.0;
+    for (const IdentifiedParameter &p : ev.fit.all) {
+        if (std::find(ev.amplitudeNames.begin(), ev.amplitudeNames.end(), p.name) != ev.amplitudeNames.end() &&
+            p.standardError > 0)
+            zMax = std::max(zMax, std::fabs(p.value) / p.standardError);
+        for (const ParameterSpec &s : ev.bounded)
+            if (s.name == p.name && p.fitted) {
+                const double tol = 1e-6 * std::max(s.upper - s.lower, 1e-12);
+                const bool atLower = std::isfinite(s.lower) && p.value <= s.lower + tol && s.lower != 0.0;
+                const bool atUpper = std::isfinite(s.upper) && p.value >= s.upper - tol;
+                if (atLower || atUpper) {
+                    out.insideBounds = false;
+                    out.reasons.push_back(p.name + " = " + fmt(p.value, 6) + " at its bound");
+                }
+            }
+    }
+    out.minAmplitudeZ = zMax;
+    const std::string tooSmall = sizeShortfall(effect, ev.fit);
+    const bool sizeOk = tooSmall.empty();
+    if (!sizeOk)
+        out.reasons.push_back("too small to be the effect: " + tooSmall);
+    const bool restores = reference.fit.parameters.k2 < m_options.minPlausibleK2_W_m2K &&
+                          ev.fit.parameters.k2 >= m_options.minPlausibleK2_W_m2K;
+    double heldNeeded = restores ? 0.0 : m_options.minHeldoutImprovement;
+    bool heldOk = out.heldoutImprovement >= heldNeeded;
+    // After the first effect, what is left is small and a fixed relative gain says little: a
+    // held-out prediction test decides (paired squared errors, autocorrelation-corrected n).
+    if (laterStep && !restores) {
+        const double p = heldoutImprovementP(reference.heldout, ev.heldout);
+        heldNeeded = 0.0;
+        heldOk = out.heldoutImprovement > 0.0 && p < m_options.laterStepHeldoutAlpha;
+        out.reasons.push_back("held-out prediction test against the model before it: one-sided p = " + fmt(p, 4) +
+                              (heldOk ? "" : " (not below " + fmt(m_options.laterStepHeldoutAlpha, 3) + ")"));
+    }
+    if (restores)
+        out.reasons.push_back("restores a plausible convection: k2 " + fmt(reference.fit.parameters.k2, 1) + " -> " +
+                              fmt(ev.fit.parameters.k2, 1) + " W/(m^2 K) (reference below " +
+                              fmt(m_options.minPlausibleK2_W_m2K, 0) + "), so a held-out RMS no worse than the reference's suffices");
+    const bool cvPassed = !std::isfinite(b.cvRms_um) || out.cvImprovement >= m_options.minCvImprovement;
+    const bool cvWaived = !cvPassed && out.heldoutImprovement >= m_options.cvWaiverHeldoutImprovement;
+    const bool cvOk = cvPassed || cvWaived;
+    const bool icOk = out.deltaIc <= m_options.maxDeltaIc;
+    const bool zOk = zMax >= m_options.minAmplitudeZ;
+    const double baseDistance = plausibilityDistance(reference.fit.parameters, drawing);
+    out.plausibilityDistance = plausibilityDistance(ev.fit.parameters, drawing);
+    const bool plausibleOk = out.plausibilityDistance <= baseDistance + m_options.maxPlausibilityLoss;
+    out.reasons.push_back("physical plausibility: lambda " + fmt(ev.fit.parameters.conductivity_W_mK, 1) + " W/(m K), P_f " +
+                          fmt(ev.fit.parameters.fixedEndPosition_mm, 1) + " mm, distance " + fmt(out.plausibilityDistance, 2) +
+                          " vs reference " + fmt(baseDistance, 2) +
+                          (plausibleOk ? "" : " (the refit bends the seed-000 parameters away from physics)"));
+    out.reasons.push_back("held-out RMS " + fmt(ev.eval.heldoutRms_um) + " um vs reference " + fmt(b.heldoutRms_um) + " um (" +
+                          fmt(100.0 * out.heldoutImprovement, 1) + " % better" +
+                          (heldOk || laterStep ? ")" : ", below the " + fmt(100.0 * heldNeeded, 0) + " % needed)"));
+    out.reasons.push_back("cross-validation RMS " + fmt(ev.eval.cvRms_um) + " um vs " + fmt(b.cvRms_um) + " um (" +
+                          fmt(100.0 * out.cvImprovement, 1) + " % better" +
+                          (cvPassed ? ")"
+                           : cvWaived
+                               ? ", not enough; waived: the held-out gain on the independent recording is " +
+                                     fmt(100.0 * out.heldoutImprovement, 0) + " % >= " +
+                                     fmt(100.0 * m_options.cvWaiverHeldoutImprovement, 0) +
+                                     " % — the training blocks do not cover what the validation run does)"
+                               : ", not enough)"));
+    out.reasons.push_back("AICc change " + fmt(out.deltaIc, 1) + " at effective n = " + fmt(effectiveN, 0) + (icOk ? "" : " (not enough)"));
+    out.reasons.push_back("main amplitude |value|/SE = " + fmt(zMax, 1) + (zOk ? "" : " (confidence interval includes zero)"));
+    // The screw temperatures the model predicts (infrared profile, surface PT100s; predicted,
+    // never fitted) are evidence too: a refit that bends lambda / P_f away from physics AND
+    // predicts the screw's temperatures worse explains the interferometer at the screw's
+    // expense (absorption, not an effect). Either alone is not enough: the temperature
+    // prediction of a model can be poor for reasons of its own (housings, infrared emissivity).
+    const double tRef = temperatureRms(reference.temperatures), tCand = temperatureRms(ev.temperatures);
+    out.temperatureRms_K = tCand;
+    bool temperaturesOk = true;
+    if (std::isfinite(tRef) && std::isfinite(tCand)) {
+        temperaturesOk = plausibleOk || tCand <= tRef * (1.0 + m_options.maxTemperatureLoss);
+        out.reasons.push_back("screw temperatures (predicted, not fitted) RMS " + fmt(tCand, 2) + " K vs reference " + fmt(tRef, 2) +
+                              " K" + (temperaturesOk ? "" : " (worse by more than " + fmt(100.0 * m_options.maxTemperatureLoss, 0) +
+                                                                 " % with lambda / P_f bent away from physics: the refit explains "
+                                                                 "the interferometer at the screw's expense)"));
+    }
+    out.accepted = heldOk && cvOk && icOk && zOk && sizeOk && out.insideBounds && temperaturesOk;
+    const double cvTerm = cvWaived ? std::max(out.cvImprovement, 0.0) : out.cvImprovement;
+    out.score = out.heldoutImprovement + 0.5 * cvTerm - 0.05 * std::max(0.0, out.plausibilityDistance - baseDistance);
+    return out;
+}
+
+} // namespace driftlab

@@ -1,0 +1,364 @@
+#include "ForwardSelection.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <thread>
+
+namespace driftlab {
+
+namespace {
+std::string fmt(double v, int prec)
+{
+    std::ostringstream o;
+    o.setf(std::ios::fixed);
+    o.precision(prec);
+    o << v;
+    return o.str();
+}
+} // namespace
+
+ForwardSelection::ForwardSelection(const DiagnosisOptions &options, const std::vector<CandidateEffect> &library)
+    : m_options(options), m_library(library), m_acceptance(options)
+{
+}
+
+bool ForwardSelection::excluded(size_t c, const std::vector<Choice> &accepted) const
+{
+    const CandidateEffect &e = m_library[c];
+    for (const Choice &a : accepted) {
+        if (a.effect->code == e.code)
+            return true;
+        // One contains the other (structure_linear / structure_offset): the same term twice.
+        if (std::find(a.effect->nests.begin(), a.effect->nests.end(), e.code) != a.effect->nests.end() ||
+            std::find(e.nests.begin(), e.nests.end(), a.effect->code) != e.nests.end())
+            return true;
+    }
+    return false;
+}
+
+bool ForwardSelection::parallel(size_t n, const std::function<void(size_t)> &job, const std::function<std::string(size_t)> &label,
+                                const std::function<bool(double, const std::string &)> &tick) const
+{
+    std::atomic<size_t> next{0};
+    std::atomic<bool> stop{false};
+    std::atomic<int> finished{0};
+    int threads = m_options.threads > 0 ? m_options.threads : static_cast<int>(std::thread::hardware_concurrency());
+    threads = std::clamp(threads, 1, std::max(1, static_cast<int>(n)));
+    if (threads == 1) {
+        // Serial: progress between jobs from this thread.
+        for (size_t k = 0; k < n; ++k) {
+            if (!tick(static_cast<double>(k) / static_cast<double>(std::max<size_t>(1, n)), label(k)))
+                return false;
+            job(k);
+        }
+        return true;
+    }
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t)
+        pool.emplace_back([&] {
+            for (;;) {
+                const size_t k = next++;
+                if (k >= n || stop)
+                    return;
+                job(k);
+                ++finished;
+            }
+        });
+    // This thread reports progress and honours cancel.
+    int reported = -1, polls = 0;
+    while (finished < static_cast<int>(n) && !stop) {
+        if (finished != reported || ++polls % 10 == 0) {
+            reported = finished;
+            const size_t running = std::min(next.load(), n - 1);
+            if (!tick(static_cast<double>(reported) / static_cast<double>(n),
+                      std::to_string(reported) + " of " + std::to_string(n) + " refitted, now " + label(running)))
+                stop = true;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    for (std::thread &t : pool)
+        t.join();
+    return !stop;
+}
+
+ForwardSelection::Round ForwardSelection::refitAll(const std::vector<size_t> &which, const std::vector<Choice> &accepted,
+                                                   const Refit &refit, const std::function<bool(double, const std::string &)> &tick) const
+{
+    Round round;
+    round.fits.resize(m_library.size());
+    round.failure.resize(m_library.size());
+    round.cancelled = !parallel(
+        which.size(),
+        [&](size_t k) {
+            const size_t c = which[k];
+            try {
+                round.fits[c] = refit(accepted, m_library[c]);
+            } catch (const std::exception &ex) {
+                round.failure[c] = ex.what();
+            }
+        },
+        [&](size_t k) { return "candidate " + m_library[which[k]].code; }, tick);
+    return round;
+}
+
+bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, const CandidateFit &reference, Round &round,
+                                const std::vector<CandidateOutcome> &outcomes, const std::vector<size_t> &indexOf,
+                                const DiagnosisRecording &train, double effectiveN, const Refit &refit,
+                                const std::function<bool(double, const std::string &)> &tick) const
+{
+    // Candidates with partial evidence on their own: a significant in-bounds amplitude and
+    // either half the held-out gain needed or a clearly lower AICc. The best four by score.
+    std::vector<size_t> partial; // indices into outcomes
+    for (size_t k = 0; k < outcomes.size(); ++k) {
+        const CandidateOutcome &o = outcomes[k];
+        if (o.applicable && o.insideBounds && o.minAmplitudeZ >= m_options.minAmplitudeZ &&
+            (o.heldoutImprovement >= 0.5 * m_options.minHeldoutImprovement || o.deltaIc <= m_options.maxDeltaIc))
+            partial.push_back(k);
+    }
+    std::sort(partial.begin(), partial.end(), [&](size_t a, size_t b) { return outcomes[a].score > outcomes[b].score; });
+    if (partial.size() > 4)
+        partial.resize(4);
+    std::vector<std::pair<size_t, size_t>> pairs; // library indices: a in the model, b the candidate
+    for (size_t i = 0; i < partial.size(); ++i)
+        for (size_t j = i + 1; j < partial.size(); ++j) {
+            const size_t a = indexOf[partial[i]], b = indexOf[partial[j]];
+            std::vector<Choice> with = accepted;
+            with.push_back({&m_library[a], round.fits[a].start});
+            if (!excluded(b, with))
+                pairs.emplace_back(a, b);
+        }
+    if (pairs.empty())
+        return false;
+    std::vector<CandidateFit> fits(pairs.size());
+    std::vector<bool> ok(pairs.size(), false);
+    const bool done = parallel(
+        pairs.size(),
+        [&](size_t k) {
+            std::vector<Choice> with = accepted;
+            with.push_back({&m_library[pairs[k].first], round.fits[pairs[k].first].start});
+            try {
+                fits[k] = refit(with, m_library[pairs[k].second]);
+                ok[k] = true;
+            } catch (const std::exception &) {
+            }
+        },
+        [&](size_t k) { return "together: " + m_library[pairs[k].first].code + " + " + m_library[pairs[k].second].code; }, tick);
+    if (!done) {
+        result.cancelled = true;
+        return false;
+    }
+    // A pair counts when, together, it passes every rule against the reference, both
+    // amplitudes stay significant, and each member lowers the AICc of the other alone clearly.
+    int best = -1;
+    CandidateOutcome bestJoint;
+    for (size_t k = 0; k < pairs.size(); ++k) {
+        if (!ok[k])
+            continue;
+        const auto [a, b] = pairs[k];
+        CandidateOutcome joint = m_acceptance.judge(m_library[b], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, !accepted.empty());
+        double zA = 0.0;
+        for (const IdentifiedParameter &p : fits[k].fit.all)
+            if (std::find(round.fits[a].amplitudeNames.begin(), round.fits[a].amplitudeNames.end(), p.name) !=
+                    round.fits[a].amplitudeNames.end() &&
+                p.standardError > 0)
+                zA = std::max(zA, std::fabs(p.value) / p.standardError);
+        const double ic = fits[k].eval.informationCriterion;
+        const bool eachAdds = ic - round.fits[a].eval.informationCriterion <= m_options.maxDeltaIc &&
+                              ic - round.fits[b].eval.informationCriterion <= m_options.maxDeltaIc;
+        if (joint.accepted && zA >= m_options.minAmplitudeZ && eachAdds && (best < 0 || joint.score > bestJoint.score)) {
+            best = static_cast<int>(k);
+            bestJoint = joint;
+        }
+    }
+    if (best < 0)
+        return false;
+    const auto [a, b] = pairs[static_cast<size_t>(best)];
+    const std::string together = "accepted together with " + m_library[a].code + " + " + m_library[b].code +
+                                 ": neither passes alone, the two together do (held-out " + fmt(100.0 * bestJoint.heldoutImprovement, 0) +
+                                 " % better than the model before them) and each lowers the AICc of the other alone clearly";
+    const size_t tried = static_cast<size_t>(std::count_if(outcomes.begin(), outcomes.end(), [](const CandidateOutcome &o) { return o.applicable; }));
+    Step first;
+    first.choice = {&m_library[a], round.fits[a].start};
+    first.outcome = outcomes[static_cast<size_t>(std::find(indexOf.begin(), indexOf.end(), a) - indexOf.begin())];
+    first.outcome.reasons.push_back(together);
+    first.fit = std::move(round.fits[a]);
+    first.candidatesTried = static_cast<int>(tried);
+    Step second;
+    second.choice = {&m_library[b], fits[static_cast<size_t>(best)].start};
+    second.outcome = m_acceptance.judge(m_library[b], fits[static_cast<size_t>(best)], first.fit, effectiveN, train.drawingFixedEnd_mm, true);
+    second.outcome.reasons.push_back(together);
+    second.fit = std::move(fits[static_cast<size_t>(best)]);
+    second.candidatesTried = static_cast<int>(pairs.size());
+    accepted.push_back(first.choice);
+    accepted.push_back(second.choice);
+    result.steps.push_back(std::move(first));
+    result.steps.push_back(std::move(second));
+    return true;
+}
+
+int ForwardSelection::winner(std::vector<CandidateOutcome> &outcomes) const
+{
+    int best = -1;
+    for (size_t c = 0; c < outcomes.size(); ++c)
+        if (outcomes[c].accepted && (best < 0 || outcomes[c].score > outcomes[static_cast<size_t>(best)].score))
+            best = static_cast<int>(c);
+    // Parsimony: an accepted simpler candidate nested in the winner takes its place unless the
+    // winner's extra freedom buys a clearly lower AICc.
+    for (bool changed = best >= 0; changed;) {
+        changed = false;
+        CandidateOutcome &w = outcomes[static_cast<size_t>(best)];
+        const auto lib = std::find_if(m_library.begin(), m_library.end(), [&](const CandidateEffect &e) { return e.code == w.effect; });
+        if (lib == m_library.end())
+            break;
+        for (size_t c = 0; c < outcomes.size(); ++c) {
+            CandidateOutcome &s = outcomes[c];
+            if (!s.accepted || std::find(lib->nests.begin(), lib->nests.end(), s.effect) == lib->nests.end())
+                continue;
+            if (w.deltaIc - s.deltaIc > m_options.maxDeltaIc) {
+                s.reasons.push_back("named instead of " + w.effect + ", which contains it: the larger model's AICc differs by " +
+                                    fmt(w.deltaIc - s.deltaIc, 1) + ", not below " + fmt(m_options.maxDeltaIc, 0));
+                w.reasons.push_back("contains " + s.effect + " and its AICc differs from it by only " + fmt(w.deltaIc - s.deltaIc, 1) +
+                                    " (needs " + fmt(m_options.maxDeltaIc, 0) + " or lower): the simpler model is named");
+                best = static_cast<int>(c);
+                changed = true;
+                break;
+            }
+        }
+    }
+    return best;
+}
+
+ForwardSelection::Result ForwardSelection::run(const CandidateFit &baseline, const DiagnosisRecording &train,
+                                               const DiagnosisRecording &validate, double effectiveN, const Refit &refit,
+                                               const Tick &tick) const
+{
+    Result result;
+    std::vector<std::string> inapplicable(m_library.size());
+    for (size_t c = 0; c < m_library.size(); ++c)
+        inapplicable[c] = m_library[c].notApplicable(train, validate);
+    std::vector<Choice> accepted;
+    const CandidateFit *reference = &baseline;
+    const int maxSteps = std::max(1, m_options.maxEffects);
+    result.steps.reserve(static_cast<size_t>(maxSteps)); // `reference` points into it
+    // Round r covers [share(r), share(r + 1)) of the selection's progress (most diagnoses end
+    // after one or two rounds).
+    auto share = [](int r) { return r == 0 ? 0.0 : 1.0 - 0.2 * std::pow(0.25, r - 1); };
+    for (int r = 0; r < maxSteps; ++r) {
+        std::vector<size_t> which;
+        for (size_t c = 0; c < m_library.size(); ++c)
+            if (inapplicable[c].empty() && !excluded(c, accepted) &&
+                (r == 0 || (result.firstRound.size() == m_library.size() && result.firstRound[c].applicable)))
+                which.push_back(c);
+        if (which.empty())
+            break;
+        const std::string prefix = r == 0 ? std::string() : "step " + std::to_string(r + 1) + ": ";
+        Round round = refitAll(which, accepted, refit, [&](double f, const std::string &stage) {
+            return tick(share(r) + (share(r + 1) - share(r)) * f, prefix + stage);
+        });
+        if (round.cancelled) {
+            result.cancelled = true;
+            return result;
+        }
+        std::vector<CandidateOutcome> outcomes;
+        std::vector<size_t> indexOf;
+        for (size_t c = 0; c < m_library.size(); ++c) {
+            const bool tried = std::find(which.begin(), which.end(), c) != which.end();
+            if (r > 0 && !tried)
+                continue;
+            CandidateOutcome out;
+            if (!inapplicable[c].empty() || !round.failure[c].empty()) {
+                out.effect = m_library[c].code;
+                out.explanation = m_library[c].explanation;
+                out.applicable = false;
+                out.notApplicableReason = inapplicable[c].empty() ? round.failure[c] : inapplicable[c];
+                out.reasons.push_back((inapplicable[c].empty() ? "refit failed: " : "not applicable: ") + out.notApplicableReason);
+            } else {
+                out = m_acceptance.judge(m_library[c], round.fits[c], *reference, effectiveN, train.drawingFixedEnd_mm, r > 0);
+                if (r == 0 && out.plausibilityDistance > m_acceptance.plausibilityDistance(baseline.fit.parameters, train.drawingFixedEnd_mm) +
+                                                              m_options.maxPlausibilityLoss)
+                    ++result.implausibleRefits;
+            }
+            outcomes.push_back(std::move(out));
+            indexOf.push_back(c);
+        }
+        const int best = winner(outcomes);
+        if (r == 0)
+            result.firstRound = outcomes;
+        result.rounds.push_back(outcomes);
+        if (best < 0) {
+            // Two effects that only explain the data together: try them in pairs.
+            if (static_cast<int>(accepted.size()) + 2 <= maxSteps &&
+                tryPairs(result, accepted, *reference, round, outcomes, indexOf, train, effectiveN, refit,
+                         [&](double f, const std::string &stage) {
+                             return tick(share(r) + (share(r + 1) - share(r)) * f, prefix + stage);
+                         })) {
+                reference = &result.steps.back().fit;
+                continue;
+            }
+            if (result.cancelled)
+                return result;
+            break;
+        }
+        const size_t c = indexOf[static_cast<size_t>(best)];
+        Step step;
+        step.choice = {&m_library[c], round.fits[c].start};
+        step.fit = std::move(round.fits[c]);
+        step.outcome = outcomes[static_cast<size_t>(best)];
+        step.candidatesTried = static_cast<int>(which.size());
+        accepted.push_back(step.choice);
+        result.steps.push_back(std::move(step));
+        reference = &result.steps.back().fit;
+    }
+    simplify(result, refit);
+    tick(1.0, "selection done");
+    return result;
+}
+
+void ForwardSelection::simplify(Result &result, const Refit &refit) const
+{
+    // An effect accepted early may be a larger one that also absorbed part of an effect
+    // accepted later (structure_linear taking the slope of free-end heat): with everything
+    // else in the model, the simpler effect it contains takes its place unless the larger
+    // one's AICc is clearly lower (the parsimony rule of each round).
+    if (result.steps.size() < 2)
+        return;
+    for (size_t s = 0; s < result.steps.size(); ++s) {
+        const CandidateEffect &larger = *result.steps[s].choice.effect;
+        for (const std::string &simpler : larger.nests) {
+            const auto lib = std::find_if(m_library.begin(), m_library.end(), [&](const CandidateEffect &e) { return e.code == simpler; });
+            if (lib == m_library.end())
+                continue;
+            std::vector<Choice> others;
+            for (size_t o = 0; o < result.steps.size(); ++o)
+                if (o != s)
+                    others.push_back(result.steps[o].choice);
+            CandidateFit alt;
+            try {
+                alt = refit(others, *lib);
+            } catch (const std::exception &) {
+                continue;
+            }
+            const CandidateFit &full = result.steps.back().fit;
+            const double gap = full.eval.informationCriterion - alt.eval.informationCriterion;
+            if (gap <= m_options.maxDeltaIc)
+                continue; // the larger effect buys a clearly lower AICc: kept
+            Step &step = result.steps[s];
+            step.outcome.reasons.push_back("with " + std::to_string(result.steps.size() - 1) +
+                                           " other effect(s) in the model, the simpler " + simpler + " it contains does as well "
+                                           "(AICc differs by " + fmt(gap, 1) + ", needs " + fmt(m_options.maxDeltaIc, 0) +
+                                           " or lower): " + simpler + " is named instead");
+            step.choice = {&*lib, alt.start};
+            step.outcome.effect = lib->code;
+            step.outcome.explanation = lib->explanation;
+            // The final model is now the simplified one; the step's own gain stays as measured.
+            step.fit.bounded = alt.bounded;
+            result.steps.back().fit = std::move(alt);
+            break;
+        }
+    }
+}
+
+} // namespace driftlab
