@@ -165,9 +165,16 @@ bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, c
                     round.fits[a].amplitudeNames.end() &&
                 p.standardError > 0)
                 zA = std::max(zA, std::fabs(p.value) / p.standardError);
+        // Each member must add: a clearly lower AICc than the other alone, and a significantly
+        // better prediction of the validation recording than the other alone (the paired test
+        // of later steps), so that a pair is never two halves of one absorbed mismatch.
         const double ic = fits[k].eval.informationCriterion;
         const bool eachAdds = ic - round.fits[a].eval.informationCriterion <= m_options.maxDeltaIc &&
-                              ic - round.fits[b].eval.informationCriterion <= m_options.maxDeltaIc;
+                              ic - round.fits[b].eval.informationCriterion <= m_options.maxDeltaIc &&
+                              CandidateAcceptance::heldoutImprovementP(round.fits[a].heldout, fits[k].heldout) <
+                                  m_options.laterStepHeldoutAlpha &&
+                              CandidateAcceptance::heldoutImprovementP(round.fits[b].heldout, fits[k].heldout) <
+                                  m_options.laterStepHeldoutAlpha;
         if (joint.accepted && zA >= m_options.minAmplitudeZ && eachAdds && (best < 0 || joint.score > bestJoint.score)) {
             best = static_cast<int>(k);
             bestJoint = joint;
@@ -178,7 +185,8 @@ bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, c
     const auto [a, b] = pairs[static_cast<size_t>(best)];
     const std::string together = "accepted together with " + m_library[a].code + " + " + m_library[b].code +
                                  ": neither passes alone, the two together do (held-out " + fmt(100.0 * bestJoint.heldoutImprovement, 0) +
-                                 " % better than the model before them) and each lowers the AICc of the other alone clearly";
+                                 " % better than the model before them) and each lowers the AICc and significantly improves the "
+                                 "held-out prediction of the other alone";
     const size_t tried = static_cast<size_t>(std::count_if(outcomes.begin(), outcomes.end(), [](const CandidateOutcome &o) { return o.applicable; }));
     Step first;
     first.choice = {&m_library[a], round.fits[a].start};

@@ -1,4 +1,5 @@
-// Mismatch diagnosis on concealed data (issue 7, item 6): for "none" and for every effect the
+// Mismatch diagnosis on concealed data (issue 7, item 6; issue 18: pairs of simultaneous
+// effects and effects outside the library): for "none" and for every effect the
 // simulated rig (acquisition/'s ScrewTruthModel, independent of the identifier's code path)
 // records a training and a validation session of one randomised machine with random duty
 // cycles and effect magnitudes; `driftlab-cli diagnose` runs blind and only afterwards is its
@@ -343,6 +344,11 @@ void TestDiagnosis::concealedEffects()
         QCOMPARE(o.answer, effect);
         return;
     }
+    // Physics outside the library: never a library code that does not fit.
+    if (expectedCodes(effect) == QStringList{QStringLiteral("unexplained")}) {
+        QVERIFY2(o.answer == QLatin1String("none") || o.answer == QLatin1String("unexplained"), qPrintable(o.answer));
+        return;
+    }
     // Named: the held-out RMS must improve (a candidate accepted for restoring a plausible
     // convection may improve it only a little; all others improved it by >= 25 %).
     if (sameEffects(o.answer, effect))
@@ -362,6 +368,12 @@ void TestDiagnosis::ciAccuracy()
     for (const Outcome &o : m_outcomes) {
         if (o.truth == QLatin1String("none"))
             continue;
+        if (expectedCodes(o.truth) == QStringList{QStringLiteral("unexplained")}) {
+            // Not yet found (docs/diagnosis.md): reported, not asserted. That no library code
+            // is named for them is asserted in concealedEffects.
+            qInfo("%s: answered %s", qPrintable(o.truth), qPrintable(o.answer));
+            continue;
+        }
         const bool pair = o.truth.contains(QLatin1Char('+'));
         (pair ? pairs : effects) += 1;
         (pair ? pairsRight : right) += sameEffects(o.answer, o.truth) ? 1 : 0;
