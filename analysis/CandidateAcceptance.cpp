@@ -125,16 +125,17 @@ CandidateOutcome CandidateAcceptance::judge(const CandidateEffect &effect, const
         out.reasons.push_back("too small to be the effect: " + tooSmall);
     const bool restores = reference.fit.parameters.k2 < m_options.minPlausibleK2_W_m2K &&
                           ev.fit.parameters.k2 >= m_options.minPlausibleK2_W_m2K;
-    double heldNeeded = restores ? 0.0 : m_options.minHeldoutImprovement;
+    const double heldNeeded = restores ? 0.0 : m_options.minHeldoutImprovement;
     bool heldOk = out.heldoutImprovement >= heldNeeded;
-    // After the first effect, what is left is small and a fixed relative gain says little: a
-    // held-out prediction test decides (paired squared errors, autocorrelation-corrected n).
+    // After the first effect the same relative gain is needed and, on top, a held-out
+    // prediction test (paired squared errors, autocorrelation-corrected n): near the noise a
+    // relative gain can come from a few points. (The test alone let holding_heat seed 5 add
+    // structure_offset at 0.338 -> 0.263 um, p = 0.003.)
     if (laterStep && !restores) {
         const double p = heldoutImprovementP(reference.heldout, ev.heldout);
-        heldNeeded = 0.0;
-        heldOk = out.heldoutImprovement > 0.0 && p < m_options.laterStepHeldoutAlpha;
+        heldOk = heldOk && p < m_options.laterStepHeldoutAlpha;
         out.reasons.push_back("held-out prediction test against the model before it: one-sided p = " + fmt(p, 4) +
-                              (heldOk ? "" : " (not below " + fmt(m_options.laterStepHeldoutAlpha, 3) + ")"));
+                              (p < m_options.laterStepHeldoutAlpha ? "" : " (not below " + fmt(m_options.laterStepHeldoutAlpha, 3) + ")"));
     }
     if (restores)
         out.reasons.push_back("restores a plausible convection: k2 " + fmt(reference.fit.parameters.k2, 1) + " -> " +
@@ -154,7 +155,7 @@ CandidateOutcome CandidateAcceptance::judge(const CandidateEffect &effect, const
                           (plausibleOk ? "" : " (the refit bends the seed-000 parameters away from physics)"));
     out.reasons.push_back("held-out RMS " + fmt(ev.eval.heldoutRms_um) + " um vs reference " + fmt(b.heldoutRms_um) + " um (" +
                           fmt(100.0 * out.heldoutImprovement, 1) + " % better" +
-                          (heldOk || laterStep ? ")" : ", below the " + fmt(100.0 * heldNeeded, 0) + " % needed)"));
+                          (out.heldoutImprovement >= heldNeeded ? ")" : ", below the " + fmt(100.0 * heldNeeded, 0) + " % needed)"));
     out.reasons.push_back("cross-validation RMS " + fmt(ev.eval.cvRms_um) + " um vs " + fmt(b.cvRms_um) + " um (" +
                           fmt(100.0 * out.cvImprovement, 1) + " % better" +
                           (cvPassed ? ")"

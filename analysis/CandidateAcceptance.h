@@ -21,8 +21,8 @@ public:
     explicit CandidateAcceptance(const DiagnosisOptions &options);
 
     // The outcome (evidence in words, accepted, score) of `candidate` against `reference`.
-    // laterStep: the reference already holds an accepted effect; the held-out gain is then
-    // judged by heldoutImprovementP instead of the fixed relative gain.
+    // laterStep: the reference already holds an accepted effect; the held-out gain must then
+    // also be significant (heldoutImprovementP).
     CandidateOutcome judge(const CandidateEffect &effect, const CandidateFit &candidate, const CandidateFit &reference,
                            double effectiveN, double drawingFixedEnd_mm, bool laterStep = false) const;
 

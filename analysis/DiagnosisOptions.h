@@ -32,8 +32,8 @@ struct DiagnosisOptions {
     // predict the training screw temperatures (infrared profile, surface PT100s) worse by at
     // most this fraction of the reference model's RMS to be named.
     double maxTemperatureLoss = 0.15;
-    // Steps after the first: the held-out gain must be significant at this level (one-sided
-    // paired test, CandidateAcceptance::heldoutImprovementP) instead of minHeldoutImprovement.
+    // Steps after the first (and each member of a pair): the held-out gain must also be
+    // significant at this level (one-sided paired test, CandidateAcceptance::heldoutImprovementP).
     double laterStepHeldoutAlpha = 0.01;
     // Still-air convection k2 below this (W/(m^2 K)) is below natural convection plus
     // radiation of a bare steel screw: the refit made the screw slower and cooler than physics
