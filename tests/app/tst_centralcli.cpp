@@ -10,6 +10,8 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QProcess>
+#include <QSqlDatabase>
+#include <QSqlQuery>
 #include <QTemporaryDir>
 #include <QtTest>
 
@@ -124,6 +126,8 @@ void TestCentralCli::threeRigsPushWhileAReviewerLists()
         }
     int lists = 0, listFailures = 0;
     bool running = true;
+    QElapsedTimer clock;
+    clock.start();
     while (running) {
         const clirunner::Result l = run({QStringLiteral("list"), QStringLiteral("--db"), url, QStringLiteral("--json"), QStringLiteral("-")});
         ++lists;
@@ -131,6 +135,34 @@ void TestCentralCli::threeRigsPushWhileAReviewerLists()
         running = false;
         for (QProcess *p : pushers)
             running = running || !p->waitForFinished(0); // also lets QProcess notice an exit
+        if (running && clock.elapsed() > 150000) {
+            // A hang (seen once in CI's sanitizer pass, stop 28): say what the server waits on.
+            QString activity;
+            {
+                QSqlDatabase db = QSqlDatabase::addDatabase(QStringLiteral("QPSQL"), QStringLiteral("activity"));
+                db.setHostName(QStringLiteral("127.0.0.1"));
+                db.setPort(m_server.port());
+                db.setDatabaseName(QStringLiteral("postgres"));
+                db.setUserName(QStringLiteral("driftlab"));
+                if (db.open()) {
+                    QSqlQuery q(db);
+                    q.exec(QStringLiteral("SELECT pid, state, wait_event_type, wait_event, left(query, 100) FROM pg_stat_activity "
+                                          "WHERE datname = 'busy'"));
+                    while (q.next())
+                        for (int c = 0; c < 5; ++c)
+                            activity += q.value(c).toString() + (c == 4 ? QStringLiteral("; ") : QStringLiteral(" "));
+                }
+            }
+            QSqlDatabase::removeDatabase(QStringLiteral("activity"));
+            QString stderrs;
+            for (QProcess *p : pushers) {
+                stderrs += QString::fromLocal8Bit(p->readAllStandardError()).right(300) + QLatin1Char('|');
+                p->kill();
+                p->waitForFinished(5000);
+            }
+            QFAIL(qPrintable(QStringLiteral("pushers still running after 150 s; server activity: %1; pushers' stderr: %2")
+                                 .arg(activity, stderrs)));
+        }
     }
     for (QProcess *p : pushers) {
         QVERIFY(p->state() == QProcess::NotRunning || p->waitForFinished(60000));
