@@ -1,21 +1,13 @@
 #include "CandidateAcceptance.h"
 
+#include "FixedText.h"
+
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace driftlab {
 
 namespace {
-
-std::string fmt(double v, int prec = 3)
-{
-    std::ostringstream o;
-    o.setf(std::ios::fixed);
-    o.precision(prec);
-    o << v;
-    return o.str();
-}
 
 // Empty when the fit reports none of the effect's size parameters or one reaches its minimum;
 // otherwise the sizes found, e.g. "G_nut_contact = 0.09 (needs 0.50)".
@@ -28,7 +20,7 @@ std::string sizeShortfall(const CandidateEffect &effect, const IdentificationRes
             if (p.name != name)
                 continue;
             reached = reached || std::fabs(p.value) >= least;
-            sizes += (sizes.empty() ? "" : ", ") + p.name + " = " + fmt(p.value, 2) + " (needs " + fmt(least, 2) + ")";
+            sizes += (sizes.empty() ? "" : ", ") + p.name + " = " + fixedText(p.value, 2) + " (needs " + fixedText(least, 2) + ")";
         }
     return reached ? std::string() : sizes;
 }
@@ -114,7 +106,7 @@ CandidateOutcome CandidateAcceptance::judge(const CandidateEffect &effect, const
                 const bool atUpper = std::isfinite(s.upper) && p.value >= s.upper - tol;
                 if (atLower || atUpper) {
                     out.insideBounds = false;
-                    out.reasons.push_back(p.name + " = " + fmt(p.value, 6) + " at its bound");
+                    out.reasons.push_back(p.name + " = " + fixedText(p.value, 6) + " at its bound");
                 }
             }
     }
@@ -134,13 +126,13 @@ CandidateOutcome CandidateAcceptance::judge(const CandidateEffect &effect, const
     if (laterStep && !restores) {
         const double p = heldoutImprovementP(reference.heldout, ev.heldout);
         heldOk = heldOk && p < m_options.laterStepHeldoutAlpha;
-        out.reasons.push_back("held-out prediction test against the model before it: one-sided p = " + fmt(p, 4) +
-                              (p < m_options.laterStepHeldoutAlpha ? "" : " (not below " + fmt(m_options.laterStepHeldoutAlpha, 3) + ")"));
+        out.reasons.push_back("held-out prediction test against the model before it: one-sided p = " + fixedText(p, 4) +
+                              (p < m_options.laterStepHeldoutAlpha ? "" : " (not below " + fixedText(m_options.laterStepHeldoutAlpha, 3) + ")"));
     }
     if (restores)
-        out.reasons.push_back("restores a plausible convection: k2 " + fmt(reference.fit.parameters.k2, 1) + " -> " +
-                              fmt(ev.fit.parameters.k2, 1) + " W/(m^2 K) (reference below " +
-                              fmt(m_options.minPlausibleK2_W_m2K, 0) + "), so a held-out RMS no worse than the reference's suffices");
+        out.reasons.push_back("restores a plausible convection: k2 " + fixedText(reference.fit.parameters.k2, 1) + " -> " +
+                              fixedText(ev.fit.parameters.k2, 1) + " W/(m^2 K) (reference below " +
+                              fixedText(m_options.minPlausibleK2_W_m2K, 0) + "), so a held-out RMS no worse than the reference's suffices");
     const bool cvPassed = !std::isfinite(b.cvRms_um) || out.cvImprovement >= m_options.minCvImprovement;
     const bool cvWaived = !cvPassed && out.heldoutImprovement >= m_options.cvWaiverHeldoutImprovement;
     const bool cvOk = cvPassed || cvWaived;
@@ -149,24 +141,24 @@ CandidateOutcome CandidateAcceptance::judge(const CandidateEffect &effect, const
     const double baseDistance = plausibilityDistance(reference.fit.parameters, drawing);
     out.plausibilityDistance = plausibilityDistance(ev.fit.parameters, drawing);
     const bool plausibleOk = out.plausibilityDistance <= baseDistance + m_options.maxPlausibilityLoss;
-    out.reasons.push_back("physical plausibility: lambda " + fmt(ev.fit.parameters.conductivity_W_mK, 1) + " W/(m K), P_f " +
-                          fmt(ev.fit.parameters.fixedEndPosition_mm, 1) + " mm, distance " + fmt(out.plausibilityDistance, 2) +
-                          " vs reference " + fmt(baseDistance, 2) +
+    out.reasons.push_back("physical plausibility: lambda " + fixedText(ev.fit.parameters.conductivity_W_mK, 1) + " W/(m K), P_f " +
+                          fixedText(ev.fit.parameters.fixedEndPosition_mm, 1) + " mm, distance " + fixedText(out.plausibilityDistance, 2) +
+                          " vs reference " + fixedText(baseDistance, 2) +
                           (plausibleOk ? "" : " (the refit bends the seed-000 parameters away from physics)"));
-    out.reasons.push_back("held-out RMS " + fmt(ev.eval.heldoutRms_um) + " um vs reference " + fmt(b.heldoutRms_um) + " um (" +
-                          fmt(100.0 * out.heldoutImprovement, 1) + " % better" +
-                          (out.heldoutImprovement >= heldNeeded ? ")" : ", below the " + fmt(100.0 * heldNeeded, 0) + " % needed)"));
-    out.reasons.push_back("cross-validation RMS " + fmt(ev.eval.cvRms_um) + " um vs " + fmt(b.cvRms_um) + " um (" +
-                          fmt(100.0 * out.cvImprovement, 1) + " % better" +
+    out.reasons.push_back("held-out RMS " + fixedText(ev.eval.heldoutRms_um, 3) + " um vs reference " + fixedText(b.heldoutRms_um, 3) + " um (" +
+                          fixedText(100.0 * out.heldoutImprovement, 1) + " % better" +
+                          (out.heldoutImprovement >= heldNeeded ? ")" : ", below the " + fixedText(100.0 * heldNeeded, 0) + " % needed)"));
+    out.reasons.push_back("cross-validation RMS " + fixedText(ev.eval.cvRms_um, 3) + " um vs " + fixedText(b.cvRms_um, 3) + " um (" +
+                          fixedText(100.0 * out.cvImprovement, 1) + " % better" +
                           (cvPassed ? ")"
                            : cvWaived
                                ? ", not enough; waived: the held-out gain on the independent recording is " +
-                                     fmt(100.0 * out.heldoutImprovement, 0) + " % >= " +
-                                     fmt(100.0 * m_options.cvWaiverHeldoutImprovement, 0) +
+                                     fixedText(100.0 * out.heldoutImprovement, 0) + " % >= " +
+                                     fixedText(100.0 * m_options.cvWaiverHeldoutImprovement, 0) +
                                      " % — the training blocks do not cover what the validation run does)"
                                : ", not enough)"));
-    out.reasons.push_back("AICc change " + fmt(out.deltaIc, 1) + " at effective n = " + fmt(effectiveN, 0) + (icOk ? "" : " (not enough)"));
-    out.reasons.push_back("main amplitude |value|/SE = " + fmt(zMax, 1) + (zOk ? "" : " (confidence interval includes zero)"));
+    out.reasons.push_back("AICc change " + fixedText(out.deltaIc, 1) + " at effective n = " + fixedText(effectiveN, 0) + (icOk ? "" : " (not enough)"));
+    out.reasons.push_back("main amplitude |value|/SE = " + fixedText(zMax, 1) + (zOk ? "" : " (confidence interval includes zero)"));
     // The screw temperatures the model predicts (infrared profile, surface PT100s; predicted,
     // never fitted) are evidence too: a refit that bends lambda / P_f away from physics AND
     // predicts the screw's temperatures worse explains the interferometer at the screw's
@@ -177,8 +169,8 @@ CandidateOutcome CandidateAcceptance::judge(const CandidateEffect &effect, const
     bool temperaturesOk = true;
     if (std::isfinite(tRef) && std::isfinite(tCand)) {
         temperaturesOk = plausibleOk || tCand <= tRef * (1.0 + m_options.maxTemperatureLoss);
-        out.reasons.push_back("screw temperatures (predicted, not fitted) RMS " + fmt(tCand, 2) + " K vs reference " + fmt(tRef, 2) +
-                              " K" + (temperaturesOk ? "" : " (worse by more than " + fmt(100.0 * m_options.maxTemperatureLoss, 0) +
+        out.reasons.push_back("screw temperatures (predicted, not fitted) RMS " + fixedText(tCand, 2) + " K vs reference " + fixedText(tRef, 2) +
+                              " K" + (temperaturesOk ? "" : " (worse by more than " + fixedText(100.0 * m_options.maxTemperatureLoss, 0) +
                                                                  " % with lambda / P_f bent away from physics: the refit explains "
                                                                  "the interferometer at the screw's expense)"));
     }

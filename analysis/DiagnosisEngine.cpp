@@ -2,6 +2,7 @@
 
 #include "CandidateAcceptance.h"
 #include "DiscrepancyTerm.h"
+#include "FixedText.h"
 #include "ResidualLocator.h"
 
 #include <algorithm>
@@ -480,13 +481,7 @@ std::vector<double> DiagnosisEngine::explainRest(DiagnosisReport &report, const 
         if (c.channel.rfind("feed", 0) != 0 && c.channel != "time" && c.channel != "position")
             followsDriver = followsDriver || std::fabs(c.correlation) >= 0.5;
     const bool located = !left.white || followsDriver;
-    auto um = [](double v) {
-        std::ostringstream o;
-        o.setf(std::ios::fixed);
-        o.precision(3);
-        o << v;
-        return o.str();
-    };
+    auto um = [](double v) { return fixedText(v, 3); };
     auto pct = [](double v) { return std::to_string(static_cast<int>(std::lround(100.0 * v))) + " %"; };
     d.reasons.push_back("held-out RMS " + um(d.heldoutBefore_um) + " -> " + um(d.heldoutAfter_um) + " um (" + pct(heldGain) +
                         " better" + (heldOk ? ")" : ", below the " + pct(m_options.minHeldoutImprovement) + " needed)"));

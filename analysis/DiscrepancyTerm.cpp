@@ -1,52 +1,33 @@
 #include "DiscrepancyTerm.h"
 
+#include "FixedText.h"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
-#include <sstream>
 
 namespace driftlab {
 
 namespace {
 
-double interpolate(const std::vector<double> &t, const std::vector<double> &v, double x)
-{
-    if (t.empty())
-        return 0.0;
-    if (x <= t.front())
-        return v.front();
-    if (x >= t.back())
-        return v.back();
-    const auto it = std::upper_bound(t.begin(), t.end(), x);
-    const size_t k = static_cast<size_t>(it - t.begin());
-    const double a = t[k - 1], b = t[k];
-    return b > a ? v[k - 1] + (v[k] - v[k - 1]) * (x - a) / (b - a) : v[k];
-}
-
 // First-order lag of a sampled series (input held between samples), started at rest.
-std::vector<double> lagged(const TimeSeries &s, double tau)
+TimeSeries lagged(const TimeSeries &s, double tau)
 {
-    std::vector<double> y(s.v.size());
+    TimeSeries out;
+    out.t = s.t;
+    std::vector<double> &y = out.v;
+    y.resize(s.v.size());
     if (y.empty())
-        return y;
+        return out;
     y[0] = s.v[0];
     for (size_t k = 1; k < y.size(); ++k) {
         const double a = tau > 0 ? 1.0 - std::exp(-std::max(0.0, s.t[k] - s.t[k - 1]) / tau) : 1.0;
         y[k] = y[k - 1] + a * (s.v[k] - y[k - 1]);
     }
-    return y;
-}
-
-std::string fixed(double v, int prec)
-{
-    std::ostringstream o;
-    o.setf(std::ios::fixed);
-    o.precision(prec);
-    o << v;
-    return o.str();
+    return out;
 }
 
 // Least squares of r on the columns `cols` of X over the rows in `rows`.
@@ -69,7 +50,7 @@ std::string DiscrepancyTerm::Feature::describe() const
 {
     std::string s = "dT(" + role + ")";
     if (tau_s > 0)
-        s = "lag" + fixed(tau_s / 60.0, 0) + "min[" + s + "]";
+        s = "lag" + fixedText(tau_s / 60.0, 0) + "min[" + s + "]";
     if (power == 1)
         s += " * x";
     else if (power == 2)
@@ -82,7 +63,7 @@ DiscrepancyTerm::DiscrepancyTerm(const Options &options) : m_options(options) {}
 std::vector<std::vector<double>> DiscrepancyTerm::design(const std::vector<Feature> &features, double xMid, double xHalf,
                                                          const DiagnosisRecording &rec, const std::vector<ObservationFit> &points) const
 {
-    std::map<std::pair<std::string, double>, std::vector<double>> cache;
+    std::map<std::pair<std::string, double>, TimeSeries> cache;
     std::vector<std::vector<double>> X;
     // Each point's reference time from the recording's interferometer point at that time and
     // target (the points may be a subset, e.g. the cross-validation's held-out blocks).
@@ -105,7 +86,7 @@ std::vector<std::vector<double>> DiscrepancyTerm::design(const std::vector<Featu
             auto it = cache.find({f.role, f.tau_s});
             if (it == cache.end())
                 it = cache.emplace(std::make_pair(f.role, f.tau_s), lagged(s->second, f.tau_s)).first;
-            const double dT = interpolate(s->second.t, it->second, p.t_s) - interpolate(s->second.t, it->second, ref);
+            const double dT = it->second.at(p.t_s) - it->second.at(ref);
             row[j] = dT * std::pow((p.position_mm - xMid) / xHalf, f.power);
         }
         X.push_back(std::move(row));
@@ -241,7 +222,7 @@ std::string DiscrepancyTerm::hypothesis(const Fit &fit, double fixedEnd_mm)
     const Feature &lead = fit.terms.front();
     std::string s = "Empirical hypothesis (a discrepancy term fitted to the data, not a physical model): the residual "
                     "follows the '" + lead.role + "' temperature rise";
-    s += lead.tau_s > 0 ? " through a first-order lag of about " + fixed(lead.tau_s / 60.0, 0) + " min" : " directly (no lag)";
+    s += lead.tau_s > 0 ? " through a first-order lag of about " + fixedText(lead.tau_s / 60.0, 0) + " min" : " directly (no lag)";
     // Shape along the travel: the terms of the lead driver evaluated at both ends and mid-travel
     // per kelvin of its rise.
     double lo = 0.0, mid = 0.0, hi = 0.0;
@@ -255,17 +236,17 @@ std::string DiscrepancyTerm::hypothesis(const Fit &fit, double fixedEnd_mm)
     const double xLo = fit.xMid_mm - fit.xHalf_mm, xHi = fit.xMid_mm + fit.xHalf_mm;
     const double big = std::max({std::fabs(lo), std::fabs(mid), std::fabs(hi)});
     if (big > 0 && std::min(std::fabs(lo), std::fabs(hi)) > 0.7 * big && lo * hi > 0) {
-        s += ", about the same along the travel (" + fixed(mid, 2) + " um per K: a shift of every target)";
+        s += ", about the same along the travel (" + fixedText(mid, 2) + " um per K: a shift of every target)";
     } else {
         const bool loIsFixedEnd = !std::isfinite(fixedEnd_mm) || std::fabs(xLo - fixedEnd_mm) <= std::fabs(xHi - fixedEnd_mm);
         const bool largerAtLo = std::fabs(lo) > std::fabs(hi);
         const std::string end = largerAtLo == loIsFixedEnd ? "fixed" : "free";
-        s += ", largest towards the " + end + " end of the screw (" + fixed(lo, 2) + " um/K at " + fixed(xLo, 0) + " mm, " +
-             fixed(hi, 2) + " um/K at " + fixed(xHi, 0) + " mm)";
+        s += ", largest towards the " + end + " end of the screw (" + fixedText(lo, 2) + " um/K at " + fixedText(xLo, 0) + " mm, " +
+             fixedText(hi, 2) + " um/K at " + fixedText(xHi, 0) + " mm)";
     }
     s += ". Terms: ";
     for (size_t j = 0; j < fit.terms.size(); ++j)
-        s += (j ? ", " : "") + fixed(fit.coefficients[j], 3) + " " + fit.terms[j].describe();
+        s += (j ? ", " : "") + fixedText(fit.coefficients[j], 3) + " " + fit.terms[j].describe();
     s += " (x scaled to [-1, 1] over the travel).";
     return s;
 }

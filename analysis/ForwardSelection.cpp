@@ -1,24 +1,14 @@
 #include "ForwardSelection.h"
 
+#include "FixedText.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <sstream>
 #include <thread>
 
 namespace driftlab {
-
-namespace {
-std::string fmt(double v, int prec)
-{
-    std::ostringstream o;
-    o.setf(std::ios::fixed);
-    o.precision(prec);
-    o << v;
-    return o.str();
-}
-} // namespace
 
 ForwardSelection::ForwardSelection(const DiagnosisOptions &options, const std::vector<CandidateEffect> &library)
     : m_options(options), m_library(library), m_acceptance(options)
@@ -184,7 +174,7 @@ bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, c
         return false;
     const auto [a, b] = pairs[static_cast<size_t>(best)];
     const std::string together = "accepted together with " + m_library[a].code + " + " + m_library[b].code +
-                                 ": neither passes alone, the two together do (held-out " + fmt(100.0 * bestJoint.heldoutImprovement, 0) +
+                                 ": neither passes alone, the two together do (held-out " + fixedText(100.0 * bestJoint.heldoutImprovement, 0) +
                                  " % better than the model before them) and each lowers the AICc and significantly improves the "
                                  "held-out prediction of the other alone";
     const size_t tried = static_cast<size_t>(std::count_if(outcomes.begin(), outcomes.end(), [](const CandidateOutcome &o) { return o.applicable; }));
@@ -227,9 +217,9 @@ int ForwardSelection::winner(std::vector<CandidateOutcome> &outcomes) const
                 continue;
             if (w.deltaIc - s.deltaIc > m_options.maxDeltaIc) {
                 s.reasons.push_back("named instead of " + w.effect + ", which contains it: the larger model's AICc differs by " +
-                                    fmt(w.deltaIc - s.deltaIc, 1) + ", not below " + fmt(m_options.maxDeltaIc, 0));
-                w.reasons.push_back("contains " + s.effect + " and its AICc differs from it by only " + fmt(w.deltaIc - s.deltaIc, 1) +
-                                    " (needs " + fmt(m_options.maxDeltaIc, 0) + " or lower): the simpler model is named");
+                                    fixedText(w.deltaIc - s.deltaIc, 1) + ", not below " + fixedText(m_options.maxDeltaIc, 0));
+                w.reasons.push_back("contains " + s.effect + " and its AICc differs from it by only " + fixedText(w.deltaIc - s.deltaIc, 1) +
+                                    " (needs " + fixedText(m_options.maxDeltaIc, 0) + " or lower): the simpler model is named");
                 best = static_cast<int>(c);
                 changed = true;
                 break;
@@ -356,7 +346,7 @@ void ForwardSelection::simplify(Result &result, const Refit &refit) const
             Step &step = result.steps[s];
             step.outcome.reasons.push_back("with " + std::to_string(result.steps.size() - 1) +
                                            " other effect(s) in the model, the simpler " + simpler + " it contains does as well "
-                                           "(AICc differs by " + fmt(gap, 1) + ", needs " + fmt(m_options.maxDeltaIc, 0) +
+                                           "(AICc differs by " + fixedText(gap, 1) + ", needs " + fixedText(m_options.maxDeltaIc, 0) +
                                            " or lower): " + simpler + " is named instead");
             step.choice = {&*lib, alt.start};
             step.outcome.effect = lib->code;
