@@ -98,16 +98,29 @@ void TestCompensateCli::writesTheModelsCompensation()
     const QJsonObject result = QJsonDocument::fromJson(r.out).object();
     QCOMPARE(result.value(QStringLiteral("model_time_s")).toDouble(), 7200.0);
     QVERIFY(std::abs(result.value(QStringLiteral("error_um")).toDouble() - e) < 1e-6 * std::max(1.0, std::abs(e)));
-    // The controller's register pair R5700/R5701 ends at the compensation -E, in whole 1 um
-    // steps reached from 0 (truncated toward the held value).
+    // The controller's register pair R5700/R5701 starts at 0 (the controller's state becomes
+    // known), then moves monotonically toward the compensation -E in whole 1 um steps and ends
+    // at -E truncated toward the held value. How many steps it takes depends on how the ticks
+    // fall (40 um/s at 10 Hz allows 4 um per undisturbed tick; a late tick allows more), so
+    // the test checks the path, not a count.
     const QStringList w = writes(peer);
-    QVERIFY(w.size() >= 3);
-    const QStringList last = w.last().split(QLatin1Char(' '));
-    QCOMPARE(last.value(2), QStringLiteral("5700"));
-    const qint32 value = static_cast<qint32>((last.value(4).toUInt() << 16) | last.value(3).toUInt());
-    QCOMPARE(static_cast<double>(value), -std::trunc(e));
-    for (const QString &line : w)
-        QCOMPARE(line.split(QLatin1Char(' ')).value(2), QStringLiteral("5700")); // only X
+    QVERIFY2(w.size() >= 2, qPrintable(w.join(QLatin1Char('\n'))));
+    const double target = -std::trunc(e);
+    double previous = std::nan("");
+    for (const QString &line : w) {
+        const QStringList f = line.split(QLatin1Char(' '));
+        QCOMPARE(f.value(2), QStringLiteral("5700")); // only X
+        const double value = static_cast<qint32>((f.value(4).toUInt() << 16) | f.value(3).toUInt());
+        if (std::isnan(previous)) {
+            QCOMPARE(value, 0.0);
+        } else {
+            QVERIFY2(value != previous, qPrintable(line));                                           // a write moves
+            QVERIFY2(std::abs(target - value) < std::abs(target - previous), qPrintable(line)); // toward -E
+            QVERIFY2(std::abs(value) <= std::abs(target), qPrintable(line));                         // never past it
+        }
+        previous = value;
+    }
+    QCOMPARE(previous, target);
     QCOMPARE(result.value(QStringLiteral("writes")).toInt(), w.size());
     // The run is stored with the session, for its report.
     const QJsonObject stored = SessionStore(m_db).latestAnalysisResult(1, QStringLiteral("compensation"));
