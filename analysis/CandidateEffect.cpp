@@ -6,6 +6,9 @@
 #include "ChannelHeatSource.h"
 #include "EndHeatSource.h"
 #include "FeedLawHeatSource.h"
+#include "FixedText.h"
+
+#include <cmath>
 
 #include <stdexcept>
 
@@ -200,6 +203,71 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                                           ChannelHeatSource::Location::Distributed, false);
                    }});
     return lib;
+}
+
+std::vector<CandidateEffect> CandidateEffectLibrary::empirical(const DiagnosisRecording &train, const DiagnosisRecording &validate)
+{
+    std::vector<CandidateEffect> out;
+    for (const auto &[role, series] : train.channelsByRole) {
+        if (role == "screw_surface" || role == "ambient" || !train.hasRole(role) || !validate.hasRole(role))
+            continue;
+        const std::string r = role;
+        out.push_back({kEmpiricalPrefix + r,
+                       "Empirical term (not a physical model): heat entering the screw in proportion to the '" + r +
+                           "' temperature rise over ambient, with a smooth profile along the screw (Legendre P0, P1, P2).",
+                       "role:" + r,
+                       {r},
+                       [r](const DiagnosisRecording &, int) {
+                           CandidateModel m;
+                           const char *names[] = {"q0_", "q1_", "q2_"};
+                           const ChannelHeatSource::Location where[] = {ChannelHeatSource::Location::Distributed,
+                                                                        ChannelHeatSource::Location::Linear,
+                                                                        ChannelHeatSource::Location::Quadratic};
+                           std::vector<std::shared_ptr<ChannelHeatSource>> sources;
+                           for (int k = 0; k < 3; ++k) {
+                               auto src = std::make_shared<ChannelHeatSource>(
+                                   ParameterSpec{names[k] + r, "W/(m K)", 0.0, -2000.0, 2000.0, 1.0}, where[k], true);
+                               sources.push_back(src);
+                               m.sources.push_back(src);
+                           }
+                           m.bind = [sources, r](const DiagnosisRecording &rec) {
+                               for (const auto &s : sources)
+                                   s->bind(roleSeries(rec, r), ambientOf(rec), startOf(rec));
+                           };
+                           return m;
+                       }});
+    }
+    return out;
+}
+
+std::string CandidateEffectLibrary::empiricalHypothesis(const std::string &role, double a0, double a1, double a2, double length_m)
+{
+    // The profile q'(xi) per kelvin of the driver at the fixed end, mid-screw and the free end,
+    // and its extreme over the screw.
+    auto q = [&](double xi) { return a0 + a1 * xi + a2 * 0.5 * (3.0 * xi * xi - 1.0); };
+    double peakXi = -1.0;
+    for (int i = 0; i <= 20; ++i) {
+        const double xi = -1.0 + 0.1 * i;
+        if (std::fabs(q(xi)) > std::fabs(q(peakXi)))
+            peakXi = xi;
+    }
+    const double total = a0 * length_m; // W per K: P1 and P2 integrate to zero
+    const double peak = q(peakXi);
+    std::string where;
+    if (std::fabs(q(-1.0)) > 0.6 * std::fabs(peak) && std::fabs(q(1.0)) > 0.6 * std::fabs(peak) && q(-1.0) * q(1.0) > 0)
+        where = "about evenly along the screw";
+    else if (peakXi < -0.5)
+        where = "mostly towards the fixed end";
+    else if (peakXi > 0.5)
+        where = "mostly towards the free end";
+    else
+        where = "mostly around " + fixedText(100.0 * 0.5 * (peakXi + 1.0), 0) + " % of the screw length from the fixed end";
+    return "Empirical hypothesis (a term fitted to the data, not a physical model): heat " +
+           std::string(peak >= 0 ? "enters" : "leaves") + " the screw in step with the '" + role +
+           "' temperature rise over ambient, " + where + " (" + fixedText(q(-1.0), 2) + " / " + fixedText(q(0.0), 2) + " / " +
+           fixedText(q(1.0), 2) + " W/m per K at the fixed end / middle / free end; " + fixedText(total, 2) +
+           " W per K in all). Something near the '" + role + "' sensor exchanges heat with the screw that no library effect "
+           "describes (radiation, warm air, a contact): look there.";
 }
 
 std::vector<std::string> CandidateEffectLibrary::codes()

@@ -62,6 +62,17 @@ public:
     // holding_heat, structure_offset, structure_linear, screw_coolant.
     static std::vector<CandidateEffect> standard();
     static std::vector<std::string> codes();
+    // The empirical terms the diagnosis tries once no library effect passes (issue 18, item
+    // 3): per temperature channel (by role; not the screw's own surface, not ambient) of both
+    // recordings, a heat input q'(x, t) = (a0 P0 + a1 P1 + a2 P2)(xi) (T_role - T_ambient)
+    // relative to the start, per metre of screw (xi -1 at the fixed end, +1 at the free end),
+    // a's signed in W/(m K). Code "empirical:<role>"; not a physical model, a located,
+    // smooth description of heat the model lacks, for a hypothesis in words.
+    static std::vector<CandidateEffect> empirical(const DiagnosisRecording &train, const DiagnosisRecording &validate);
+    static constexpr const char *kEmpiricalPrefix = "empirical:";
+    // The fitted empirical term in words, labelled empirical: which driver, where along the
+    // screw the heat enters (or leaves), how much per kelvin of the driver's rise.
+    static std::string empiricalHypothesis(const std::string &role, double a0, double a1, double a2, double length_m);
 };
 
 } // namespace driftlab

@@ -87,6 +87,15 @@ void ChannelHeatSource::distribute(const HeatStepInput &step, double d, double *
             watts[i] += perCell;
         break;
     }
+    case Location::Linear:
+    case Location::Quadratic: {
+        const double perCell = d * step.layout->dx_m();
+        for (int i = 0; i < n; ++i) {
+            const double xi = 2.0 * (i + 0.5) / n - 1.0;
+            watts[i] += perCell * (m_location == Location::Linear ? xi : 0.5 * (3.0 * xi * xi - 1.0));
+        }
+        break;
+    }
     case Location::FixedBearing: {
         const int cells = std::max(1, step.layout->bearingCells());
         for (int i = 0; i < cells && i < n; ++i)

@@ -30,7 +30,11 @@ class ChannelHeatSource : public HeatSourceComponent {
 public:
     // FixedBearing: spread over the fixed-bearing cells; Nut: over the cells the nut covered
     // during the step (a housing that travels with the nut).
-    enum class Location { FixedEnd, FreeEnd, Distributed, FixedBearing, Nut };
+    // Linear / Quadratic: per metre like Distributed, weighted by the Legendre polynomial
+    // P1 / P2 of the position along the screw (-1 at the fixed end, +1 at the free end); with
+    // Distributed (P0) they describe a smooth heat-input profile along the screw (the
+    // diagnosis's empirical term).
+    enum class Location { FixedEnd, FreeEnd, Distributed, FixedBearing, Nut, Linear, Quadratic };
     ChannelHeatSource(ParameterSpec amplitude, Location location, bool relativeToStart);
     ChannelHeatSource(ParameterSpec amplitude, Location location, bool relativeToStart, ParameterSpec contact);
 

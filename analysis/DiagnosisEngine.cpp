@@ -249,6 +249,12 @@ CandidateFit DiagnosisEngine::evaluate(const std::vector<ForwardSelection::Choic
     IdentificationOptions warm = options;
     warm.initial = out.fit.parameters;
     const bool any = candidate || !accepted.empty();
+    // An empirical term is not cross-validated (three refits per driver): without a CV gain it
+    // needs the held-out gain that stands in for one (cvWaiverHeldoutImprovement).
+    if (candidate && candidate->code.rfind(CandidateEffectLibrary::kEmpiricalPrefix, 0) == 0) {
+        e.cvRms_um = std::nan("");
+        return out;
+    }
     e.cvRms_um = crossValidate(any ? &model : nullptr, train, warm, &out.outOfFold);
     return out;
 }
@@ -369,8 +375,23 @@ void DiagnosisEngine::assemble(DiagnosisReport &report, const ForwardSelection::
         step.deltaIc = s.outcome.deltaIc;
         step.reasons = s.outcome.reasons;
         step.candidatesTried = s.candidatesTried;
+        const std::string prefix = CandidateEffectLibrary::kEmpiricalPrefix;
+        if (step.effect.rfind(prefix, 0) == 0) {
+            // An empirical term: `unexplained`, with what it resembles as a hypothesis.
+            const std::string role = step.effect.substr(prefix.size());
+            double a[3] = {0.0, 0.0, 0.0};
+            for (const ParameterValue &p : step.parameters)
+                for (int k = 0; k < 3; ++k)
+                    if (p.name == "q" + std::to_string(k) + "_" + role)
+                        a[k] = p.value;
+            step.effect = "unexplained";
+            step.explanation = CandidateEffectLibrary::empiricalHypothesis(role, a[0], a[1], a[2], m_geometry.length_m);
+            step.reasons.insert(step.reasons.begin(), "empirical term over the '" + role + "' temperature, jointly fitted with the model");
+        }
         report.steps.push_back(std::move(step));
     }
+    if (!chosen.empiricalRound.empty())
+        report.rounds.push_back(chosen.empiricalRound);
     if (final) {
         report.effect.clear();
         for (const DiagnosisStep &s : report.steps)
@@ -396,7 +417,28 @@ void DiagnosisEngine::assemble(DiagnosisReport &report, const ForwardSelection::
         report.corrected = report.baseline;
         report.correctedLocation = report.location;
     }
-    const std::vector<double> rest = explainRest(report, final ? *final : base, train, validate);
+    const bool empirical = !report.steps.empty() && report.steps.back().effect == "unexplained";
+    if (empirical) {
+        report.explanation = report.steps.size() == 1 ? "A significant, located discrepancy that no library effect explains. " +
+                                                            report.steps.front().explanation
+                                                      : report.explanation;
+        report.discrepancy.tried = true;
+        report.discrepancy.accepted = true;
+        report.discrepancy.kind = "heat_input";
+        report.discrepancy.unit = "W/(m K)";
+        report.discrepancy.hypothesis = report.steps.back().explanation;
+        report.discrepancy.heldoutBefore_um = report.steps.back().heldoutBefore_um;
+        report.discrepancy.heldoutAfter_um = report.steps.back().heldoutAfter_um;
+        const double cvAfter = final->eval.cvRms_um, cvGain = report.steps.back().cvImprovement;
+        report.discrepancy.cvAfter_um = cvAfter;
+        report.discrepancy.cvBefore_um = cvGain < 1.0 ? cvAfter / (1.0 - cvGain) : cvAfter;
+        for (const ParameterValue &p : report.steps.back().parameters) {
+            report.discrepancy.terms.push_back(p.name);
+            report.discrepancy.coefficients.push_back(p.value);
+        }
+        report.discrepancy.reasons = report.steps.back().reasons;
+    }
+    const std::vector<double> rest = empirical ? std::vector<double>() : explainRest(report, final ? *final : base, train, validate);
     const std::string first = report.steps.empty() ? std::string() : report.steps.front().effect;
     std::stable_sort(report.candidates.begin(), report.candidates.end(), [&first](const CandidateOutcome &a, const CandidateOutcome &b) {
         if ((a.effect == first) != (b.effect == first))

@@ -55,6 +55,10 @@ struct DiagnosisOptions {
     // Forward selection: at most this many effects are accepted one after another, each
     // tested against the model extended by the ones before it with the same rules.
     int maxEffects = 3;
+    // When no library effect passes (any more): the empirical heat-input terms
+    // (CandidateEffectLibrary::empirical) on top of the final model, with the later-step rules;
+    // an accepted one is answered `unexplained` with a hypothesis in words.
+    bool empiricalTerms = true;
     // Fit the recording's screw temperatures (infrared profile, surface PT100s) with the
     // interferometer and the probe, residual weight 1 / sigma (K). Selection still uses the
     // interferometer RMS only.

@@ -151,7 +151,11 @@ struct DiagnosisDiscrepancy {
     bool accepted = false;
     std::string hypothesis;               // in words, labelled empirical
     std::vector<std::string> terms;       // e.g. "lag60min[dT(hydraulic_unit)] * x"
-    std::vector<double> coefficients;     // um per K (times the scaled position factor)
+    std::vector<double> coefficients;     // in `unit`
+    // "heat_input": the empirical heat-input term fitted jointly with the model (a step of the
+    // selection, W/(m K)); "residual": the sparse regression on the final model's residual (um/K).
+    std::string kind = "residual";
+    std::string unit = "um/K";
     double heldoutBefore_um = 0.0, heldoutAfter_um = 0.0;
     double cvBefore_um = 0.0, cvAfter_um = 0.0;
     std::vector<std::string> reasons;

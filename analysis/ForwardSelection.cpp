@@ -311,8 +311,85 @@ ForwardSelection::Result ForwardSelection::run(const CandidateFit &baseline, con
         reference = &result.steps.back().fit;
     }
     simplify(result, refit);
+    if (m_options.empiricalTerms) {
+        tryEmpirical(result, baseline, train, validate, effectiveN, refit,
+                     [&](double f, const std::string &stage) { return tick(0.8 + 0.2 * f, "empirical terms: " + stage); });
+        if (result.cancelled)
+            return result;
+    }
     tick(1.0, "selection done");
     return result;
+}
+
+void ForwardSelection::tryEmpirical(Result &result, const CandidateFit &baseline, const DiagnosisRecording &train,
+                                    const DiagnosisRecording &validate, double effectiveN, const Refit &refit,
+                                    const std::function<bool(double, const std::string &)> &tick) const
+{
+    if (static_cast<int>(result.steps.size()) >= std::max(1, m_options.maxEffects))
+        return;
+    auto library = std::make_shared<std::vector<CandidateEffect>>(CandidateEffectLibrary::empirical(train, validate));
+    result.empirical = library;
+    if (library->empty())
+        return;
+    std::vector<Choice> accepted;
+    for (const Step &s : result.steps)
+        accepted.push_back(s.choice);
+    const CandidateFit &reference = result.steps.empty() ? baseline : result.steps.back().fit;
+    std::vector<CandidateFit> fits(library->size());
+    std::vector<std::string> failure(library->size());
+    if (!parallel(
+            library->size(),
+            [&](size_t k) {
+                try {
+                    fits[k] = refit(accepted, (*library)[k]);
+                } catch (const std::exception &ex) {
+                    failure[k] = ex.what();
+                }
+            },
+            [&](size_t k) { return (*library)[k].code; }, tick)) {
+        result.cancelled = true;
+        return;
+    }
+    int best = -1;
+    for (size_t k = 0; k < library->size(); ++k) {
+        CandidateOutcome out;
+        if (!failure[k].empty()) {
+            out.effect = (*library)[k].code;
+            out.explanation = (*library)[k].explanation;
+            out.applicable = false;
+            out.notApplicableReason = failure[k];
+            out.reasons.push_back("refit failed: " + failure[k]);
+        } else {
+            out = m_acceptance.judge((*library)[k], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, true);
+        }
+        if (out.accepted && (best < 0 || out.score > result.empiricalRound[static_cast<size_t>(best)].score))
+            best = static_cast<int>(k);
+        result.empiricalRound.push_back(std::move(out));
+    }
+    if (best < 0)
+        return;
+    // Located at one driver: when several drivers' terms help about as much, the discrepancy
+    // is a general shortfall of the model (any warming channel follows it), not something
+    // near one sensor. The winner must gain at least twice what any other driver gains.
+    double runnerUp = 0.0;
+    for (size_t k = 0; k < result.empiricalRound.size(); ++k)
+        if (static_cast<int>(k) != best && result.empiricalRound[k].applicable)
+            runnerUp = std::max(runnerUp, result.empiricalRound[k].heldoutImprovement);
+    CandidateOutcome &winner = result.empiricalRound[static_cast<size_t>(best)];
+    if (winner.heldoutImprovement < 2.0 * runnerUp) {
+        winner.accepted = false;
+        winner.reasons.push_back("not located at one driver: another driver's term gains " + fixedText(100.0 * runnerUp, 0) +
+                                 " % on the held-out run against " + fixedText(100.0 * winner.heldoutImprovement, 0) +
+                                 " % (half or less needed)");
+        return;
+    }
+    winner.reasons.push_back("located at one driver: the next best driver's term gains " + fixedText(100.0 * runnerUp, 0) + " %");
+    Step step;
+    step.choice = {&(*library)[static_cast<size_t>(best)], fits[static_cast<size_t>(best)].start};
+    step.fit = std::move(fits[static_cast<size_t>(best)]);
+    step.outcome = result.empiricalRound[static_cast<size_t>(best)];
+    step.candidatesTried = static_cast<int>(library->size());
+    result.steps.push_back(std::move(step));
 }
 
 void ForwardSelection::simplify(Result &result, const Refit &refit) const

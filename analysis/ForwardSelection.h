@@ -20,6 +20,7 @@
 #include "DiagnosisTypes.h"
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,11 @@ public:
         std::vector<Step> steps;                  // accepted effects in order
         int implausibleRefits = 0;                // first-round refits bending lambda / P_f away from physics
         bool cancelled = false;
+        // The empirical terms tried after the library (CandidateEffectLibrary::empirical), their
+        // outcomes against the final library model; an accepted one is the last step (its
+        // choice points into `empirical`).
+        std::shared_ptr<const std::vector<CandidateEffect>> empirical;
+        std::vector<CandidateOutcome> empiricalRound;
     };
 
     ForwardSelection(const DiagnosisOptions &options, const std::vector<CandidateEffect> &library);
@@ -76,6 +82,10 @@ private:
     // Index into `outcomes` of the winner after the parsimony rule, -1 for none.
     int winner(std::vector<CandidateOutcome> &outcomes) const;
     bool excluded(size_t c, const std::vector<Choice> &accepted) const;
+    // When the library is exhausted: the empirical terms on top of the final model, judged
+    // as a later step (paired held-out test too); the best accepted one is appended.
+    void tryEmpirical(Result &result, const CandidateFit &baseline, const DiagnosisRecording &train, const DiagnosisRecording &validate,
+                      double effectiveN, const Refit &refit, const std::function<bool(double, const std::string &)> &tick) const;
     // After the last round: a larger effect replaced by a simpler one it contains when the
     // final model does as well with it (AICc).
     void simplify(Result &result, const Refit &refit) const;

@@ -166,25 +166,37 @@ QJsonObject DiagnoseCommand::reportJson(const DiagnosisReport &r)
     QJsonArray rounds;
     for (const std::vector<CandidateOutcome> &round : r.rounds) {
         QJsonArray cs;
-        for (const CandidateOutcome &c : round)
-            if (c.applicable)
-                cs.append(QJsonObject{{QStringLiteral("effect"), QString::fromStdString(c.effect)},
-                                      {QStringLiteral("accepted"), c.accepted},
-                                      {QStringLiteral("heldout_improvement"), c.heldoutImprovement},
-                                      {QStringLiteral("cv_improvement"), c.cvImprovement},
-                                      {QStringLiteral("delta_aicc"), c.deltaIc},
-                                      {QStringLiteral("amplitude_z"), c.minAmplitudeZ}});
+        for (const CandidateOutcome &c : round) {
+            if (!c.applicable)
+                continue;
+            QJsonArray evidence;
+            for (const std::string &e : c.reasons)
+                evidence.append(QString::fromStdString(e));
+            cs.append(QJsonObject{{QStringLiteral("effect"), QString::fromStdString(c.effect)},
+                                  {QStringLiteral("accepted"), c.accepted},
+                                  {QStringLiteral("heldout_improvement"), c.heldoutImprovement},
+                                  {QStringLiteral("cv_improvement"), c.cvImprovement},
+                                  {QStringLiteral("delta_aicc"), c.deltaIc},
+                                  {QStringLiteral("amplitude_z"), c.minAmplitudeZ},
+                                  {QStringLiteral("evidence"), evidence}});
+        }
         rounds.append(cs);
     }
     const DiagnosisDiscrepancy &dd = r.discrepancy;
     QJsonArray ddTerms, ddReasons;
-    for (size_t j = 0; j < dd.terms.size(); ++j)
-        ddTerms.append(QJsonObject{{QStringLiteral("term"), QString::fromStdString(dd.terms[j])},
-                                   {QStringLiteral("coefficient_um_K"), dd.coefficients[j]}});
+    for (size_t j = 0; j < dd.terms.size(); ++j) {
+        QJsonObject t{{QStringLiteral("term"), QString::fromStdString(dd.terms[j])},
+                      {QStringLiteral("coefficient"), dd.coefficients[j]},
+                      {QStringLiteral("unit"), QString::fromStdString(dd.unit)}};
+        if (dd.unit == "um/K")
+            t.insert(QStringLiteral("coefficient_um_K"), dd.coefficients[j]);
+        ddTerms.append(t);
+    }
     for (const std::string &e : dd.reasons)
         ddReasons.append(QString::fromStdString(e));
     const QJsonObject discrepancy{{QStringLiteral("label"), QStringLiteral("empirical")},
                                   {QStringLiteral("tried"), dd.tried},
+                                  {QStringLiteral("kind"), QString::fromStdString(dd.kind)},
                                   {QStringLiteral("accepted"), dd.accepted},
                                   {QStringLiteral("hypothesis"), QString::fromStdString(dd.hypothesis)},
                                   {QStringLiteral("terms"), ddTerms},

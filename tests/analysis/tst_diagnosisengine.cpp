@@ -24,6 +24,8 @@ private slots:
     void findsStructureDrift();
     void locatesScrewTemperatureResiduals();
     void housingHeatGoesWhereTheHousingIs();
+    void empiricalProfilesAreLegendre();
+    void empiricalHypothesisSaysWhere();
 
 private:
     static DiagnosisRecording make(bool validation, double drift_um_K);
@@ -210,6 +212,65 @@ void TestDiagnosisEngine::housingHeatGoesWhereTheHousingIs()
         if (where == ChannelHeatSource::Location::Nut)
             QVERIFY(std::fabs(watts[35] - 2.0 * watts[45]) < 1e-12);
     }
+}
+
+void TestDiagnosisEngine::empiricalProfilesAreLegendre()
+{
+    // Per metre of screw, weighted by P0, P1, P2 of the cell centre (xi = -1 at the fixed end):
+    // P0 puts 2 K x 1 W/(m K) x L in all; P1 is odd about mid-screw and sums to zero; P2 is
+    // even and sums to the midpoint rule's -1/(2 n^2) per cell (zero in the limit).
+    ScrewGeometry g;
+    const ScrewCellLayout layout(g, FdmSettings{0.01, 20.0});
+    const int n = layout.cellCount();
+    HeatStepInput step;
+    step.dt_s = 20.0;
+    step.layout = &layout;
+    step.geometry = &g;
+    TimeSeries driver, ambient;
+    driver.t = ambient.t = {0.0, 1000.0};
+    driver.v = {22.0, 22.0};
+    ambient.v = {20.0, 20.0};
+    const double perCell = 2.0 * layout.dx_m();
+    for (auto where : {ChannelHeatSource::Location::Distributed, ChannelHeatSource::Location::Linear,
+                       ChannelHeatSource::Location::Quadratic}) {
+        ChannelHeatSource src({"q", "W/(m K)", 1.0, -10.0, 10.0, 1.0}, where, false);
+        src.bind(&driver, &ambient, 0.0);
+        src.beginRecording();
+        std::vector<double> w(static_cast<size_t>(n), 0.0);
+        src.addUnitHeat(step, w.data());
+        double total = 0.0;
+        for (double x : w)
+            total += x;
+        const double first = w.front() / perCell, last = w.back() / perCell, xi0 = 1.0 / n - 1.0;
+        if (where == ChannelHeatSource::Location::Distributed) {
+            QVERIFY(std::fabs(total - perCell * n) < 1e-9);
+            QVERIFY(std::fabs(first - 1.0) < 1e-12 && std::fabs(last - 1.0) < 1e-12);
+        } else if (where == ChannelHeatSource::Location::Linear) {
+            QVERIFY(std::fabs(total) < 1e-9);
+            QVERIFY(std::fabs(first - xi0) < 1e-12 && std::fabs(last + xi0) < 1e-12);
+        } else {
+            QVERIFY(std::fabs(total / perCell + 1.0 / (2.0 * n)) < 1e-9);
+            QVERIFY(std::fabs(first - 0.5 * (3.0 * xi0 * xi0 - 1.0)) < 1e-12 && std::fabs(first - last) < 1e-12);
+        }
+    }
+}
+
+void TestDiagnosisEngine::empiricalHypothesisSaysWhere()
+{
+    auto says = [](const std::string &text, const char *what) { return text.find(what) != std::string::npos; };
+    // A ramp towards the free end (warm air there): q' = 0.5 + 0.5 xi -> 0 / 0.5 / 1 W/m per K.
+    std::string h = CandidateEffectLibrary::empiricalHypothesis("hydraulic_unit", 0.5, 0.5, 0.0, 0.8);
+    QVERIFY2(says(h, "free end") && says(h, "enters") && says(h, "'hydraulic_unit'") && says(h, "Empirical"), h.c_str());
+    QVERIFY2(says(h, "0.00 / 0.50 / 1.00 W/m per K") && says(h, "0.40 W per K"), h.c_str());
+    // The mirror image, as a loss.
+    h = CandidateEffectLibrary::empiricalHypothesis("motor", -0.5, 0.5, 0.0, 0.8);
+    QVERIFY2(says(h, "fixed end") && says(h, "leaves"), h.c_str());
+    // Uniform.
+    h = CandidateEffectLibrary::empiricalHypothesis("coolant", 1.0, 0.1, 0.0, 0.8);
+    QVERIFY2(says(h, "evenly"), h.c_str());
+    // A bump mid-screw: P0 - P2 peaks at xi = 0.
+    h = CandidateEffectLibrary::empiricalHypothesis("structure", 0.5, 0.0, -1.0, 0.8);
+    QVERIFY2(says(h, "around 50 % of the screw length"), h.c_str());
 }
 
 QTEST_GUILESS_MAIN(TestDiagnosisEngine)

@@ -374,14 +374,16 @@ void TestDiagnosis::ciAccuracy()
 {
     if (qEnvironmentVariableIsSet("DRIFTLAB_DIAG_NO_ASSERT") || qEnvironmentVariableIsSet("DRIFTLAB_DIAG_EFFECTS"))
         QSKIP("sweep or partial run");
-    int effects = 0, right = 0, pairs = 0, pairsRight = 0;
+    int effects = 0, right = 0, pairs = 0, pairsRight = 0, outside = 0, outsideRight = 0;
     for (const Outcome &o : m_outcomes) {
         if (o.truth == QLatin1String("none"))
             continue;
         if (expectedCodes(o.truth) == QStringList{QStringLiteral("unexplained")}) {
-            // Not yet found (docs/diagnosis.md): reported, not asserted. That no library code
-            // is named for them is asserted in concealedEffects.
+            // That no library code is named for them is asserted in concealedEffects (seed 1);
+            // over five seeds 5 of 10 were answered `unexplained` (docs/diagnosis.md).
             qInfo("%s: answered %s", qPrintable(o.truth), qPrintable(o.answer));
+            ++outside;
+            outsideRight += o.answer == QLatin1String("unexplained") ? 1 : 0;
             continue;
         }
         const bool pair = o.truth.contains(QLatin1Char('+'));
@@ -394,6 +396,10 @@ void TestDiagnosis::ciAccuracy()
     // That no pair answer names a library effect outside its truth is asserted per case.
     if (pairs > 0)
         QVERIFY2(pairsRight >= 1, qPrintable(QStringLiteral("%1 of %2 pairs named").arg(pairsRight).arg(pairs)));
+    // Physics outside the library: at least one of them found.
+    if (outside > 0)
+        QVERIFY2(outsideRight >= 1, qPrintable(QStringLiteral("%1 of %2 effects outside the library answered unexplained")
+                                                   .arg(outsideRight).arg(outside)));
 }
 
 void TestDiagnosis::cleanupTestCase()
