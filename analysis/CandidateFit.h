@@ -7,6 +7,7 @@
 #include "IdentificationTypes.h"
 #include "ScrewModelIdentifier.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,20 @@ struct CandidateFit {
     int start = 0;                            // the candidate's start that fitted best
     std::vector<std::string> amplitudeNames;  // the candidate's amplitudes (significance test)
     std::vector<ParameterSpec> bounded;       // the candidate's parameters with bounds (all starts)
+    // Deferred cross-validation (eval.cvRms_um is NaN until it runs): set by the refit, run by
+    // the selection only for candidates with a chance of acceptance (crossValidate()).
+    // `cvSkipped` says why a candidate was not cross-validated.
+    std::function<void(CandidateFit &)> pendingCrossValidation;
+    std::string cvSkipped;
+
+    void crossValidate()
+    {
+        if (!pendingCrossValidation)
+            return;
+        auto run = std::move(pendingCrossValidation);
+        pendingCrossValidation = nullptr;
+        run(*this);
+    }
 };
 
 } // namespace driftlab

@@ -253,9 +253,19 @@ CandidateFit DiagnosisEngine::evaluate(const std::vector<ForwardSelection::Choic
     // needs the held-out gain that stands in for one (cvWaiverHeldoutImprovement).
     if (candidate && candidate->code.rfind(CandidateEffectLibrary::kEmpiricalPrefix, 0) == 0) {
         e.cvRms_um = std::nan("");
+        out.cvSkipped = "an empirical term";
         return out;
     }
-    e.cvRms_um = crossValidate(any ? &model : nullptr, train, warm, &out.outOfFold);
+    if (!any) {
+        e.cvRms_um = crossValidate(nullptr, train, warm, &out.outOfFold);
+        return out;
+    }
+    // Candidates: deferred; the selection runs it for those with a chance of acceptance. The
+    // components are the fit's own (no other job uses them); `train` outlives the selection.
+    e.cvRms_um = std::nan("");
+    out.pendingCrossValidation = [this, model, &train, warm](CandidateFit &f) {
+        f.eval.cvRms_um = crossValidate(&model, train, warm, &f.outOfFold);
+    };
     return out;
 }
 

@@ -74,8 +74,27 @@ bool ForwardSelection::parallel(size_t n, const std::function<void(size_t)> &job
     return !stop;
 }
 
+void ForwardSelection::crossValidateIfUseful(CandidateFit &fit, const CandidateFit &reference) const
+{
+    if (!fit.pendingCrossValidation)
+        return;
+    const double ref = reference.eval.heldoutRms_um;
+    const double gain = ref > 0 ? 1.0 - fit.eval.heldoutRms_um / ref : 0.0;
+    const double dIc = fit.eval.informationCriterion - reference.eval.informationCriterion;
+    const bool restores = reference.fit.parameters.k2 < m_options.minPlausibleK2_W_m2K &&
+                          fit.fit.parameters.k2 >= m_options.minPlausibleK2_W_m2K;
+    if (gain >= 0.5 * m_options.minHeldoutImprovement || dIc <= m_options.maxDeltaIc || restores) {
+        fit.crossValidate();
+        return;
+    }
+    fit.pendingCrossValidation = nullptr;
+    fit.cvSkipped = "held-out gain " + fixedText(100.0 * gain, 0) + " % and AICc change " + fixedText(dIc, 1) +
+                    ": no chance of acceptance, so no cross-validation";
+}
+
 ForwardSelection::Round ForwardSelection::refitAll(const std::vector<size_t> &which, const std::vector<Choice> &accepted,
-                                                   const Refit &refit, const std::function<bool(double, const std::string &)> &tick) const
+                                                   const CandidateFit &reference, const Refit &refit,
+                                                   const std::function<bool(double, const std::string &)> &tick) const
 {
     Round round;
     round.fits.resize(m_library.size());
@@ -86,6 +105,7 @@ ForwardSelection::Round ForwardSelection::refitAll(const std::vector<size_t> &wh
             const size_t c = which[k];
             try {
                 round.fits[c] = refit(accepted, m_library[c]);
+                crossValidateIfUseful(round.fits[c], reference);
             } catch (const std::exception &ex) {
                 round.failure[c] = ex.what();
             }
@@ -131,6 +151,7 @@ bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, c
             with.push_back({&m_library[pairs[k].first], round.fits[pairs[k].first].start});
             try {
                 fits[k] = refit(with, m_library[pairs[k].second]);
+                crossValidateIfUseful(fits[k], reference);
                 ok[k] = true;
             } catch (const std::exception &) {
             }
@@ -253,7 +274,7 @@ ForwardSelection::Result ForwardSelection::run(const CandidateFit &baseline, con
         if (which.empty())
             break;
         const std::string prefix = r == 0 ? std::string() : "step " + std::to_string(r + 1) + ": ";
-        Round round = refitAll(which, accepted, refit, [&](double f, const std::string &stage) {
+        Round round = refitAll(which, accepted, *reference, refit, [&](double f, const std::string &stage) {
             return tick(share(r) + (share(r + 1) - share(r)) * f, prefix + stage);
         });
         if (round.cancelled) {
@@ -429,6 +450,7 @@ void ForwardSelection::simplify(Result &result, const Refit &refit) const
             step.outcome.effect = lib->code;
             step.outcome.explanation = lib->explanation;
             // The final model is now the simplified one; the step's own gain stays as measured.
+            alt.crossValidate();
             step.fit.bounded = alt.bounded;
             result.steps.back().fit = std::move(alt);
             break;

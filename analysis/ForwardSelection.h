@@ -77,8 +77,13 @@ private:
                   const std::vector<CandidateOutcome> &outcomes, const std::vector<size_t> &indexOf,
                   const DiagnosisRecording &train, double effectiveN, const Refit &refit,
                   const std::function<bool(double, const std::string &)> &tick) const;
-    Round refitAll(const std::vector<size_t> &which, const std::vector<Choice> &accepted, const Refit &refit,
-                   const std::function<bool(double, const std::string &)> &tick) const;
+    Round refitAll(const std::vector<size_t> &which, const std::vector<Choice> &accepted, const CandidateFit &reference,
+                   const Refit &refit, const std::function<bool(double, const std::string &)> &tick) const;
+    // Runs the fit's deferred cross-validation when the candidate has a chance against
+    // `reference`: held-out gain >= half the needed, or a clearly lower AICc, or a restored
+    // plausible convection (every acceptance path and the pairs' partial evidence need one of
+    // these); otherwise notes why it was skipped.
+    void crossValidateIfUseful(CandidateFit &fit, const CandidateFit &reference) const;
     // Index into `outcomes` of the winner after the parsimony rule, -1 for none.
     int winner(std::vector<CandidateOutcome> &outcomes) const;
     bool excluded(size_t c, const std::vector<Choice> &accepted) const;
