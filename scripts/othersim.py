@@ -28,6 +28,16 @@ coolant and an unknown role hydraulic_oil) at 0.5 Hz on their own clock, 0.03 K 
 dropouts; eddy-current probe EC1 (screw_elongation, 0.5 Hz, 0.2 um noise, +2 um zero offset,
 "nan" dropouts); AXPOS (axis_position) and FEED (feed_rate) at 1 Hz; scrambled column order.
 
+--wide widens the differences from DriftLab's rig (issue 18): a coarser grid (40 cells), a
+fixed-bearing housing that is a body of its own (4000 J/K, 2.5 W/K to the air) taking 30 % of
+the bearing heat and exchanging heat with the screw's bearing section through 0.25 W/K both
+ways (the fixed_bearing PT100 reads it), PT100s at 0.2 Hz with 0.05 K noise, a calibration
+offset of up to +-0.15 K and a slow random-walk wander (0.02 K per sqrt(h)), the probe at
+1 Hz with 0.3 um/h holder drift, interferometer noise 0.3 um white plus an air-refraction
+drift proportional to the distance from the laser head (a random walk, 0.4 ppm per sqrt(h)
+at the end of the travel, reset at the reference run), runs with 5 s dwell that visit the
+targets outwards and back on alternate runs, and position / feed at 0.5 Hz.
+
 Effects (physics the seed-000 model leaves out), fixed per machine:
   structure_offset       position-independent error c_s (T_structure - T_structure(0)), 8 um/K
   free_end_bearing_heat  k_F v into the free-end bearing section (k_F = 0.8 k_B)
@@ -244,6 +254,10 @@ def simulate(args, m):
     pf_true = m["true_fixed_end_mm"]
     error_sign = 1.0 if pf_true < travel[0] else -1.0
     t_amb0 = args.ambient_start
+    wide = getattr(args, "wide", False)
+    if wide:
+        m = dict(m)
+        m["cells"] = 40
     screw = Screw(m["length_m"], m["diameter_m"], m["cells"], m["density_kg_m3"], m["specific_heat_J_kgK"],
                   m["conductivity_W_mK"], t_amb0)
     v_max = 9000.0
@@ -257,7 +271,8 @@ def simulate(args, m):
     phases = duty_cycle(args.seed, total_s + 3600.0, args.duty)
     targets = [travel[0] + 15.0 + (travel[1] - travel[0] - 30.0) * k / (args.targets - 1) for k in range(args.targets)]
     run_feed = 2000.0       # mm/min between targets
-    dwell_s = 3.0
+    dwell_s = 5.0 if wide else 3.0
+    kin_period = 2.0 if wide else 1.0
     run_times = []
     t = 30.0
     while t < total_s - 120.0:
@@ -275,6 +290,7 @@ def simulate(args, m):
     run_target = 0
     run_dwell_left = 0.0
     in_run = False
+    run_order = list(targets)
     measurements = []       # (time_s, run, target_mm, thermal_um) thermal error before noise
     pending = []            # targets measured inside the current step: (time, run, x)
 
@@ -293,6 +309,10 @@ def simulate(args, m):
 
     # auxiliary bodies
     housing_fixed = Lag(t_amb0, 1500.0)
+    housing_body = t_amb0          # --wide: the fixed-bearing housing as a body of its own
+    housing_capacity = 4000.0      # J/K
+    housing_loss = 2.5             # W/K to the air
+    housing_contact = 0.25         # W/K to the screw's bearing section
     housing_free = Lag(t_amb0, 1500.0)
     housing_nut = Lag(t_amb0, 900.0)
     motor = Lag(t_amb0, 2100.0)
@@ -337,11 +357,15 @@ def simulate(args, m):
                 run_index += 1
                 in_run = True
                 run_target = 0
+                if wide and run_index > 0:
+                    run_order = list(targets) if run_index % 2 == 0 else list(reversed(targets))
+                else:
+                    run_order = list(targets)
                 run_dwell_left = dwell_s
                 events.append((ts, "interferometer run %d" % run_index))
             speed = 0.0     # mm/min
             if in_run:
-                x_goal = targets[run_target]
+                x_goal = run_order[run_target]
                 gap = x_goal - pos
                 if abs(gap) > 1e-9:
                     move = min(abs(gap), run_feed / 60.0 * sub_dt)
@@ -378,7 +402,7 @@ def simulate(args, m):
                 kin_t.append(ts)
                 kin_x.append(x_start)
                 kin_f.append(feed_cmd)
-                next_kin += 1.0
+                next_kin += kin_period
             speed_sum += speed
             if speed == 0.0:
                 standstill_time += sub_dt
@@ -390,8 +414,16 @@ def simulate(args, m):
                 nut_cover[i] += (w / screw.dx) / substeps
         v_mean = speed_sum / substeps
         qb = m["k_bearing_W_per_mm_min"] * v_mean
-        for i, w in bearing_cells:
-            q[i] += qb * w / LB
+        if wide:
+            # 30 % of the bearing heat goes into the housing body, which exchanges heat with the
+            # screw's bearing section (both ways) and with the air
+            t_bearing = sum(screw.T[i] * w for i, w in bearing_cells) / LB
+            q_contact = housing_contact * (housing_body - t_bearing)
+            for i, w in bearing_cells:
+                q[i] += (0.7 * qb + q_contact) * w / LB
+        else:
+            for i, w in bearing_cells:
+                q[i] += qb * w / LB
         qf = 0.0
         if args.effect == "free_end_bearing_heat":
             qf = m["k_free_W_per_mm_min"] * v_mean
@@ -408,9 +440,14 @@ def simulate(args, m):
         tc = chiller(t + 0.5 * dt)
         screw.step(dt, q, exposed, h, ta, m["coolant_W_mK"] if g_on else 0.0, tc)
         energy_in += sum(q) * dt
+        if wide:
+            ta_mid = ambient(t + 0.5 * dt, args.seed, t_amb0)
+            housing_body += dt / housing_capacity * (0.3 * qb - q_contact - housing_loss * (housing_body - ta_mid))
         t += dt
         # auxiliary temperatures
         hf = housing_fixed.update(ta + 0.9 * qb + (0.9 * qh if args.effect == "holding_heat" else 0.0), dt)
+        if wide:
+            hf = housing_body
         hfr = housing_free.update(ta + 0.9 * qf + 0.15 * (screw.T[-1] - ta), dt)
         hn = housing_nut.update(ta + 0.35 * m["k_nut_W_per_mm_min"] * v_mean, dt)
         mo = motor.update(ta + 1.2e-3 * v_mean + (0.6 * standstill_time / dt if args.effect == "holding_heat" else 0.1), dt)
@@ -430,7 +467,7 @@ def simulate(args, m):
 
     return {
         "dt": dt, "kin": (kin_t, kin_x, kin_f), "state_t": state_t, "probe": state_probe, "aux": state_aux,
-        "measurements": measurements, "events": events, "targets": targets, "screw": screw,
+        "measurements": measurements, "events": events, "targets": targets, "screw": screw, "cells": m["cells"],
         "energy_in": energy_in, "rnd": rnd, "total_s": total_s,
     }
 
@@ -489,7 +526,8 @@ def write_bundle(args, m, sim):
     def put(t, cid, text):
         rows.setdefault(t, {})[cid] = text
 
-    # axis position and feed: 1 Hz on integer seconds
+    wide = getattr(args, "wide", False)
+    # axis position and feed: 1 Hz on integer seconds (0.5 Hz with --wide)
     for t, x, f in zip(kin_t, kin_x, kin_f):
         if t > total_s:
             break
@@ -499,22 +537,33 @@ def write_bundle(args, m, sim):
     # resolution, ~1 % dropouts
     pt = [c for c in CHANNELS if c[1] == "temperature"]
     series = [[a[c[6]] for a in aux] for c in pt]
+    # --wide: 0.2 Hz, 0.05 K noise, a calibration offset per sensor and a slow random walk
+    pt_period = 5.0 if wide else 2.0
+    pt_noise = 0.05 if wide else 0.03
+    offsets = [rnd.uniform(-0.15, 0.15) if wide else 0.0 for _ in pt]
+    wander = [0.0 for _ in pt]
+    wander_step = 0.02 * math.sqrt(pt_period / 3600.0)
     t = 0.7
     while t <= total_s:
-        for c, ys in zip(pt, series):
+        for k, (c, ys) in enumerate(zip(pt, series)):
+            if wide:
+                wander[k] += rnd.gauss(0.0, wander_step)
             if rnd.random() < 0.01:
                 continue
-            put(t, c[0], fmt(interp(st, ys, t) + rnd.gauss(0.0, 0.03), 2))
-        t += 2.0
+            put(t, c[0], fmt(interp(st, ys, t) + offsets[k] + wander[k] + rnd.gauss(0.0, pt_noise), 2))
+        t += pt_period
     # eddy-current probe: every 2 s on the even seconds, 0.2 um noise, +2.0 um zero offset,
     # ~0.5 % dropouts written as "nan"
+    # --wide: 1 Hz, the holder drifting 0.3 um/h
+    probe_period = 1.0 if wide else 2.0
+    drift_um_s = 0.3 / 3600.0 if wide else 0.0
     t = 0.0
     while t <= total_s:
         if rnd.random() < 0.005:
             put(t, "EC1", "nan")
         else:
-            put(t, "EC1", fmt(interp(st, probe, t) + 2.0 + rnd.gauss(0.0, 0.2), 2))
-        t += 2.0
+            put(t, "EC1", fmt(interp(st, probe, t) + 2.0 + drift_um_s * t + rnd.gauss(0.0, 0.2), 2))
+        t += probe_period
 
     with open(os.path.join(out, "channels.csv"), "w", encoding="utf-8", newline="\n") as fh:
         fh.write("time_s," + ",".join(COLUMN_ORDER) + "\n")
@@ -531,8 +580,20 @@ def write_bundle(args, m, sim):
 
     with open(os.path.join(out, "interferometer.csv"), "w", encoding="utf-8", newline="\n") as fh:
         fh.write("time_s,run,position_mm,error_um\n")
+        # --wide: 0.3 um white noise and an air-refraction drift proportional to the distance from
+        # the laser head (at the travel's low end): a random walk of 0.4 ppm per sqrt(h) over the
+        # beam path, from the reference run on
+        refraction_ppm = 0.0
+        last_t = None
         for (tm, run, x, thermal) in sim["measurements"]:
-            fh.write("%.1f,%d,%.3f,%.3f\n" % (tm, run, x, pitch(x) + thermal + rnd.gauss(0.0, 0.25)))
+            if wide and run > 0:
+                refraction_ppm += rnd.gauss(0.0, 0.4 * math.sqrt(max(0.0, tm - last_t) / 3600.0)) if last_t is not None else 0.0
+                last_t = tm
+            elif wide:
+                last_t = tm
+            drift = refraction_ppm * 1e-6 * (x - m["travel_mm"][0]) * 1e3
+            noise = rnd.gauss(0.0, 0.3 if wide else 0.25)
+            fh.write("%.1f,%d,%.3f,%.3f\n" % (tm, run, x, pitch(x) + thermal + drift + noise))
 
     with open(os.path.join(out, "events.csv"), "w", encoding="utf-8", newline="\n") as fh:
         fh.write("time_s,label\n")
@@ -567,7 +628,7 @@ def write_bundle(args, m, sim):
         "channels": channels,
         "interferometer": {"file": "interferometer.csv", "unit": "um", "reference_run": 0},
         "events": "events.csv",
-        "othersim": {"generator": "scripts/othersim.py", "grid_cells": m["cells"], "step_s": sim["dt"]},
+        "othersim": {"generator": "scripts/othersim.py", "grid_cells": sim["cells"], "wide": bool(getattr(args, "wide", False)), "step_s": sim["dt"]},
     }
     with open(os.path.join(out, "manifest.json"), "w", encoding="utf-8", newline="\n") as fh:
         json.dump(manifest, fh, indent=2)
@@ -686,6 +747,13 @@ def selftest():
           sim["screw"].expansion_m(L, 20.0, m["expansion_per_K"]) * 1e6, 1e-9)
     check("1 h run: far target error <= probe elongation (0 = true)",
           0.0 if all(meas[3] <= interp(sim["state_t"], sim["probe"], meas[0]) + 1e-6 for meas in far) else 1.0, 0.0, 0.0)
+    # 6. --wide: the coarser grid is used and the probe still reads the expansion integral.
+    ns = argparse.Namespace(effect="none", seed=3, hours=1.0, dt=2.0, duty="random", targets=8, interval_min=20.0,
+                            ambient_start=20.0, started="2026-11-20T08:00:00Z", name="", out="", wide=True)
+    sim = simulate(ns, m)
+    check("--wide 1 h run: grid cells", sim["cells"], 40, 0)
+    check("--wide 1 h run: probe at end = alpha * integral over the screw (um)", sim["probe"][-1],
+          sim["screw"].expansion_m(L, 20.0, m["expansion_per_K"]) * 1e6, 1e-9)
     print("selftest", "passed" if ok else "FAILED")
     return 0 if ok else 1
 
@@ -706,6 +774,8 @@ def main(argv):
     p.add_argument("--ambient-start", type=float, default=None, help="hall temperature at t = 0 (degC)")
     p.add_argument("--started", default=None, help="ISO start time")
     p.add_argument("--name", default="")
+    p.add_argument("--wide", action="store_true",
+                   help="widen the differences from DriftLab's rig: grid, housing body, noise and sampling (see above)")
     p.add_argument("--selftest", action="store_true", help="run the physics checks and exit")
     args = p.parse_args(argv)
     if args.selftest:

@@ -10,7 +10,8 @@
 // and each effect it writes a training (4 h) and a validation (3 h) bundle of one machine with
 // different duty cycles, ambient and noise; `driftlab-cli diagnose` runs on the bundle
 // directories (one validation bundle as a .zip) and its answer is compared with the truth; the
-// CSV predictions are matched to the simulator's own interferometer points.
+// CSV predictions are matched to the simulator's own interferometer points. Two rows use
+// `--wide` (coarser grid, a housing body, drifting sensors and interferometer, other rates).
 
 #include <QDir>
 #include <QElapsedTimer>
@@ -141,6 +142,12 @@ void TestOtherSimulator::diagnoseForeignRecordings_data()
         << QStringLiteral("free_end_bearing_heat") << 3 << QStringLiteral("positive") << false << nominal << QString();
     QTest::newRow("holding_heat") << QStringLiteral("holding_heat") << 4 << QStringLiteral("negative") << false << nominal << QString();
     QTest::newRow("screw_coolant") << QStringLiteral("screw_coolant") << 5 << QStringLiteral("negative") << false << nominal << QString();
+    // --wide (issue 18): coarser grid, a fixed-bearing housing body coupled both ways, drifting
+    // PT100s / probe / interferometer (air refraction), other sample rates and run order.
+    const QStringList wide{QStringLiteral("--wide")};
+    QTest::newRow("none, wide") << QStringLiteral("none") << 7 << QStringLiteral("negative") << false << wide << QString();
+    QTest::newRow("holding_heat, wide, fixed end positive")
+        << QStringLiteral("holding_heat") << 8 << QStringLiteral("positive") << false << wide << QString();
 
     // DRIFTLAB_OTHERSIM_MACHINES=N adds a sweep: N spread machines (12 % log-normal spread of the
     // heat and convection laws and conductivity, true P_f 2-6 mm off the drawing, effect amplitude
@@ -150,16 +157,19 @@ void TestOtherSimulator::diagnoseForeignRecordings_data()
     // which contains structure_offset: it won on score by 0.004 with the higher AICc (-223.8
     // vs -224.3). Fixed by the parsimony rule (CandidateEffect::nests): the simpler nested
     // candidate is named unless the larger one's AICc is lower by the maxDeltaIc margin.
+    // DRIFTLAB_OTHERSIM_WIDE=1 makes every sweep machine a --wide one.
     const char *const effects[] = {"none", "structure_offset", "free_end_bearing_heat", "holding_heat", "screw_coolant"};
     const int machines = qEnvironmentVariableIntValue("DRIFTLAB_OTHERSIM_MACHINES");
+    const bool wideSweep = qEnvironmentVariableIsSet("DRIFTLAB_OTHERSIM_WIDE");
     for (int m = 1; m <= machines; ++m) {
         for (const char *e : effects) {
             const QString side = (m + static_cast<int>(std::strlen(e))) % 2 ? QStringLiteral("positive") : QStringLiteral("negative");
-            QTest::newRow(qPrintable(QStringLiteral("machine %1 %2 %3").arg(m).arg(QLatin1String(e), side)))
-                << QString::fromLatin1(e) << 10 * m << side << false
-                << QStringList{QStringLiteral("--machine-seed"), QString::number(m), QStringLiteral("--targets"),
-                               QString::number(6 + 2 * m), QStringLiteral("--interval-min"), QString::number(15 + 5 * m)}
-                << QString();
+            QStringList options{QStringLiteral("--machine-seed"), QString::number(m), QStringLiteral("--targets"),
+                                QString::number(6 + 2 * m), QStringLiteral("--interval-min"), QString::number(15 + 5 * m)};
+            if (wideSweep)
+                options << QStringLiteral("--wide");
+            QTest::newRow(qPrintable(QStringLiteral("machine %1 %2 %3%4").arg(m).arg(QLatin1String(e), side, wideSweep ? QStringLiteral(" wide") : QString())))
+                << QString::fromLatin1(e) << 10 * m << side << false << options << QString();
         }
     }
 }
