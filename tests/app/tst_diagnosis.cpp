@@ -392,7 +392,7 @@ void TestDiagnosis::ciAccuracy()
     }
     QVERIFY(effects >= 8);
     QVERIFY2(right >= effects - 2, qPrintable(QStringLiteral("%1 of %2 effects named").arg(right).arg(effects)));
-    // Pairs (docs/diagnosis.md: 7 of 20 fully named over five seeds): at least one named fully.
+    // Pairs (docs/diagnosis.md: 9 of 20 fully named over five seeds): at least one named fully.
     // That no pair answer names a library effect outside its truth is asserted per case.
     if (pairs > 0)
         QVERIFY2(pairsRight >= 1, qPrintable(QStringLiteral("%1 of %2 pairs named").arg(pairsRight).arg(pairs)));
