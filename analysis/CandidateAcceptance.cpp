@@ -72,6 +72,11 @@ double CandidateAcceptance::heldoutImprovementP(const FitStatistics &reference, 
 
 CandidateAcceptance::CandidateAcceptance(const DiagnosisOptions &options) : m_options(options) {}
 
+bool CandidateAcceptance::restoresConvection(const CandidateFit &candidate, const CandidateFit &reference) const
+{
+    return reference.fit.parameters.k2 < m_options.minPlausibleK2_W_m2K && candidate.fit.parameters.k2 >= m_options.minPlausibleK2_W_m2K;
+}
+
 double CandidateAcceptance::plausibilityDistance(const FdmParameters &p, double drawing) const
 {
     double d = std::max(0.0, std::fabs(std::log2(std::max(p.conductivity_W_mK, 1e-9) / m_options.steelConductivity_W_mK)) - 0.5);
@@ -115,8 +120,7 @@ CandidateOutcome CandidateAcceptance::judge(const CandidateEffect &effect, const
     const bool sizeOk = tooSmall.empty();
     if (!sizeOk)
         out.reasons.push_back("too small to be the effect: " + tooSmall);
-    const bool restores = reference.fit.parameters.k2 < m_options.minPlausibleK2_W_m2K &&
-                          ev.fit.parameters.k2 >= m_options.minPlausibleK2_W_m2K;
+    const bool restores = restoresConvection(ev, reference);
     const double heldNeeded = restores ? 0.0 : m_options.minHeldoutImprovement;
     bool heldOk = out.heldoutImprovement >= heldNeeded;
     // After the first effect the same relative gain is needed and, on top, a held-out

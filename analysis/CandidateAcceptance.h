@@ -31,6 +31,10 @@ public:
     // their lag-1 autocorrelation, normal approximation.
     static double heldoutImprovementP(const FitStatistics &reference, const FitStatistics &candidate);
 
+    // The refit brings still-air convection k2 back above the plausible minimum the reference
+    // fell below (then a held-out RMS no worse than the reference's suffices).
+    bool restoresConvection(const CandidateFit &candidate, const CandidateFit &reference) const;
+
     // 0 when lambda is within a factor 1.41 of steel's and P_f within 10 mm of the drawing;
     // grows by 1 per further factor 2 in lambda and per further 20 mm in P_f.
     double plausibilityDistance(const FdmParameters &p, double drawingFixedEnd_mm) const;

@@ -70,6 +70,11 @@ CandidateModel structureTerms(bool linear)
 
 } // namespace
 
+bool CandidateEffect::isEmpirical() const
+{
+    return code.rfind(CandidateEffectLibrary::kEmpiricalPrefix, 0) == 0;
+}
+
 std::string CandidateEffect::notApplicable(const DiagnosisRecording &train, const DiagnosisRecording &validate) const
 {
     for (const std::string &role : requiredRoles) {

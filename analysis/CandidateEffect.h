@@ -52,6 +52,9 @@ struct CandidateEffect {
     // candidate is not accepted. Empty: no such rule.
     std::vector<std::pair<std::string, double>> minimumSize;
 
+    // One of CandidateEffectLibrary::empirical()'s terms (code "empirical:<role>").
+    bool isEmpirical() const;
+
     // Empty when usable with these recordings, else why not.
     std::string notApplicable(const DiagnosisRecording &train, const DiagnosisRecording &validate) const;
 };

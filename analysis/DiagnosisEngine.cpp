@@ -251,7 +251,7 @@ CandidateFit DiagnosisEngine::evaluate(const std::vector<ForwardSelection::Choic
     const bool any = candidate || !accepted.empty();
     // An empirical term is not cross-validated (three refits per driver): without a CV gain it
     // needs the held-out gain that stands in for one (cvWaiverHeldoutImprovement).
-    if (candidate && candidate->code.rfind(CandidateEffectLibrary::kEmpiricalPrefix, 0) == 0) {
+    if (candidate && candidate->isEmpirical()) {
         e.cvRms_um = std::nan("");
         out.cvSkipped = "an empirical term";
         return out;
@@ -385,10 +385,9 @@ void DiagnosisEngine::assemble(DiagnosisReport &report, const ForwardSelection::
         step.deltaIc = s.outcome.deltaIc;
         step.reasons = s.outcome.reasons;
         step.candidatesTried = s.candidatesTried;
-        const std::string prefix = CandidateEffectLibrary::kEmpiricalPrefix;
-        if (step.effect.rfind(prefix, 0) == 0) {
+        if (s.choice.effect->isEmpirical()) {
             // An empirical term: `unexplained`, with what it resembles as a hypothesis.
-            const std::string role = step.effect.substr(prefix.size());
+            const std::string role = step.effect.substr(std::char_traits<char>::length(CandidateEffectLibrary::kEmpiricalPrefix));
             double a[3] = {0.0, 0.0, 0.0};
             for (const ParameterValue &p : step.parameters)
                 for (int k = 0; k < 3; ++k)

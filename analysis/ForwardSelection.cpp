@@ -81,9 +81,7 @@ void ForwardSelection::crossValidateIfUseful(CandidateFit &fit, const CandidateF
     const double ref = reference.eval.heldoutRms_um;
     const double gain = ref > 0 ? 1.0 - fit.eval.heldoutRms_um / ref : 0.0;
     const double dIc = fit.eval.informationCriterion - reference.eval.informationCriterion;
-    const bool restores = reference.fit.parameters.k2 < m_options.minPlausibleK2_W_m2K &&
-                          fit.fit.parameters.k2 >= m_options.minPlausibleK2_W_m2K;
-    if (gain >= 0.5 * m_options.minHeldoutImprovement || dIc <= m_options.maxDeltaIc || restores) {
+    if (gain >= 0.5 * m_options.minHeldoutImprovement || dIc <= m_options.maxDeltaIc || m_acceptance.restoresConvection(fit, reference)) {
         fit.crossValidate();
         return;
     }
@@ -333,8 +331,10 @@ ForwardSelection::Result ForwardSelection::run(const CandidateFit &baseline, con
     }
     simplify(result, refit);
     if (m_options.empiricalTerms) {
+        // Continues the progress from where the last round's share ended (never backwards).
+        const double from = share(static_cast<int>(result.rounds.size()));
         tryEmpirical(result, baseline, train, validate, effectiveN, refit,
-                     [&](double f, const std::string &stage) { return tick(0.8 + 0.2 * f, "empirical terms: " + stage); });
+                     [&](double f, const std::string &stage) { return tick(from + (1.0 - from) * f, "empirical terms: " + stage); });
         if (result.cancelled)
             return result;
     }

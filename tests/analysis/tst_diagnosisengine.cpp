@@ -175,6 +175,27 @@ void TestDiagnosisEngine::locatesScrewTemperatureResiduals()
              loc.summary.c_str());
 }
 
+// The heat one step puts into each cell for a channel 2 K above ambient at unit amplitude.
+static std::vector<double> unitHeat(ChannelHeatSource::Location where, const ScrewCellLayout &layout, const ScrewGeometry &g,
+                                    const double *nutOccupancy = nullptr)
+{
+    HeatStepInput step;
+    step.dt_s = 20.0;
+    step.nutOccupancy = nutOccupancy;
+    step.layout = &layout;
+    step.geometry = &g;
+    TimeSeries channel, ambient;
+    channel.t = ambient.t = {0.0, 1000.0};
+    channel.v = {22.0, 22.0};
+    ambient.v = {20.0, 20.0};
+    ChannelHeatSource src({"q", "", 1.0, -20.0, 20.0, 1.0}, where, false);
+    src.bind(&channel, &ambient, 0.0);
+    src.beginRecording();
+    std::vector<double> watts(static_cast<size_t>(layout.cellCount()), 0.0);
+    src.addUnitHeat(step, watts.data());
+    return watts;
+}
+
 void TestDiagnosisEngine::housingHeatGoesWhereTheHousingIs()
 {
     // A housing 2 K above ambient passes G x 2 K to the screw (G = 1 W/K at unit amplitude):
@@ -185,21 +206,8 @@ void TestDiagnosisEngine::housingHeatGoesWhereTheHousingIs()
     std::vector<double> occupancy(static_cast<size_t>(n), 0.0);
     for (int i = 30; i < 50; ++i)
         occupancy[static_cast<size_t>(i)] = i < 40 ? 1.0 : 0.5;
-    HeatStepInput step;
-    step.dt_s = 20.0;
-    step.nutOccupancy = occupancy.data();
-    step.layout = &layout;
-    step.geometry = &g;
-    TimeSeries housing, ambient;
-    housing.t = ambient.t = {0.0, 1000.0};
-    housing.v = {22.0, 22.0};
-    ambient.v = {20.0, 20.0};
     for (auto where : {ChannelHeatSource::Location::FixedBearing, ChannelHeatSource::Location::Nut}) {
-        ChannelHeatSource src({"G", "W/K", 1.0, 0.0, 20.0, 1.0}, where, false);
-        src.bind(&housing, &ambient, 0.0);
-        src.beginRecording();
-        std::vector<double> watts(static_cast<size_t>(n), 0.0);
-        src.addUnitHeat(step, watts.data());
+        const std::vector<double> watts = unitHeat(where, layout, g, occupancy.data());
         double total = 0.0, outside = 0.0;
         for (int i = 0; i < n; ++i) {
             total += watts[static_cast<size_t>(i)];
@@ -222,22 +230,10 @@ void TestDiagnosisEngine::empiricalProfilesAreLegendre()
     ScrewGeometry g;
     const ScrewCellLayout layout(g, FdmSettings{0.01, 20.0});
     const int n = layout.cellCount();
-    HeatStepInput step;
-    step.dt_s = 20.0;
-    step.layout = &layout;
-    step.geometry = &g;
-    TimeSeries driver, ambient;
-    driver.t = ambient.t = {0.0, 1000.0};
-    driver.v = {22.0, 22.0};
-    ambient.v = {20.0, 20.0};
     const double perCell = 2.0 * layout.dx_m();
     for (auto where : {ChannelHeatSource::Location::Distributed, ChannelHeatSource::Location::Linear,
                        ChannelHeatSource::Location::Quadratic}) {
-        ChannelHeatSource src({"q", "W/(m K)", 1.0, -10.0, 10.0, 1.0}, where, false);
-        src.bind(&driver, &ambient, 0.0);
-        src.beginRecording();
-        std::vector<double> w(static_cast<size_t>(n), 0.0);
-        src.addUnitHeat(step, w.data());
+        const std::vector<double> w = unitHeat(where, layout, g);
         double total = 0.0;
         for (double x : w)
             total += x;
