@@ -27,8 +27,12 @@ qint64 MtconnectStreams::parseTime(const QString &text, double *fraction_ms)
     double ms = 0.0;
     if (!frac.isEmpty()) {
         bool ok = false;
-        const double f = (QStringLiteral("0.") + frac).toDouble(&ok);
-        if (ok)
+        // Fraction digits only: "0." + "5e30" would parse as a huge number (fuzzing found it).
+        bool digits = true;
+        for (const QChar c : frac)
+            digits = digits && c.isDigit() && c.unicode() < 128;
+        const double f = digits ? (QStringLiteral("0.") + frac).toDouble(&ok) : 0.0;
+        if (ok && f >= 0.0 && f < 1.0)
             ms = f * 1000.0;
     }
     const qint64 whole = static_cast<qint64>(ms);
