@@ -448,8 +448,29 @@ void ReportBuilder::diagnosisSection(ReportDocument &doc) const
         return;
     }
     const QString effect = d.value(QStringLiteral("effect")).toString();
-    doc.paragraph(QStringLiteral("Physics the model left out: %1. %2")
-                      .arg(effect, d.value(QStringLiteral("explanation")).toString()));
+    const QJsonArray steps = d.value(QStringLiteral("effects")).toArray();
+    if (steps.size() > 1) {
+        // Several effects (forward selection): one row per step, each against the model before it.
+        doc.paragraph(QStringLiteral("Physics the model left out: %1 effects, accepted one after another (%2).")
+                          .arg(steps.size())
+                          .arg(effect));
+        QVector<QStringList> rows;
+        int n = 0;
+        for (const QJsonValue &v : steps) {
+            const QJsonObject s = v.toObject();
+            rows.push_back({QString::number(++n), s.value(QStringLiteral("code")).toString(),
+                            jsonText(s.value(QStringLiteral("heldout_rms_before_um"))) + QStringLiteral(" -> ") +
+                                jsonText(s.value(QStringLiteral("heldout_rms_after_um"))),
+                            QString::number(qRound(100.0 * s.value(QStringLiteral("heldout_gain")).toDouble())) + QStringLiteral(" %"),
+                            s.value(QStringLiteral("explanation")).toString()});
+        }
+        doc.table({QStringLiteral("Step"), QStringLiteral("Effect"), QStringLiteral("Held-out RMS before -> after (um)"),
+                   QStringLiteral("Gain"), QStringLiteral("Explanation")},
+                  rows);
+    } else {
+        doc.paragraph(QStringLiteral("Physics the model left out: %1. %2")
+                          .arg(effect, d.value(QStringLiteral("explanation")).toString()));
+    }
     const QString where = d.value(QStringLiteral("location")).toObject().value(QStringLiteral("summary")).toString();
     if (!where.isEmpty())
         doc.paragraph(QStringLiteral("Where: %1").arg(where));

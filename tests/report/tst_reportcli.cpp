@@ -28,6 +28,7 @@ private slots:
     void pageRenders();
     void labTemplateChangesTheLook();
     void badInputExitsTwoAndWritesNothing();
+    void combinedDiagnosisListsItsSteps(); // last: it stores a newer diagnosis
 
 private:
     struct Result {
@@ -318,6 +319,44 @@ void TestReportCli::badInputExitsTwoAndWritesNothing()
     r = report({QStringLiteral("1"), QStringLiteral("--template"), m_dir.filePath(QStringLiteral("missing"))}, out);
     QCOMPARE(r.code, 2);
     QVERIFY(r.err.contains("does not exist"));
+}
+
+void TestReportCli::combinedDiagnosisListsItsSteps()
+{
+    // A diagnosis with two accepted effects (as `diagnose` stores it): the report lists the
+    // steps in order, each with its held-out RMS before -> after and its gain.
+    {
+        SessionStore store(m_db);
+        const QJsonArray steps{
+            QJsonObject{{QStringLiteral("code"), QStringLiteral("screw_coolant")},
+                        {QStringLiteral("explanation"), QStringLiteral("coolant through the hollow screw")},
+                        {QStringLiteral("heldout_rms_before_um"), 3.5},
+                        {QStringLiteral("heldout_rms_after_um"), 1.75},
+                        {QStringLiteral("heldout_gain"), 0.5}},
+            QJsonObject{{QStringLiteral("code"), QStringLiteral("unexplained")},
+                        {QStringLiteral("explanation"), QStringLiteral("Empirical hypothesis: heat enters near the hydraulic_unit sensor")},
+                        {QStringLiteral("heldout_rms_before_um"), 1.75},
+                        {QStringLiteral("heldout_rms_after_um"), 0.625},
+                        {QStringLiteral("heldout_gain"), 0.643}}};
+        store.addAnalysisResult(1, QStringLiteral("diagnosis"),
+                                QJsonObject{{QStringLiteral("effect"), QStringLiteral("screw_coolant+unexplained")},
+                                            {QStringLiteral("effects"), steps},
+                                            {QStringLiteral("baseline"), QJsonObject{{QStringLiteral("heldout_rms_um"), 3.5}}},
+                                            {QStringLiteral("corrected"), QJsonObject{{QStringLiteral("heldout_rms_um"), 0.625}}}});
+    }
+    const QString html = m_dir.filePath(QStringLiteral("combined.html"));
+    const Result r = cli({QStringLiteral("report"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--out"), html});
+    QVERIFY2(r.code == 0, r.err.constData());
+    QFile f(html);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QString text = QString::fromUtf8(f.readAll());
+    QVERIFY(text.contains(QStringLiteral("2 effects, accepted one after another (screw_coolant+unexplained)")));
+    const int first = text.indexOf(QStringLiteral("coolant through the hollow screw"));
+    const int second = text.indexOf(QStringLiteral("Empirical hypothesis: heat enters near the hydraulic_unit sensor"));
+    QVERIFY(first > 0 && second > first); // in the order of acceptance
+    QVERIFY(text.contains(QStringLiteral("3.5 -&gt; 1.75")));
+    QVERIFY(text.contains(QStringLiteral("1.75 -&gt; 0.625")));
+    QVERIFY(text.contains(QStringLiteral("64 %")));
 }
 
 QTEST_GUILESS_MAIN(TestReportCli)
