@@ -2,8 +2,9 @@
 // The evidence rules of the mismatch diagnosis: whether one candidate effect, refitted on top
 // of a reference model (the seed-000 baseline, or the baseline extended by effects accepted
 // before), earns its place. All must hold: held-out RMS on the validation recording better by
-// minHeldoutImprovement (none needed when the refit restores a plausible convection the
-// reference lost), time-blocked cross-validation better (waived for a large held-out gain),
+// minHeldoutImprovement and the prediction test (HeldoutPredictionTest over every run no fit
+// saw) a discovery at the round's false-discovery rate (none of this needed when the refit
+// restores a plausible convection the reference lost), time-blocked cross-validation better (waived for a large held-out gain),
 // AICc lower at the effective sample size, a significant amplitude, every parameter inside
 // its bounds, the effect's size parameters large enough, and the predicted screw temperatures
 // not clearly worse. Plausibility of lambda / P_f is
@@ -13,6 +14,9 @@
 #include "CandidateFit.h"
 #include "DiagnosisOptions.h"
 #include "DiagnosisTypes.h"
+#include "HeldoutPredictionTest.h"
+
+#include <vector>
 
 namespace driftlab {
 
@@ -21,15 +25,21 @@ public:
     explicit CandidateAcceptance(const DiagnosisOptions &options);
 
     // The outcome (evidence in words, accepted, score) of `candidate` against `reference`.
-    // laterStep: the reference already holds an accepted effect; the held-out gain must then
-    // also be significant (heldoutImprovementP).
+    // discoveryThreshold: the round's Benjamini-Hochberg threshold (discoveryThreshold()); the
+    // candidate's prediction test must reach it. laterStep: the reference already holds an
+    // accepted effect (then a large held-out gain corroborated by the predicted screw
+    // temperatures may stand in for the test).
     CandidateOutcome judge(const CandidateEffect &effect, const CandidateFit &candidate, const CandidateFit &reference,
-                           double effectiveN, double drawingFixedEnd_mm, bool laterStep = false) const;
+                           double effectiveN, double drawingFixedEnd_mm, double discoveryThreshold, bool laterStep) const;
 
-    // One-sided p-value that `candidate` predicts the validation interferometer points better
-    // than `reference`: paired differences of squared errors, the sample size corrected by
-    // their lag-1 autocorrelation, normal approximation.
-    static double heldoutImprovementP(const FitStatistics &reference, const FitStatistics &candidate);
+    // Does `candidate` predict what no fit saw better than `reference`? HeldoutPredictionTest
+    // over the validation recording's runs, pooled with the training runs as the time-blocked
+    // cross-validation predicted them when both were cross-validated.
+    static HeldoutPredictionTest::Result predictionTest(const CandidateFit &candidate, const CandidateFit &reference);
+
+    // Benjamini-Hochberg threshold at DiagnosisOptions::heldoutFdr over the prediction-test
+    // p-values of one round's candidates (null entries skipped); -1 when none is a discovery.
+    double discoveryThreshold(const std::vector<const CandidateFit *> &candidates, const CandidateFit &reference) const;
 
     // The refit brings still-air convection k2 back above the plausible minimum the reference
     // fell below (then a held-out RMS no worse than the reference's suffices).

@@ -251,9 +251,14 @@ CandidateFit DiagnosisEngine::evaluate(const std::vector<ForwardSelection::Choic
     const bool any = candidate || !accepted.empty();
     // An empirical term is not cross-validated (three refits per driver): without a CV gain it
     // needs the held-out gain that stands in for one (cvWaiverHeldoutImprovement).
+    // Its CV runs only once it is accepted (ForwardSelection::tryEmpirical), so that the final
+    // model reports one.
     if (candidate && candidate->isEmpirical()) {
         e.cvRms_um = std::nan("");
         out.cvSkipped = "an empirical term";
+        out.pendingCrossValidation = [this, model, &train, warm](CandidateFit &f) {
+            f.eval.cvRms_um = crossValidate(&model, train, warm, &f.outOfFold);
+        };
         return out;
     }
     if (!any) {

@@ -32,9 +32,14 @@ struct DiagnosisOptions {
     // predict the training screw temperatures (infrared profile, surface PT100s) worse by at
     // most this fraction of the reference model's RMS to be named.
     double maxTemperatureLoss = 0.15;
-    // Steps after the first (and each member of a pair): the held-out gain must also be
-    // significant at this level (one-sided paired test, CandidateAcceptance::heldoutImprovementP).
-    double laterStepHeldoutAlpha = 0.01;
+    // A later step (the model already holds an effect) whose refit predicts the training screw
+    // temperatures more than this many times worse than the model before it is not named.
+    double maxLaterStepTemperatureRatio = 2.0;
+    // The prediction test (CandidateAcceptance::predictionTest) of every round's candidates is
+    // read at this false-discovery rate (Benjamini-Hochberg over the round's candidates).
+    double heldoutFdr = 0.05;
+    // A pair's members: each must improve the prediction of the other alone at this level.
+    double pairMemberAlpha = 0.01;
     // Still-air convection k2 below this (W/(m^2 K)) is below natural convection plus
     // radiation of a bare steel screw: the refit made the screw slower and cooler than physics
     // allows to absorb something (a heat-path lag does exactly this). A candidate that brings

@@ -115,6 +115,15 @@ struct CandidateOutcome {
     bool insideBounds = true;
     double plausibilityDistance = 0.0; // of the refit's lambda and P_f (DiagnosisEngine)
     double temperatureRms_K = std::numeric_limits<double>::quiet_NaN(); // predicted screw temperatures
+    // Held-out prediction test against the reference (HeldoutPredictionTest): one-sided p over
+    // the validation recording's runs, and how many runs.
+    double heldoutP = 1.0;
+    int heldoutRuns = 0;
+    // The test that decides (CandidateAcceptance::predictionTest): pooled with the training
+    // runs as the cross-validation predicted them when both models were cross-validated.
+    double predictionP = 1.0;
+    int predictionRuns = 0;
+    bool othersPass = false;          // every rule but the held-out gain / test holds
     bool accepted = false;
     std::vector<std::string> reasons; // why accepted / rejected
 };

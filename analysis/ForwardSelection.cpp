@@ -163,11 +163,16 @@ bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, c
     // amplitudes stay significant, and each member lowers the AICc of the other alone clearly.
     int best = -1;
     CandidateOutcome bestJoint;
+    std::vector<const CandidateFit *> fitted;
+    for (size_t k = 0; k < pairs.size(); ++k)
+        fitted.push_back(ok[k] ? &fits[k] : nullptr);
+    const double threshold = m_acceptance.discoveryThreshold(fitted, reference);
     for (size_t k = 0; k < pairs.size(); ++k) {
         if (!ok[k])
             continue;
         const auto [a, b] = pairs[k];
-        CandidateOutcome joint = m_acceptance.judge(m_library[b], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, !accepted.empty());
+        CandidateOutcome joint =
+            m_acceptance.judge(m_library[b], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, threshold, !accepted.empty());
         double zA = 0.0;
         for (const IdentifiedParameter &p : fits[k].fit.all)
             if (std::find(round.fits[a].amplitudeNames.begin(), round.fits[a].amplitudeNames.end(), p.name) !=
@@ -180,10 +185,8 @@ bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, c
         const double ic = fits[k].eval.informationCriterion;
         const bool eachAdds = ic - round.fits[a].eval.informationCriterion <= m_options.maxDeltaIc &&
                               ic - round.fits[b].eval.informationCriterion <= m_options.maxDeltaIc &&
-                              CandidateAcceptance::heldoutImprovementP(round.fits[a].heldout, fits[k].heldout) <
-                                  m_options.laterStepHeldoutAlpha &&
-                              CandidateAcceptance::heldoutImprovementP(round.fits[b].heldout, fits[k].heldout) <
-                                  m_options.laterStepHeldoutAlpha;
+                              CandidateAcceptance::predictionTest(fits[k], round.fits[a]).p < m_options.pairMemberAlpha &&
+                              CandidateAcceptance::predictionTest(fits[k], round.fits[b]).p < m_options.pairMemberAlpha;
         if (joint.accepted && zA >= m_options.minAmplitudeZ && eachAdds && (best < 0 || joint.score > bestJoint.score)) {
             best = static_cast<int>(k);
             bestJoint = joint;
@@ -205,7 +208,9 @@ bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, c
     first.candidatesTried = static_cast<int>(tried);
     Step second;
     second.choice = {&m_library[b], fits[static_cast<size_t>(best)].start};
-    second.outcome = m_acceptance.judge(m_library[b], fits[static_cast<size_t>(best)], first.fit, effectiveN, train.drawingFixedEnd_mm, true);
+    // One test (the member given the other): its threshold is the rate itself.
+    second.outcome = m_acceptance.judge(m_library[b], fits[static_cast<size_t>(best)], first.fit, effectiveN, train.drawingFixedEnd_mm,
+                                        m_options.heldoutFdr, true);
     second.outcome.reasons.push_back(together);
     second.fit = std::move(fits[static_cast<size_t>(best)]);
     second.candidatesTried = static_cast<int>(pairs.size());
@@ -279,6 +284,11 @@ ForwardSelection::Result ForwardSelection::run(const CandidateFit &baseline, con
             result.cancelled = true;
             return result;
         }
+        std::vector<const CandidateFit *> fitted;
+        for (size_t c : which)
+            if (round.failure[c].empty())
+                fitted.push_back(&round.fits[c]);
+        const double threshold = m_acceptance.discoveryThreshold(fitted, *reference);
         std::vector<CandidateOutcome> outcomes;
         std::vector<size_t> indexOf;
         for (size_t c = 0; c < m_library.size(); ++c) {
@@ -293,7 +303,7 @@ ForwardSelection::Result ForwardSelection::run(const CandidateFit &baseline, con
                 out.notApplicableReason = inapplicable[c].empty() ? round.failure[c] : inapplicable[c];
                 out.reasons.push_back((inapplicable[c].empty() ? "refit failed: " : "not applicable: ") + out.notApplicableReason);
             } else {
-                out = m_acceptance.judge(m_library[c], round.fits[c], *reference, effectiveN, train.drawingFixedEnd_mm, r > 0);
+                out = m_acceptance.judge(m_library[c], round.fits[c], *reference, effectiveN, train.drawingFixedEnd_mm, threshold, r > 0);
                 if (r == 0 && out.plausibilityDistance > m_acceptance.plausibilityDistance(baseline.fit.parameters, train.drawingFixedEnd_mm) +
                                                               m_options.maxPlausibilityLoss)
                     ++result.implausibleRefits;
@@ -371,6 +381,10 @@ void ForwardSelection::tryEmpirical(Result &result, const CandidateFit &baseline
         result.cancelled = true;
         return;
     }
+    std::vector<const CandidateFit *> fitted;
+    for (size_t k = 0; k < library->size(); ++k)
+        fitted.push_back(failure[k].empty() ? &fits[k] : nullptr);
+    const double threshold = m_acceptance.discoveryThreshold(fitted, reference);
     int best = -1;
     for (size_t k = 0; k < library->size(); ++k) {
         CandidateOutcome out;
@@ -381,7 +395,7 @@ void ForwardSelection::tryEmpirical(Result &result, const CandidateFit &baseline
             out.notApplicableReason = failure[k];
             out.reasons.push_back("refit failed: " + failure[k]);
         } else {
-            out = m_acceptance.judge((*library)[k], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, true);
+            out = m_acceptance.judge((*library)[k], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, threshold, true);
         }
         if (out.accepted && (best < 0 || out.score > result.empiricalRound[static_cast<size_t>(best)].score))
             best = static_cast<int>(k);
@@ -408,7 +422,14 @@ void ForwardSelection::tryEmpirical(Result &result, const CandidateFit &baseline
     Step step;
     step.choice = {&(*library)[static_cast<size_t>(best)], fits[static_cast<size_t>(best)].start};
     step.fit = std::move(fits[static_cast<size_t>(best)]);
+    // Judged without one (the 50 % held-out gain stood in for it); the final model reports its
+    // cross-validation like any other.
+    tick(1.0, "cross-validating " + step.choice.effect->code);
+    step.fit.crossValidate();
     step.outcome = result.empiricalRound[static_cast<size_t>(best)];
+    if (std::isfinite(step.fit.eval.cvRms_um))
+        step.outcome.reasons.push_back("cross-validated once accepted (not part of the decision): RMS " + fixedText(step.fit.eval.cvRms_um, 3) +
+                                       " um vs " + fixedText(reference.eval.cvRms_um, 3) + " um for the model before it");
     step.candidatesTried = static_cast<int>(library->size());
     result.steps.push_back(std::move(step));
 }
