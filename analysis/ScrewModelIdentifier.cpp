@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 namespace driftlab {
@@ -172,16 +173,59 @@ private:
     Eigen::MatrixXd m_phi;
 };
 
+// The last residual vectors the solver asked for, by parameter vector (exact match). Ceres
+// evaluates the same points more than once per iteration under bounds: the projected line
+// search evaluates the step (with its forward-difference gradient: one point per parameter),
+// then the candidate's cost at the same point, then the Jacobian there again after a
+// successful step. A repeated point is answered from here instead of a new simulation, so
+// the fit is bit-identical and about half the simulations go.
+class EvaluationMemo {
+public:
+    explicit EvaluationMemo(size_t capacity) : m_capacity(capacity) {}
+    bool find(const double *parameters, size_t n, double *residuals, size_t rows) const
+    {
+        for (const Entry &e : m_entries)
+            if (std::equal(e.parameters.begin(), e.parameters.end(), parameters, parameters + n)) {
+                std::copy(e.residuals.begin(), e.residuals.begin() + static_cast<std::ptrdiff_t>(rows), residuals);
+                return true;
+            }
+        return false;
+    }
+    void store(const double *parameters, size_t n, const double *residuals, size_t rows)
+    {
+        if (m_entries.size() < m_capacity)
+            m_entries.emplace_back();
+        Entry &e = m_entries[m_next];
+        m_next = (m_next + 1) % m_capacity;
+        e.parameters.assign(parameters, parameters + n);
+        e.residuals.assign(residuals, residuals + rows);
+    }
+
+private:
+    struct Entry {
+        std::vector<double> parameters, residuals;
+    };
+    size_t m_capacity;
+    size_t m_next = 0;
+    std::vector<Entry> m_entries;
+};
+
 struct ProjectedCost {
     VarPro *problem;
     std::vector<double> base;   // full x, unscaled
     std::vector<int> freeIndex; // which entries of x the optimiser moves
     std::vector<double> scale;
+    // Two points' forward differences (the step's and the one before it): 2 (1 + free).
+    std::shared_ptr<EvaluationMemo> memo;
 
     bool operator()(double const *const *parameters, double *residuals) const
     {
+        const size_t n = freeIndex.size();
+        const size_t rows = static_cast<size_t>(problem->rows());
+        if (memo && memo->find(parameters[0], n, residuals, rows))
+            return true;
         std::vector<double> x = base;
-        for (size_t k = 0; k < freeIndex.size(); ++k)
+        for (size_t k = 0; k < n; ++k)
             x[static_cast<size_t>(freeIndex[k])] = parameters[0][k] * scale[k];
         if (!(x[2] > 0))
             return false;
@@ -190,6 +234,8 @@ struct ProjectedCost {
         } catch (const std::invalid_argument &) {
             return false;
         }
+        if (memo)
+            memo->store(parameters[0], n, residuals, rows);
         return true;
     }
 };
@@ -284,6 +330,7 @@ IdentificationResult ScrewModelIdentifier::fit(const std::vector<ScrewRecording>
         cost->scale.push_back(specs[static_cast<size_t>(i)].scale);
     }
     const int nFree = static_cast<int>(cost->freeIndex.size());
+    cost->memo = std::make_shared<EvaluationMemo>(2 * static_cast<size_t>(nFree + 1));
     std::vector<double> u(static_cast<size_t>(nFree));
     for (int k = 0; k < nFree; ++k)
         u[static_cast<size_t>(k)] = x[static_cast<size_t>(cost->freeIndex[static_cast<size_t>(k)])] / cost->scale[static_cast<size_t>(k)];
@@ -304,6 +351,7 @@ IdentificationResult ScrewModelIdentifier::fit(const std::vector<ScrewRecording>
     }
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_QR;
+    so.line_search_interpolation_type = ceres::QUADRATIC;
     so.max_num_iterations = o.maxIterations;
     so.function_tolerance = 1e-10;
     so.gradient_tolerance = 1e-12;
