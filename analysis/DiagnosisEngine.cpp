@@ -428,6 +428,20 @@ void DiagnosisEngine::assemble(DiagnosisReport &report, const ForwardSelection::
                              "cross-validation RMS and the autocorrelation-corrected information criterion "
                              "with a significant, in-bounds amplitude. The seed-000 baseline is adequate for "
                              "these recordings.";
+        // Driver terms that would have passed but for the located rule: the baseline is then
+        // not adequate, only the discrepancy cannot be placed; say so instead.
+        std::string unplaced;
+        for (const CandidateOutcome &o : chosen.empiricalRound)
+            if (std::any_of(o.reasons.begin(), o.reasons.end(),
+                            [](const std::string &r) { return r.rfind("not located at one driver", 0) == 0; }))
+                unplaced += (unplaced.empty() ? "" : ", ") +
+                            o.effect.substr(std::char_traits<char>::length(CandidateEffectLibrary::kEmpiricalPrefix)) + " " +
+                            fixedText(100.0 * o.heldoutImprovement, 0) + " %";
+        if (!unplaced.empty())
+            report.explanation = "No library effect earns its keep. Empirical terms over several drivers predict the "
+                                 "held-out recording better (" + unplaced + "), but none stands out at one driver: a "
+                                 "shortfall of the model that the diagnosis cannot place, so no correction is named. "
+                                 "Look for a warming source that follows all of these channels.";
         report.corrected = report.baseline;
         report.correctedLocation = report.location;
     }

@@ -412,10 +412,16 @@ void ForwardSelection::tryEmpirical(Result &result, const CandidateFit &baseline
             runnerUp = std::max(runnerUp, result.empiricalRound[k].heldoutImprovement);
     CandidateOutcome &winner = result.empiricalRound[static_cast<size_t>(best)];
     if (winner.heldoutImprovement < 2.0 * runnerUp) {
-        winner.accepted = false;
-        winner.reasons.push_back("not located at one driver: another driver's term gains " + fixedText(100.0 * runnerUp, 0) +
-                                 " % on the held-out run against " + fixedText(100.0 * winner.heldoutImprovement, 0) +
-                                 " % (half or less needed)");
+        // Then no driver's term is located either (each has one at least half as good beside
+        // it): every term that passed the other rules is withdrawn, so the round agrees with
+        // the answer.
+        for (CandidateOutcome &o : result.empiricalRound)
+            if (o.accepted) {
+                o.accepted = false;
+                o.reasons.push_back("not located at one driver: the best driver's term gains " + fixedText(100.0 * winner.heldoutImprovement, 0) +
+                                    " % on the held-out run, the next best " + fixedText(100.0 * runnerUp, 0) +
+                                    " % (half or less needed)");
+            }
         return;
     }
     winner.reasons.push_back("located at one driver: the next best driver's term gains " + fixedText(100.0 * runnerUp, 0) + " %");

@@ -336,6 +336,14 @@ void TestDiagnosis::concealedEffects()
     while (!c.atEnd())
         rows += c.readLine().trimmed().split(',').size() == 4 ? 1 : 0;
     QVERIFY(rows > 10);
+    // The rounds agree with the answer: `none` means no candidate of any round (the empirical
+    // one included) is marked accepted.
+    if (o.answer == QLatin1String("none")) {
+        for (const QJsonValue &round : d.value(QStringLiteral("selection_rounds")).toArray())
+            for (const QJsonValue &cand : round.toArray())
+                QVERIFY2(!cand.toObject().value(QStringLiteral("accepted")).toBool(),
+                         qPrintable(cand.toObject().value(QStringLiteral("effect")).toString() + QStringLiteral(" accepted, answer none")));
+    }
 
     if (qEnvironmentVariableIsSet("DRIFTLAB_DIAG_NO_ASSERT"))
         return; // sweep mode: record, do not stop
