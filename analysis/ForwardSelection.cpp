@@ -97,10 +97,15 @@ ForwardSelection::Round ForwardSelection::refitAll(const std::vector<size_t> &wh
     Round round;
     round.fits.resize(m_library.size());
     round.failure.resize(m_library.size());
+    // The candidates with the most starts (the longest refits) first, so that no thread is
+    // left with a long one at the end while the others idle. Results go by index: the order
+    // does not change them.
+    std::vector<size_t> order = which;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return m_library[a].starts > m_library[b].starts; });
     round.cancelled = !parallel(
-        which.size(),
+        order.size(),
         [&](size_t k) {
-            const size_t c = which[k];
+            const size_t c = order[k];
             try {
                 round.fits[c] = refit(accepted, m_library[c]);
                 crossValidateIfUseful(round.fits[c], reference);
@@ -108,7 +113,7 @@ ForwardSelection::Round ForwardSelection::refitAll(const std::vector<size_t> &wh
                 round.failure[c] = ex.what();
             }
         },
-        [&](size_t k) { return "candidate " + m_library[which[k]].code; }, tick);
+        [&](size_t k) { return "candidate " + m_library[order[k]].code; }, tick);
     return round;
 }
 
