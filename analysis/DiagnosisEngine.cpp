@@ -18,6 +18,15 @@
 namespace driftlab {
 
 namespace {
+// The answer `none` when the baseline's residual is noise (white, following no driver).
+const char *const kNoneAdequate = "No candidate effect earns its keep: none improves the held-out RMS, the "
+                                  "cross-validation RMS and the autocorrelation-corrected information criterion "
+                                  "with a significant, in-bounds amplitude, and the baseline's residual looks like "
+                                  "measurement noise (white, following no driver). The seed-000 baseline is adequate "
+                                  "for these recordings.";
+} // namespace
+
+namespace {
 
 double interferometerRms(const FitStatistics &s) { return s.interferometerRms_um; }
 
@@ -424,10 +433,7 @@ void DiagnosisEngine::assemble(DiagnosisReport &report, const ForwardSelection::
         ResidualLocator::summarise(report.correctedLocation);
     } else {
         report.effect = "none";
-        report.explanation = "No candidate effect earns its keep: none improves the held-out RMS, the "
-                             "cross-validation RMS and the autocorrelation-corrected information criterion "
-                             "with a significant, in-bounds amplitude. The seed-000 baseline is adequate for "
-                             "these recordings.";
+        report.explanation = kNoneAdequate;
         // Driver terms that would have passed but for the located rule: the baseline is then
         // not adequate, only the discrepancy cannot be placed; say so instead.
         std::string unplaced;
@@ -467,6 +473,15 @@ void DiagnosisEngine::assemble(DiagnosisReport &report, const ForwardSelection::
         report.discrepancy.reasons = report.steps.back().reasons;
     }
     const std::vector<double> rest = empirical ? std::vector<double>() : explainRest(report, final ? *final : base, train, validate);
+    // `none` tells noise from a discrepancy nothing explains with enough evidence (the code
+    // stays `none`: no correction is named either way).
+    std::string why;
+    if (report.effect == "none" && report.explanation == kNoneAdequate && residualLocated(report.location, &why))
+        report.explanation = "No candidate effect earns its keep: no library effect or empirical term explains the baseline's "
+                             "residual with enough held-out evidence, so no correction is named. That residual is not plain "
+                             "noise (" + why + "; held-out RMS " + fixedText(report.baseline.heldoutRms_um, 2) +
+                             " um): the location shows where it is largest, the evidence per candidate how close each came; "
+                             "longer recordings or more interferometer runs may decide whether it is an effect.";
     const std::string first = report.steps.empty() ? std::string() : report.steps.front().effect;
     std::stable_sort(report.candidates.begin(), report.candidates.end(), [&first](const CandidateOutcome &a, const CandidateOutcome &b) {
         if ((a.effect == first) != (b.effect == first))
@@ -499,6 +514,24 @@ void DiagnosisEngine::assemble(DiagnosisReport &report, const ForwardSelection::
         ++k;
         report.predictions.push_back(p);
     }
+}
+
+bool DiagnosisEngine::residualLocated(const ResidualLocation &location, std::string *why)
+{
+    const ChannelCorrelation *driver = nullptr;
+    for (const ChannelCorrelation &c : location.correlations)
+        if (c.channel.rfind("feed", 0) != 0 && c.channel != "time" && c.channel != "position" && std::fabs(c.correlation) >= 0.5 &&
+            (!driver || std::fabs(c.correlation) > std::fabs(driver->correlation)))
+            driver = &c;
+    if (why) {
+        std::string w;
+        if (!location.white)
+            w = "not white: lag-1 r = " + fixedText(location.lag1Autocorrelation, 2) + ", Ljung-Box p = " + fixedText(location.ljungBoxP, 3);
+        if (driver)
+            w += (w.empty() ? "" : "; ") + std::string("follows '") + driver->channel + "' (r = " + fixedText(driver->correlation, 2) + ")";
+        *why = w;
+    }
+    return !location.white || driver != nullptr;
 }
 
 std::vector<double> DiagnosisEngine::explainRest(DiagnosisReport &report, const CandidateFit &final, const DiagnosisRecording &train,
@@ -545,12 +578,7 @@ std::vector<double> DiagnosisEngine::explainRest(DiagnosisReport &report, const 
     const bool heldOk = heldGain >= m_options.minHeldoutImprovement;
     const bool cvOk = cvGain >= m_options.minCvImprovement;
     // Located: the final model's training residual is not white, or follows a driver.
-    const ResidualLocation &left = report.correctedLocation;
-    bool followsDriver = false;
-    for (const ChannelCorrelation &c : left.correlations)
-        if (c.channel.rfind("feed", 0) != 0 && c.channel != "time" && c.channel != "position")
-            followsDriver = followsDriver || std::fabs(c.correlation) >= 0.5;
-    const bool located = !left.white || followsDriver;
+    const bool located = residualLocated(report.correctedLocation, nullptr);
     auto um = [](double v) { return fixedText(v, 3); };
     auto pct = [](double v) { return std::to_string(static_cast<int>(std::lround(100.0 * v))) + " %"; };
     d.reasons.push_back("held-out RMS " + um(d.heldoutBefore_um) + " -> " + um(d.heldoutAfter_um) + " um (" + pct(heldGain) +

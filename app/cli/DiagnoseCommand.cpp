@@ -112,8 +112,9 @@ QString DiagnoseCommand::summary() const
         "significant amplitude; then tests the others again on top of it (forward selection: 'effect' is\n"
         "the accepted codes joined by '+'). A located discrepancy no candidate explains is fitted by an\n"
         "empirical term over the recorded temperatures and answered 'unexplained' with a hypothesis in\n"
-        "words; 'none' when the residual is noise. A and B: bundle directories, .zip bundles or session\n"
-        "ids in --db.");
+        "words; 'none' when nothing earns its keep (the explanation says whether the residual is noise or a\n"
+        "discrepancy without enough evidence). A and B: bundle directories, .zip bundles or session ids\n"
+        "in --db.");
 }
 
 QJsonObject DiagnoseCommand::reportJson(const DiagnosisReport &r)
