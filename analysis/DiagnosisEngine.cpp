@@ -476,7 +476,7 @@ void DiagnosisEngine::assemble(DiagnosisReport &report, const ForwardSelection::
     // `none` tells noise from a discrepancy nothing explains with enough evidence (the code
     // stays `none`: no correction is named either way).
     std::string why;
-    if (report.effect == "none" && report.explanation == kNoneAdequate && residualLocated(report.location, &why))
+    if (report.effect == "none" && report.explanation == kNoneAdequate && ResidualLocator::isLocated(report.location, &why))
         report.explanation = "No candidate effect earns its keep: no library effect or empirical term explains the baseline's "
                              "residual with enough held-out evidence, so no correction is named. That residual is not plain "
                              "noise (" + why + "; held-out RMS " + fixedText(report.baseline.heldoutRms_um, 2) +
@@ -514,24 +514,6 @@ void DiagnosisEngine::assemble(DiagnosisReport &report, const ForwardSelection::
         ++k;
         report.predictions.push_back(p);
     }
-}
-
-bool DiagnosisEngine::residualLocated(const ResidualLocation &location, std::string *why)
-{
-    const ChannelCorrelation *driver = nullptr;
-    for (const ChannelCorrelation &c : location.correlations)
-        if (c.channel.rfind("feed", 0) != 0 && c.channel != "time" && c.channel != "position" && std::fabs(c.correlation) >= 0.5 &&
-            (!driver || std::fabs(c.correlation) > std::fabs(driver->correlation)))
-            driver = &c;
-    if (why) {
-        std::string w;
-        if (!location.white)
-            w = "not white: lag-1 r = " + fixedText(location.lag1Autocorrelation, 2) + ", Ljung-Box p = " + fixedText(location.ljungBoxP, 3);
-        if (driver)
-            w += (w.empty() ? "" : "; ") + std::string("follows '") + driver->channel + "' (r = " + fixedText(driver->correlation, 2) + ")";
-        *why = w;
-    }
-    return !location.white || driver != nullptr;
 }
 
 std::vector<double> DiagnosisEngine::explainRest(DiagnosisReport &report, const CandidateFit &final, const DiagnosisRecording &train,
@@ -578,7 +560,7 @@ std::vector<double> DiagnosisEngine::explainRest(DiagnosisReport &report, const 
     const bool heldOk = heldGain >= m_options.minHeldoutImprovement;
     const bool cvOk = cvGain >= m_options.minCvImprovement;
     // Located: the final model's training residual is not white, or follows a driver.
-    const bool located = residualLocated(report.correctedLocation, nullptr);
+    const bool located = ResidualLocator::isLocated(report.correctedLocation, nullptr);
     auto um = [](double v) { return fixedText(v, 3); };
     auto pct = [](double v) { return std::to_string(static_cast<int>(std::lround(100.0 * v))) + " %"; };
     d.reasons.push_back("held-out RMS " + um(d.heldoutBefore_um) + " -> " + um(d.heldoutAfter_um) + " um (" + pct(heldGain) +

@@ -58,10 +58,6 @@ private:
     // value at B's interferometer points (empty when not accepted).
     std::vector<double> explainRest(DiagnosisReport &report, const CandidateFit &final, const DiagnosisRecording &train,
                                     const DiagnosisRecording &validate) const;
-    // Whether a model's training residual is a located discrepancy rather than measurement
-    // noise: not white (Ljung-Box), or following a driver channel (|r| >= 0.5). `why` gets the
-    // evidence in words.
-    static bool residualLocated(const ResidualLocation &location, std::string *why);
     std::vector<ObservationFit> predictTemperatures(ScrewModelIdentifier &id, const IdentificationResult &fit,
                                                     const CandidateModel &model,
                                                     const DiagnosisRecording &train) const;

@@ -1,5 +1,6 @@
 #include "ResidualLocator.h"
 
+#include "FixedText.h"
 #include "ParameterPlausibility.h"
 
 #include <algorithm>
@@ -433,6 +434,24 @@ void ResidualLocator::summarise(ResidualLocation &loc)
     for (const PlausibilityFlag &f : loc.implausible)
         s << "; implausible: " << f.message;
     loc.summary = s.str();
+}
+
+bool ResidualLocator::isLocated(const ResidualLocation &location, std::string *why)
+{
+    const ChannelCorrelation *driver = nullptr;
+    for (const ChannelCorrelation &c : location.correlations)
+        if (c.channel.rfind("feed", 0) != 0 && c.channel != "time" && c.channel != "position" && std::fabs(c.correlation) >= 0.5 &&
+            (!driver || std::fabs(c.correlation) > std::fabs(driver->correlation)))
+            driver = &c;
+    if (why) {
+        std::string w;
+        if (!location.white)
+            w = "not white: lag-1 r = " + fixedText(location.lag1Autocorrelation, 2) + ", Ljung-Box p = " + fixedText(location.ljungBoxP, 3);
+        if (driver)
+            w += (w.empty() ? "" : "; ") + std::string("follows '") + driver->channel + "' (r = " + fixedText(driver->correlation, 2) + ")";
+        *why = w;
+    }
+    return !location.white || driver != nullptr;
 }
 
 } // namespace driftlab

@@ -28,6 +28,10 @@ public:
                                   double drawingFixedEnd_mm, ResidualLocation &location);
     // Writes location.summary from the numbers.
     static void summarise(ResidualLocation &location);
+    // Whether a residual is a located discrepancy rather than measurement noise: not white
+    // (Ljung-Box on the run means, lag-1 r), or following a driver channel (|r| >= 0.5; not
+    // feed, time or position). `why` (optional) gets the evidence in words.
+    static bool isLocated(const ResidualLocation &location, std::string *why);
 
     // Lag-1 autocorrelation of residuals ordered by time within each interferometer target
     // and within the probe series, pooled (used for the effective sample size).

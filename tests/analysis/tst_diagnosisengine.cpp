@@ -22,6 +22,7 @@ private slots:
     void chiSquareTail();
     void noneWhenTheBaselineIsAdequate();
     void noneWithAResidualThatIsNotNoise();
+    void locatedMeansNotWhiteOrFollowingADriver();
     void findsStructureDrift();
     void locatesScrewTemperatureResiduals();
     void housingHeatGoesWhereTheHousingIs();
@@ -291,6 +292,26 @@ void TestDiagnosisEngine::empiricalHypothesisSaysWhere()
     // A bump mid-screw: P0 - P2 peaks at xi = 0.
     h = CandidateEffectLibrary::empiricalHypothesis("structure", 0.5, 0.0, -1.0, 0.8);
     QVERIFY2(says(h, "around 50 % of the screw length"), h.c_str());
+}
+
+void TestDiagnosisEngine::locatedMeansNotWhiteOrFollowingADriver()
+{
+    ResidualLocation l;
+    l.white = true;
+    // Feed, time and position are not drivers; |r| < 0.5 is no following.
+    l.correlations = {{"feed", 0.9}, {"time", 0.8}, {"motor", -0.45}};
+    std::string why = "x";
+    QVERIFY(!ResidualLocator::isLocated(l, &why));
+    QVERIFY(why.empty());
+    l.correlations.push_back({"structure x position", -0.6});
+    QVERIFY(ResidualLocator::isLocated(l, &why));
+    QCOMPARE(why, std::string("follows 'structure x position' (r = -0.60)"));
+    l.correlations = {};
+    l.white = false;
+    l.lag1Autocorrelation = 0.8;
+    l.ljungBoxP = 0.015;
+    QVERIFY(ResidualLocator::isLocated(l, &why));
+    QCOMPARE(why, std::string("not white: lag-1 r = 0.80, Ljung-Box p = 0.015"));
 }
 
 QTEST_GUILESS_MAIN(TestDiagnosisEngine)
