@@ -1,5 +1,6 @@
 #include "ErrorSurfacePlot.h"
 
+#include "ContourSpectrogram.h"
 #include "ThermalErrorTable.h"
 
 #include <qwt_color_map.h>
@@ -94,7 +95,7 @@ QwtLinearColorMap *errorColourMap()
 
 } // namespace
 
-ErrorSurfacePlot::ErrorSurfacePlot(QWidget *parent) : QwtPlot(parent), m_spectrogram(new QwtPlotSpectrogram())
+ErrorSurfacePlot::ErrorSurfacePlot(QWidget *parent) : QwtPlot(parent), m_spectrogram(new ContourSpectrogram())
 {
     setTitle(tr("Thermal error over position and time"));
     setMinimumSize(260, 140); // not the plot's size hint: windows must fit 1366 x 768

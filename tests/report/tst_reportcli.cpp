@@ -60,6 +60,13 @@ QString TestReportCli::pdfText(const QString &pdf)
     const Result r = run(QStringLiteral("pdftotext"), {pdf, QStringLiteral("-")});
     if (r.code != 0)
         return QString();
+    // A PDF poppler has to repair is not a clean PDF (empty filled paths from contour
+    // segments of no length were one, ContourSpectrogram): no text then, so the checks fail.
+    if (r.err.contains("Syntax Error")) {
+        qWarning("%s: pdftotext reports %lld syntax error(s): %s", qPrintable(pdf), static_cast<long long>(r.err.count("Syntax Error")),
+                 r.err.left(300).constData());
+        return QString();
+    }
     // pdftotext turns "fi"/"fl" into ligature characters.
     return QString::fromUtf8(r.out).replace(QChar(0xFB01), QLatin1String("fi")).replace(QChar(0xFB02), QLatin1String("fl"));
 }
