@@ -17,14 +17,6 @@
 
 namespace driftlab {
 
-namespace {
-// The answer `none` when the baseline's residual is noise (white, following no driver).
-const char *const kNoneAdequate = "No candidate effect earns its keep: none improves the held-out RMS, the "
-                                  "cross-validation RMS and the autocorrelation-corrected information criterion "
-                                  "with a significant, in-bounds amplitude, and the baseline's residual looks like "
-                                  "measurement noise (white, following no driver). The seed-000 baseline is adequate "
-                                  "for these recordings.";
-} // namespace
 
 namespace {
 
@@ -376,6 +368,34 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
     return report;
 }
 
+std::string DiagnosisEngine::noneExplanation(const DiagnosisReport &report, const std::vector<CandidateOutcome> &empiricalRound)
+{
+    // Driver terms that would have passed but for the located rule: the discrepancy is there,
+    // only it cannot be placed.
+    std::string unplaced;
+    for (const CandidateOutcome &o : empiricalRound)
+        if (o.notLocated)
+            unplaced += (unplaced.empty() ? "" : ", ") +
+                        o.effect.substr(std::char_traits<char>::length(CandidateEffectLibrary::kEmpiricalPrefix)) + " " +
+                        fixedText(100.0 * o.heldoutImprovement, 0) + " %";
+    if (!unplaced.empty())
+        return "No library effect earns its keep. Empirical terms over several drivers predict the held-out recording better (" +
+               unplaced + "), but none stands out at one driver: a shortfall of the model that the diagnosis cannot place, so no "
+               "correction is named. Look for a warming source that follows all of these channels.";
+    // Noise, or a discrepancy nothing explains with enough evidence (no correction either way).
+    std::string why;
+    if (ResidualLocator::isLocated(report.location, &why))
+        return "No candidate effect earns its keep: no library effect or empirical term explains the baseline's residual with "
+               "enough held-out evidence, so no correction is named. That residual is not plain noise (" + why +
+               "; held-out RMS " + fixedText(report.baseline.heldoutRms_um, 2) +
+               " um): the location shows where it is largest, the evidence per candidate how close each came; longer recordings "
+               "or more interferometer runs may decide whether it is an effect.";
+    return "No candidate effect earns its keep: none improves the held-out RMS, the cross-validation RMS and the "
+           "autocorrelation-corrected information criterion with a significant, in-bounds amplitude, and the baseline's "
+           "residual looks like measurement noise (white, following no driver). The seed-000 baseline is adequate for these "
+           "recordings.";
+}
+
 void DiagnosisEngine::assemble(DiagnosisReport &report, const ForwardSelection::Result &chosen, const CandidateFit &base,
                                const DiagnosisRecording &train, const DiagnosisRecording &validate) const
 {
@@ -433,21 +453,7 @@ void DiagnosisEngine::assemble(DiagnosisReport &report, const ForwardSelection::
         ResidualLocator::summarise(report.correctedLocation);
     } else {
         report.effect = "none";
-        report.explanation = kNoneAdequate;
-        // Driver terms that would have passed but for the located rule: the baseline is then
-        // not adequate, only the discrepancy cannot be placed; say so instead.
-        std::string unplaced;
-        for (const CandidateOutcome &o : chosen.empiricalRound)
-            if (std::any_of(o.reasons.begin(), o.reasons.end(),
-                            [](const std::string &r) { return r.rfind("not located at one driver", 0) == 0; }))
-                unplaced += (unplaced.empty() ? "" : ", ") +
-                            o.effect.substr(std::char_traits<char>::length(CandidateEffectLibrary::kEmpiricalPrefix)) + " " +
-                            fixedText(100.0 * o.heldoutImprovement, 0) + " %";
-        if (!unplaced.empty())
-            report.explanation = "No library effect earns its keep. Empirical terms over several drivers predict the "
-                                 "held-out recording better (" + unplaced + "), but none stands out at one driver: a "
-                                 "shortfall of the model that the diagnosis cannot place, so no correction is named. "
-                                 "Look for a warming source that follows all of these channels.";
+        report.explanation = noneExplanation(report, chosen.empiricalRound);
         report.corrected = report.baseline;
         report.correctedLocation = report.location;
     }
@@ -473,15 +479,6 @@ void DiagnosisEngine::assemble(DiagnosisReport &report, const ForwardSelection::
         report.discrepancy.reasons = report.steps.back().reasons;
     }
     const std::vector<double> rest = empirical ? std::vector<double>() : explainRest(report, final ? *final : base, train, validate);
-    // `none` tells noise from a discrepancy nothing explains with enough evidence (the code
-    // stays `none`: no correction is named either way).
-    std::string why;
-    if (report.effect == "none" && report.explanation == kNoneAdequate && ResidualLocator::isLocated(report.location, &why))
-        report.explanation = "No candidate effect earns its keep: no library effect or empirical term explains the baseline's "
-                             "residual with enough held-out evidence, so no correction is named. That residual is not plain "
-                             "noise (" + why + "; held-out RMS " + fixedText(report.baseline.heldoutRms_um, 2) +
-                             " um): the location shows where it is largest, the evidence per candidate how close each came; "
-                             "longer recordings or more interferometer runs may decide whether it is an effect.";
     const std::string first = report.steps.empty() ? std::string() : report.steps.front().effect;
     std::stable_sort(report.candidates.begin(), report.candidates.end(), [&first](const CandidateOutcome &a, const CandidateOutcome &b) {
         if ((a.effect == first) != (b.effect == first))

@@ -58,6 +58,9 @@ private:
     // value at B's interferometer points (empty when not accepted).
     std::vector<double> explainRest(DiagnosisReport &report, const CandidateFit &final, const DiagnosisRecording &train,
                                     const DiagnosisRecording &validate) const;
+    // The explanation of `none`: the driver terms that could not be placed, or a residual that
+    // is not plain noise, or noise (ResidualLocator::isLocated on the baseline's residual).
+    static std::string noneExplanation(const DiagnosisReport &report, const std::vector<CandidateOutcome> &empiricalRound);
     std::vector<ObservationFit> predictTemperatures(ScrewModelIdentifier &id, const IdentificationResult &fit,
                                                     const CandidateModel &model,
                                                     const DiagnosisRecording &train) const;

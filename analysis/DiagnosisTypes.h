@@ -113,6 +113,9 @@ struct CandidateOutcome {
     double deltaIc = 0.0;             // IC(candidate) - IC(baseline)
     double minAmplitudeZ = 0.0;       // largest |value / standard error| of its amplitudes
     bool insideBounds = true;
+    // An empirical term that passed every rule but was withdrawn: no driver's term stood out
+    // (ForwardSelection::tryEmpirical).
+    bool notLocated = false;
     double plausibilityDistance = 0.0; // of the refit's lambda and P_f (DiagnosisEngine)
     double temperatureRms_K = std::numeric_limits<double>::quiet_NaN(); // predicted screw temperatures
     // Held-out prediction test against the reference (HeldoutPredictionTest): one-sided p over

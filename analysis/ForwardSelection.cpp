@@ -423,6 +423,7 @@ void ForwardSelection::tryEmpirical(Result &result, const CandidateFit &baseline
         for (CandidateOutcome &o : result.empiricalRound)
             if (o.accepted) {
                 o.accepted = false;
+                o.notLocated = true;
                 o.reasons.push_back("not located at one driver: the best driver's term gains " + fixedText(100.0 * winner.heldoutImprovement, 0) +
                                     " % on the held-out run, the next best " + fixedText(100.0 * runnerUp, 0) +
                                     " % (half or less needed)");

@@ -4,6 +4,7 @@
 #include "ErrorSurfacePlot.h"
 #include "ModelsPanel.h"
 #include "SessionAnalysis.h"
+#include "UnitLabels.h"
 #include "SessionStore.h"
 
 #include <QComboBox>
@@ -43,6 +44,7 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
     left->addLayout(buttons);
     left->addWidget(m_progress);
     left->addWidget(m_stage);
+    m_answer->setObjectName(QStringLiteral("diagnosisAnswer"));
     m_answer->setWordWrap(true);
     m_answer->setTextInteractionFlags(Qt::TextSelectableByMouse);
     left->addWidget(m_answer);
@@ -265,7 +267,9 @@ void DiagnosisPanel::finish(bool ok, const QString &error)
     m_resultValidate = m_runValidate;
     // Several effects: the steps of the forward selection, each with its gain over the model
     // before it; one effect: its explanation.
-    QString what = QString::fromStdString(r.explanation).toHtmlEscaped();
+    // Analysis text is ASCII (um, degC, as in the CLI and JSON); on screen µm and °C.
+    auto text = [](const std::string &s) { return UnitLabels::inText(QString::fromStdString(s)); };
+    QString what = text(r.explanation).toHtmlEscaped();
     if (r.steps.size() > 1) {
         what = tr("several effects, accepted one after another:") + QStringLiteral("<ol>");
         for (const DiagnosisStep &s : r.steps)
@@ -274,7 +278,7 @@ void DiagnosisPanel::finish(bool ok, const QString &error)
                         .arg(s.heldoutBefore_um, 0, 'f', 2)
                         .arg(s.heldoutAfter_um, 0, 'f', 2)
                         .arg(100.0 * s.heldoutImprovement, 0, 'f', 0)
-                        .arg(QString::fromStdString(s.explanation).toHtmlEscaped());
+                        .arg(text(s.explanation).toHtmlEscaped());
         what += QStringLiteral("</ol>");
     }
     m_resultText = (tr("<b>%1</b> — %2<br>Held-out RMS %3 µm → %4 µm (%5 s).<br>%6")
@@ -282,21 +286,21 @@ void DiagnosisPanel::finish(bool ok, const QString &error)
                           .arg(r.baseline.heldoutRms_um, 0, 'f', 2)
                           .arg(r.corrected.heldoutRms_um, 0, 'f', 2)
                           .arg(r.wallTime_s, 0, 'f', 1)
-                          .arg(QString::fromStdString(r.location.summary).toHtmlEscaped()));
+                          .arg(text(r.location.summary).toHtmlEscaped()));
     updateHeading();
     m_candidates->setRowCount(static_cast<int>(r.candidates.size()));
     for (int i = 0; i < static_cast<int>(r.candidates.size()); ++i) {
         const CandidateOutcome &c = r.candidates[static_cast<size_t>(i)];
         QStringList reasons;
         for (const std::string &s : c.reasons)
-            reasons << QString::fromStdString(s);
+            reasons << text(s);
         m_candidates->setItem(i, 0, new QTableWidgetItem(QString::fromStdString(c.effect)));
         m_candidates->setItem(i, 1, new QTableWidgetItem(c.accepted ? tr("yes") : (c.applicable ? tr("no") : tr("n/a"))));
         m_candidates->setItem(i, 2, new QTableWidgetItem(QString::number(c.score, 'f', 3)));
         m_candidates->setItem(i, 3, new QTableWidgetItem(c.applicable ? QString::number(c.evaluation.heldoutRms_um, 'f', 2) : QString()));
         m_candidates->setItem(i, 4, new QTableWidgetItem(c.applicable ? QString::number(c.deltaIc, 'f', 1) : QString()));
-        auto *why = new QTableWidgetItem(c.applicable ? reasons.join(QStringLiteral("; ")) : QString::fromStdString(c.notApplicableReason));
-        why->setToolTip(QString::fromStdString(c.explanation));
+        auto *why = new QTableWidgetItem(c.applicable ? reasons.join(QStringLiteral("; ")) : text(c.notApplicableReason));
+        why->setToolTip(text(c.explanation));
         m_candidates->setItem(i, 5, why);
     }
     m_candidates->resizeColumnsToContents();

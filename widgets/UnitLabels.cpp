@@ -1,5 +1,7 @@
 #include "UnitLabels.h"
 
+#include <QRegularExpression>
+
 namespace driftlab {
 
 QString UnitLabels::display(const QString &unit)
@@ -16,6 +18,16 @@ QString UnitLabels::display(const QString &unit)
     if (u.startsWith(QLatin1String("um/")) || u.startsWith(QLatin1String("um ")))
         u.replace(0, 2, QStringLiteral("µm"));
     return u;
+}
+
+QString UnitLabels::inText(const QString &text)
+{
+    static const QRegularExpression um(QStringLiteral("(?<![A-Za-z_])um(?![A-Za-z_])"));
+    static const QRegularExpression degC(QStringLiteral("(?<![A-Za-z_])degC(?![A-Za-z_])"));
+    QString t = text;
+    t.replace(um, QStringLiteral("µm"));
+    t.replace(degC, QStringLiteral("°C"));
+    return t;
 }
 
 } // namespace driftlab

@@ -9,6 +9,9 @@ namespace driftlab {
 class UnitLabels {
 public:
     static QString display(const QString &unit);
+    // The same inside prose from analysis/ (explanations, evidence, location summaries): the
+    // words um and degC become µm and °C ("0.68 um", "2.7 um/K", "1.2 degC").
+    static QString inText(const QString &text);
 };
 
 } // namespace driftlab

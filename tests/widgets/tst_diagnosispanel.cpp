@@ -8,8 +8,10 @@
 #include "RigRecorder.h"
 #include "SessionStore.h"
 #include "SimulatedRig.h"
+#include "UnitLabels.h"
 
 #include <QComboBox>
+#include <QLabel>
 #include <QSignalSpy>
 #include <QTableWidget>
 #include <QTemporaryDir>
@@ -85,6 +87,15 @@ void TestDiagnosisPanel::namesTheConcealedEffect()
     QCOMPARE(QString::fromStdString(r.effect), QStringLiteral("structure_offset"));
     QVERIFY(r.corrected.heldoutRms_um < 0.75 * r.baseline.heldoutRms_um);
     QCOMPARE(panel.candidateTable()->rowCount(), int(r.candidates.size()));
+    // Units one way on screen: the analysis text's um appear as µm, in the answer and in the
+    // candidates' evidence.
+    const QRegularExpression asciiUm(QStringLiteral("\\bum\\b"));
+    const QString answer = panel.findChild<QLabel *>(QStringLiteral("diagnosisAnswer"))->text();
+    QVERIFY2(answer.contains(QStringLiteral("µm")) && !answer.contains(asciiUm), qPrintable(answer));
+    for (int i = 0; i < panel.candidateTable()->rowCount(); ++i)
+        QVERIFY2(!panel.candidateTable()->item(i, 5)->text().contains(asciiUm), qPrintable(panel.candidateTable()->item(i, 5)->text()));
+    QCOMPARE(UnitLabels::inText(QStringLiteral("RMS 0.68 um; 2.70 um/K at 20 mm; 1.2 degC; umbrella, sum")),
+             QStringLiteral("RMS 0.68 µm; 2.70 µm/K at 20 mm; 1.2 °C; umbrella, sum"));
     // The maps, recomputed from the predictions, show the same improvement.
     std::vector<double> x, y, before, after;
     DiagnosisPanel::residualGrid(r.predictions, false, x, y, before);
