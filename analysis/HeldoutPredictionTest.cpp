@@ -1,5 +1,7 @@
 #include "HeldoutPredictionTest.h"
 
+#include <Eigen/Core>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -87,14 +89,9 @@ HeldoutPredictionTest::Result oneSampleT(const std::vector<double> &perRun)
     if (perRun.size() < 3)
         return r;
     const double n = static_cast<double>(perRun.size());
-    double mean = 0.0;
-    for (double d : perRun)
-        mean += d;
-    mean /= n;
-    double var = 0.0;
-    for (double d : perRun)
-        var += (d - mean) * (d - mean);
-    var /= n - 1.0;
+    const Eigen::Map<const Eigen::ArrayXd> d(perRun.data(), static_cast<Eigen::Index>(perRun.size()));
+    const double mean = d.mean();
+    const double var = (d - mean).square().sum() / (n - 1.0);
     r.meanLogRatio = mean;
     if (var <= 0.0) {
         r.t = mean > 0 ? INFINITY : mean < 0 ? -INFINITY : 0.0;
