@@ -40,7 +40,7 @@ seeds() {
     bundle_irindex) echo "$b/ir/index.csv" ;;
     ir_frame) ls "$b"/ir/*.png ;;
     rig_json) ls "$src"/resources/rigs/*.json ;;
-    column_map) ls "$src"/resources/maps/*.json ;;
+    column_map) ls "$src"/resources/maps/*.json "$src"/tests/fuzz/corpus/column_map/* ;;
     rtl) ls "$src"/tests/data/rtl/*.rtl ;;
     mtconnect) ls "$src"/tests/data/mtconnect/*.xml ;;
     *) ls "$src/tests/fuzz/corpus/$1"/* ;;

@@ -4,6 +4,7 @@
 
 #include <QDateTime>
 #include <QFile>
+#include <QFileInfo>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QRegularExpression>
@@ -137,7 +138,79 @@ QString normalEncoding(const QString &e)
     return QString();
 }
 
+// A regular expression finding a Qt date-time pattern ("yyyyMMdd_HHmmss") in a file name;
+// empty when the pattern lacks a year, month or day or repeats one. Other text is literal.
+QRegularExpression fileNameRegex(const QString &pattern)
+{
+    static const QRegularExpression token(QStringLiteral("yyyy|MM|dd|HH|mm|ss|zzz"));
+    QString re;
+    int at = 0;
+    QSet<QString> seen;
+    for (auto it = token.globalMatch(pattern); it.hasNext();) {
+        const auto m = it.next();
+        const QString t = m.captured();
+        if (seen.contains(t))
+            return QRegularExpression();
+        seen.insert(t);
+        re += QRegularExpression::escape(pattern.mid(at, m.capturedStart() - at));
+        re += QStringLiteral("(\\d{%1})").arg(t.size());
+        at = m.capturedEnd();
+    }
+    re += QRegularExpression::escape(pattern.mid(at));
+    if (!seen.contains(QStringLiteral("yyyy")) || !seen.contains(QStringLiteral("MM")) || !seen.contains(QStringLiteral("dd")))
+        return QRegularExpression();
+    return QRegularExpression(re);
+}
+
 } // namespace
+
+double CsvColumnMap::parseInterval(const QString &text)
+{
+    static const QRegularExpression re(QStringLiteral("^\\s*(\\d+(?:\\.\\d+)?)\\s*(s|min|h)\\s*$"));
+    const auto m = re.match(text);
+    if (!m.hasMatch())
+        return 0.0;
+    const double v = m.captured(1).toDouble();
+    const double s = v * (m.captured(2) == QLatin1String("h") ? 3600.0 : m.captured(2) == QLatin1String("min") ? 60.0 : 1.0);
+    return std::isfinite(s) && s > 0.0 && s <= 366.0 * 86400.0 ? s : 0.0;
+}
+
+QDateTime CsvColumnMap::inTimeZone(const QDateTime &dt) const
+{
+    if (dt.timeSpec() != Qt::LocalTime || time.timezone == QLatin1String("local"))
+        return dt;
+    if (time.timezone == QLatin1String("UTC"))
+        return QDateTime(dt.date(), dt.time(), Qt::UTC);
+    const int sign = time.timezone[0] == QLatin1Char('-') ? -1 : 1;
+    return QDateTime(dt.date(), dt.time(), Qt::OffsetFromUTC,
+                     sign * (time.timezone.midRef(1, 2).toInt() * 3600 + time.timezone.midRef(4, 2).toInt() * 60));
+}
+
+QDateTime CsvColumnMap::startFromFileName(const QString &path) const
+{
+    const QString pattern = session.value(QStringLiteral("started_from_file_name")).toString();
+    if (pattern.isEmpty())
+        return QDateTime();
+    const QRegularExpression re = fileNameRegex(pattern);
+    static const QRegularExpression token(QStringLiteral("yyyy|MM|dd|HH|mm|ss|zzz"));
+    QStringList order;
+    for (auto it = token.globalMatch(pattern); it.hasNext();)
+        order << it.next().captured();
+    const QString name = QFileInfo(path).completeBaseName();
+    for (auto it = re.globalMatch(name); it.hasNext();) {
+        const auto m = it.next();
+        int v[7] = {0, 0, 0, 0, 0, 0, 0}; // yyyy MM dd HH mm ss zzz
+        static const QStringList keys{QStringLiteral("yyyy"), QStringLiteral("MM"), QStringLiteral("dd"), QStringLiteral("HH"),
+                                      QStringLiteral("mm"), QStringLiteral("ss"), QStringLiteral("zzz")};
+        for (int i = 0; i < order.size(); ++i)
+            v[keys.indexOf(order[i])] = m.captured(i + 1).toInt();
+        const QDate date(v[0], v[1], v[2]);
+        const QTime clock(v[3], v[4], v[5], v[6]);
+        if (date.isValid() && clock.isValid())
+            return inTimeZone(QDateTime(date, clock, Qt::LocalTime));
+    }
+    return QDateTime();
+}
 
 QStringList CsvColumnMap::units(const QString &kind)
 {
@@ -221,8 +294,8 @@ CsvColumnMap CsvColumnMap::fromJson(const QByteArray &json, const QString &fileN
                                               .arg(kVersion));
     r.allowOnly(root, QString(),
                 {QStringLiteral("format"), QStringLiteral("version"), QStringLiteral("name"), QStringLiteral("description"),
-                 QStringLiteral("csv"), QStringLiteral("time"), QStringLiteral("session"), QStringLiteral("machine"),
-                 QStringLiteral("columns")});
+                 QStringLiteral("csv"), QStringLiteral("time"), QStringLiteral("run"), QStringLiteral("session"),
+                 QStringLiteral("machine"), QStringLiteral("columns")});
     CsvColumnMap m;
     m.name = r.string(root, QStringLiteral("name"), QString());
     m.description = r.string(root, QStringLiteral("description"), QString());
@@ -263,42 +336,84 @@ CsvColumnMap CsvColumnMap::fromJson(const QByteArray &json, const QString &fileN
     m.ignoreUnmapped = unmapped == QLatin1String("ignore");
 
     if (!root.value(QStringLiteral("time")).isObject())
-        r.fail(QStringLiteral("time"), QStringLiteral("missing: say which column holds the time"));
+        r.fail(QStringLiteral("time"), QStringLiteral("missing: say which column holds the time, or give the row \"interval\""));
     const QJsonObject time = r.object(root, QStringLiteral("time"), QString());
     r.allowOnly(time, QStringLiteral("time"),
                 {QStringLiteral("column"), QStringLiteral("index"), QStringLiteral("unit"), QStringLiteral("format"),
-                 QStringLiteral("timezone")});
-    r.columnRef(time, QStringLiteral("time"), m.time.column, m.time.index);
-    m.time.format = r.string(time, QStringLiteral("format"), QStringLiteral("time"));
-    m.time.unit = r.string(time, QStringLiteral("unit"), QStringLiteral("time"), m.time.format.isEmpty() ? QStringLiteral("s") : QString());
-    if (!m.time.format.isEmpty() && !m.time.unit.isEmpty())
-        r.fail(QStringLiteral("time"), QStringLiteral("give either \"unit\" (numbers) or \"format\" (date-times), not both"));
-    static const QStringList units{QStringLiteral("s"), QStringLiteral("ms"), QStringLiteral("min"), QStringLiteral("h"),
-                                   QStringLiteral("unix_s"), QStringLiteral("unix_ms")};
-    if (m.time.format.isEmpty() && !units.contains(m.time.unit))
-        r.fail(QStringLiteral("time.unit"), QStringLiteral("unknown unit '%1' (%2)").arg(m.time.unit, units.join(QStringLiteral(", "))));
+                 QStringLiteral("timezone"), QStringLiteral("interval")});
     m.time.timezone = r.string(time, QStringLiteral("timezone"), QStringLiteral("time"), QStringLiteral("UTC"));
     static const QRegularExpression offsetRe(QStringLiteral("^[+-]\\d\\d:\\d\\d$"));
     if (m.time.timezone != QLatin1String("UTC") && m.time.timezone != QLatin1String("local") &&
         !offsetRe.match(m.time.timezone).hasMatch())
         r.fail(QStringLiteral("time.timezone"), QStringLiteral("must be \"UTC\", \"local\" or an offset like \"+01:00\", got '%1'")
                                                     .arg(m.time.timezone));
+    if (time.contains(QStringLiteral("interval"))) {
+        // A clock from the row number: a logger writing one row per interval, no time column.
+        for (const char *key : {"column", "index", "unit", "format"}) {
+            if (time.contains(QLatin1String(key)))
+                r.fail(QStringLiteral("time.") + QLatin1String(key),
+                       QStringLiteral("not with \"interval\" (the time is the row number times the interval; give one or the other)"));
+        }
+        m.time.interval = r.string(time, QStringLiteral("interval"), QStringLiteral("time")).trimmed();
+        m.time.interval_s = parseInterval(m.time.interval);
+        if (m.time.interval_s <= 0.0)
+            r.fail(QStringLiteral("time.interval"),
+                   QStringLiteral("'%1' is not an interval: a positive number and a unit s, min or h, e.g. \"1 min\" or \"15 s\"")
+                       .arg(m.time.interval));
+        m.time.unit = QStringLiteral("s");
+    } else {
+        r.columnRef(time, QStringLiteral("time"), m.time.column, m.time.index);
+        m.time.format = r.string(time, QStringLiteral("format"), QStringLiteral("time"));
+        m.time.unit = r.string(time, QStringLiteral("unit"), QStringLiteral("time"), m.time.format.isEmpty() ? QStringLiteral("s") : QString());
+        if (!m.time.format.isEmpty() && !m.time.unit.isEmpty())
+            r.fail(QStringLiteral("time"), QStringLiteral("give either \"unit\" (numbers) or \"format\" (date-times), not both"));
+        static const QStringList units{QStringLiteral("s"), QStringLiteral("ms"), QStringLiteral("min"), QStringLiteral("h"),
+                                       QStringLiteral("unix_s"), QStringLiteral("unix_ms")};
+        if (m.time.format.isEmpty() && !units.contains(m.time.unit))
+            r.fail(QStringLiteral("time.unit"), QStringLiteral("unknown unit '%1' (%2)").arg(m.time.unit, units.join(QStringLiteral(", "))));
+        if (!m.header && m.time.index == 0)
+            r.fail(QStringLiteral("time.column"), QStringLiteral("csv.header is false: refer to the time column by \"index\""));
+    }
+    if (root.contains(QStringLiteral("run"))) {
+        const QJsonObject run = r.object(root, QStringLiteral("run"), QString());
+        r.allowOnly(run, QStringLiteral("run"), {QStringLiteral("column"), QStringLiteral("index")});
+        r.columnRef(run, QStringLiteral("run"), m.runColumn, m.runIndex);
+        if (!m.header && m.runIndex == 0)
+            r.fail(QStringLiteral("run.column"), QStringLiteral("csv.header is false: refer to the run column by \"index\""));
+    }
 
     m.session = r.object(root, QStringLiteral("session"), QString());
     r.allowOnly(m.session, QStringLiteral("session"),
-                {QStringLiteral("name"), QStringLiteral("started"), QStringLiteral("operator"), QStringLiteral("notes")});
+                {QStringLiteral("name"), QStringLiteral("started"), QStringLiteral("started_from_file_name"), QStringLiteral("operator"),
+                 QStringLiteral("notes")});
     for (const QString &key : m.session.keys())
         r.string(m.session, key, QStringLiteral("session"));
     const QString started = m.session.value(QStringLiteral("started")).toString();
     if (!started.isEmpty() && !QDateTime::fromString(started, Qt::ISODate).isValid())
         r.fail(QStringLiteral("session.started"), QStringLiteral("'%1' is not an ISO 8601 date-time").arg(started));
+    const QString pattern = m.session.value(QStringLiteral("started_from_file_name")).toString();
+    if (m.session.contains(QStringLiteral("started_from_file_name"))) {
+        if (!started.isEmpty())
+            r.fail(QStringLiteral("session"), QStringLiteral("give either \"started\" or \"started_from_file_name\", not both"));
+        if (fileNameRegex(pattern).pattern().isEmpty())
+            r.fail(QStringLiteral("session.started_from_file_name"),
+                   QStringLiteral("'%1' is not a date-time pattern: it needs yyyy, MM and dd (and may hold HH, mm, ss, e.g. "
+                                  "\"yyyyMMdd_HHmmss\")").arg(pattern));
+    }
     m.machine = r.object(root, QStringLiteral("machine"), QString());
 
     const QJsonValue columns = root.value(QStringLiteral("columns"));
     if (!columns.isArray() || columns.toArray().isEmpty())
         r.fail(QStringLiteral("columns"), QStringLiteral("missing or empty: map at least one column to a channel"));
     QSet<QString> ids, refs;
-    refs.insert(m.time.index ? QString::number(m.time.index) : m.time.column);
+    if (!m.time.fromRows())
+        refs.insert(m.time.index ? QString::number(m.time.index) : m.time.column);
+    if (m.hasRuns()) {
+        const QString run = m.runIndex ? QString::number(m.runIndex) : m.runColumn;
+        if (refs.contains(run))
+            r.fail(QStringLiteral("run"), QStringLiteral("column '%1' is the time column").arg(run));
+        refs.insert(run);
+    }
     int i = 0;
     for (const QJsonValue &cv : columns.toArray()) {
         const QString path = QStringLiteral("columns[%1]").arg(i++);
@@ -315,7 +430,7 @@ CsvColumnMap CsvColumnMap::fromJson(const QByteArray &json, const QString &fileN
             r.fail(path + QStringLiteral(".column"), QStringLiteral("csv.header is false: refer to columns by \"index\""));
         const QString ref = s.index ? QString::number(s.index) : s.column;
         if (refs.contains(ref))
-            r.fail(path, QStringLiteral("column '%1' is mapped twice (or is the time column)").arg(ref));
+            r.fail(path, QStringLiteral("column '%1' is mapped twice (or is the time or run column)").arg(ref));
         refs.insert(ref);
         s.id = r.string(c, QStringLiteral("id"), path);
         if (s.id.isEmpty() || s.id.contains(QLatin1Char(',')) || s.id.contains(QLatin1Char('"')) || s.id == QLatin1String("time_s") ||
@@ -359,16 +474,20 @@ QJsonObject CsvColumnMap::toJson() const
                     {QStringLiteral("missing"), QJsonArray::fromStringList(missing)},
                     {QStringLiteral("unmapped_columns"), ignoreUnmapped ? QStringLiteral("ignore") : QStringLiteral("error")}};
     QJsonObject t;
-    if (time.index)
-        t.insert(QStringLiteral("index"), time.index);
-    else
-        t.insert(QStringLiteral("column"), time.column);
-    if (!time.format.isEmpty()) {
-        t.insert(QStringLiteral("format"), time.format);
-        t.insert(QStringLiteral("timezone"), time.timezone);
+    if (time.fromRows()) {
+        t.insert(QStringLiteral("interval"), time.interval);
     } else {
-        t.insert(QStringLiteral("unit"), time.unit);
+        if (time.index)
+            t.insert(QStringLiteral("index"), time.index);
+        else
+            t.insert(QStringLiteral("column"), time.column);
+        if (!time.format.isEmpty())
+            t.insert(QStringLiteral("format"), time.format);
+        else
+            t.insert(QStringLiteral("unit"), time.unit);
     }
+    if (!time.format.isEmpty() || time.timezone != QLatin1String("UTC"))
+        t.insert(QStringLiteral("timezone"), time.timezone);
     QJsonArray cols;
     for (const CsvColumnSpec &s : columns) {
         QJsonObject c;
@@ -400,6 +519,9 @@ QJsonObject CsvColumnMap::toJson() const
         root.insert(QStringLiteral("name"), name);
     if (!description.isEmpty())
         root.insert(QStringLiteral("description"), description);
+    if (hasRuns())
+        root.insert(QStringLiteral("run"), runIndex ? QJsonObject{{QStringLiteral("index"), runIndex}}
+                                                    : QJsonObject{{QStringLiteral("column"), runColumn}});
     if (!session.isEmpty())
         root.insert(QStringLiteral("session"), session);
     if (!machine.isEmpty())

@@ -7,6 +7,7 @@
 
 #include "StorageTypes.h"
 
+#include <QDateTime>
 #include <QJsonObject>
 #include <QString>
 #include <QStringList>
@@ -29,12 +30,15 @@ struct CsvColumnSpec {
 };
 
 struct CsvTimeSpec {
-    QString column;
-    int index = 0;
+    QString column;                     // the time column by header text ...
+    int index = 0;                      // ... or 1-based number; both empty with `interval`
+    QString interval;                   // "1 min": no time column, row k of a run is at k * interval
+    double interval_s = 0.0;            // `interval` in seconds (0 = a time column)
     QString unit = QStringLiteral("s"); // s | ms | min | h | unix_s | unix_ms; empty when `format` is set
     QString format;                     // "iso8601" or a Qt date-time format, e.g. "dd.MM.yyyy HH:mm:ss"
     QString timezone = QStringLiteral("UTC"); // UTC | local | +HH:MM / -HH:MM (date-time formats only)
     bool absolute() const { return !format.isEmpty() || unit.startsWith(QLatin1String("unix")); }
+    bool fromRows() const { return interval_s > 0.0; }
 };
 
 class CsvColumnMap {
@@ -55,6 +59,14 @@ public:
     static QStringList units(const QString &kind);
     static const QStringList &kinds();
     static const QStringList &knownRoles();
+    // "1 min", "15 s", "0.5 h" -> seconds (> 0); 0 when the text is not such an interval.
+    static double parseInterval(const QString &text);
+    // The session start a file's name holds by the map's session.started_from_file_name
+    // pattern (a Qt date-time format such as "yyyyMMdd_HHmmss", searched in the base name),
+    // in the map's time zone. Invalid when there is no pattern or the name does not match.
+    QDateTime startFromFileName(const QString &path) const;
+    // A date-time read without a zone, placed in the map's time.timezone.
+    QDateTime inTimeZone(const QDateTime &dt) const;
 
     QString name;
     QString description;
@@ -66,8 +78,11 @@ public:
     QStringList missing{QString(), QStringLiteral("nan")}; // compared trimmed, case-insensitive
     bool ignoreUnmapped = true;
     CsvTimeSpec time;
+    QString runColumn;   // "run": a column whose values split the table into sessions ...
+    int runIndex = 0;    // ... by header text or 1-based number (both empty: one session)
+    bool hasRuns() const { return runIndex > 0 || !runColumn.isEmpty(); }
     QVector<CsvColumnSpec> columns;
-    QJsonObject session; // name, started, operator, notes
+    QJsonObject session; // name, started, started_from_file_name, operator, notes
     QJsonObject machine; // copied into the session's machine block
 };
 

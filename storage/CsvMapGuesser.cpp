@@ -54,37 +54,94 @@ bool isNumber(const QString &s, char decimal)
 
 void CsvMapGuesser::guessDialect(const QByteArray &head, CsvColumnMap &map)
 {
-    QByteArray text = head.startsWith("\xEF\xBB\xBF") ? head.mid(3) : head;
-    // The separator: the candidate found most often, and as often on every one of the first
-    // lines (ties: ';' before tab before ',' before '|', since ';' files often hold commas).
-    const QList<QByteArray> lines = text.left(64 * 1024).split('\n');
-    int best = 0;
+    const QByteArray text = head.startsWith("\xEF\xBB\xBF") ? head.mid(3) : head;
+    // Physical lines (CsvReader counts every line); a last line cut by the sample is left out.
+    QList<QByteArray> lines = text.left(64 * 1024).split('\n');
+    if (lines.size() > 1 && !text.endsWith('\n'))
+        lines.removeLast();
+    for (QByteArray &l : lines) {
+        if (l.endsWith('\r'))
+            l.chop(1);
+    }
+    while (lines.size() > 200)
+        lines.removeLast();
+    // The table is the block at the end of the sample where every line has the same number
+    // of separators; a logger's preamble ("Messung 17;Spindel 3", "erstellt 01.03.2025")
+    // comes before it. The separator is the candidate with the longest such block (ties:
+    // more columns, then ';' before tab before ',' before '|', since ';' files hold commas).
+    int bestRun = 0, bestCount = 0, bestFirst = 0;
     char separator = ',';
     for (const char c : {';', '\t', ',', '|'}) {
-        int consistent = -1;
-        int checked = 0;
-        for (const QByteArray &l : lines) {
-            if (l.trimmed().isEmpty() || l.startsWith('#'))
+        int run = 0, count = -1, first = 0;
+        for (int i = lines.size() - 1; i >= 0; --i) {
+            if (lines[i].trimmed().isEmpty())
                 continue;
-            const int n = l.count(c);
-            consistent = consistent < 0 ? n : (n == consistent ? n : 0);
-            if (++checked == 20)
+            const int n = lines[i].count(c);
+            if (count < 0)
+                count = n;
+            if (n != count || n == 0)
                 break;
+            ++run;
+            first = i;
         }
-        if (consistent > best) {
-            best = consistent;
+        if (count > 0 && (run > bestRun || (run == bestRun && count > bestCount))) {
+            bestRun = run;
+            bestCount = count;
+            bestFirst = first;
             separator = c;
         }
     }
     map.separator = separator;
-    // A decimal comma: cells like 12,5 where ',' is not the separator.
+    // The header: the last line of text (mostly not numbers or dates) before the first data
+    // line of the block; a block that starts with data has no header.
+    static const QRegularExpression numeric(QStringLiteral("^[+-]?\\d+([.,]\\d+)?([eE][+-]?\\d+)?$"));
+    static const QRegularExpression dateLike(QStringLiteral("^\\d[\\d.:/\\-T ]*\\d(Z|[+-]\\d\\d:?\\d\\d)?$"));
+    const auto cells = [separator](const QByteArray &line) {
+        QStringList out;
+        for (const QByteArray &f : line.split(separator)) {
+            QString t = QString::fromLatin1(f).trimmed();
+            if (t.size() >= 2 && t.startsWith(QLatin1Char('"')) && t.endsWith(QLatin1Char('"')))
+                t = t.mid(1, t.size() - 2).trimmed();
+            out << t;
+        }
+        return out;
+    };
+    // 1: data (most non-empty cells are numbers or dates), 0: text, -1: only empty cells.
+    const auto kind = [&](const QByteArray &line) {
+        int filled = 0, values = 0;
+        for (const QString &c : cells(line)) {
+            filled += c.isEmpty() ? 0 : 1;
+            values += numeric.match(c).hasMatch() || dateLike.match(c).hasMatch() ? 1 : 0;
+        }
+        return filled == 0 ? -1 : 2 * values > filled ? 1 : 0;
+    };
+    int header = -1, firstData = lines.size();
+    if (bestRun > 0) {
+        for (int i = bestFirst; i < lines.size(); ++i) {
+            const int k = kind(lines[i]);
+            if (k < 0)
+                continue;
+            if (k == 1) {
+                firstData = i;
+                break;
+            }
+            header = i;
+        }
+    }
+    map.header = header >= 0 || bestRun == 0;
+    map.skipLines = header >= 0 ? header : bestRun > 0 ? bestFirst : 0;
+    // A decimal comma: more data cells like 12,5 than like 12.5 (dates such as 01.03.2025
+    // and times are neither).
     map.decimal = '.';
     if (separator != ',') {
-        static const QRegularExpression comma(QStringLiteral("(^|[;\\t|])\\s*[+-]?\\d+,\\d+\\s*($|[;\\t|])"));
+        static const QRegularExpression comma(QStringLiteral("^[+-]?\\d+,\\d+([eE][+-]?\\d+)?$"));
+        static const QRegularExpression point(QStringLiteral("^[+-]?\\d+\\.\\d+([eE][+-]?\\d+)?$"));
         int commas = 0, points = 0;
-        for (const QByteArray &l : lines) {
-            commas += QString::fromLatin1(l).contains(comma) ? 1 : 0;
-            points += QString::fromLatin1(l).contains(QRegularExpression(QStringLiteral("\\d\\.\\d"))) ? 1 : 0;
+        for (int i = firstData; i < lines.size(); ++i) {
+            for (const QString &c : cells(lines[i])) {
+                commas += comma.match(c).hasMatch() ? 1 : 0;
+                points += point.match(c).hasMatch() ? 1 : 0;
+            }
         }
         if (commas > points)
             map.decimal = ',';
@@ -149,7 +206,11 @@ CsvColumnSpec CsvMapGuesser::guessColumn(const QString &header, int column)
         if (!s.column.contains(QLatin1Char('[')) && !s.column.contains(QLatin1Char('(')))
             name = s.column; // keep e.g. "spindle_rpm" whole; "Power [W]" becomes "Power"
     }
-    if (lower.contains(QLatin1String("spindle")) || unit == QLatin1String("rpm") || unit == QLatin1String("1/min"))
+    // "spindle" is the role of a drive (a speed), never of a temperature or a displacement
+    // near the spindle: a model would take it as its drive.
+    const bool measured = s.kind == QLatin1String("temperature") || s.kind == QLatin1String("displacement");
+    if (!measured && (lower.contains(QLatin1String("spindle")) || lower.contains(QLatin1String("spindel")) ||
+                      lower.contains(QLatin1String("drehzahl")) || unit == QLatin1String("rpm") || unit == QLatin1String("1/min")))
         s.role = QStringLiteral("spindle");
     else if (lower.contains(QLatin1String("amb")) || lower.contains(QLatin1String("umgebung")))
         s.role = QStringLiteral("ambient");

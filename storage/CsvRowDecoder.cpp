@@ -37,6 +37,8 @@ double toSeconds(double raw, const QString &unit)
 
 CsvRowDecoder::CsvRowDecoder(const CsvColumnMap &map, const QString &fileName) : m_map(map), m_file(fileName)
 {
+    if (!map.hasRuns())
+        m_runs.push_back(Run());
     const char *codec = map.encoding == QLatin1String("latin1")         ? "ISO-8859-1"
                         : map.encoding == QLatin1String("windows-1252") ? "windows-1252"
                                                                         : "UTF-8";
@@ -45,6 +47,14 @@ CsvRowDecoder::CsvRowDecoder(const CsvColumnMap &map, const QString &fileName) :
         m_missing.push_back(m_codec->fromUnicode(token.trimmed()));
     if (!m_codec)
         throw CsvError(fileName, 0, 0, QStringLiteral("csv.encoding"), QStringLiteral("this Qt has no codec for %1").arg(map.encoding));
+}
+
+QStringList CsvRowDecoder::runs() const
+{
+    QStringList out;
+    for (const Run &r : m_runs)
+        out << r.value;
+    return out;
 }
 
 QString CsvRowDecoder::text(const QByteArray &cell) const
@@ -104,15 +114,24 @@ void CsvRowDecoder::bind(const CsvRecord &first)
         for (int i = 0; i < m_width; ++i)
             m_header << QStringLiteral("column %1").arg(i + 1);
     }
-    m_timeCol = resolve(m_map.time.column, m_map.time.index, QStringLiteral("time"));
     QVector<bool> used(m_width, false);
-    used[m_timeCol] = true;
+    if (!m_map.time.fromRows()) {
+        m_timeCol = resolve(m_map.time.column, m_map.time.index, QStringLiteral("time"));
+        used[m_timeCol] = true;
+    }
+    if (m_map.hasRuns()) {
+        m_runCol = resolve(m_map.runColumn, m_map.runIndex, QStringLiteral("run"));
+        if (used[m_runCol])
+            throw CsvError(m_file, 0, 0, QStringLiteral("run"),
+                           QStringLiteral("column %1 ('%2') is the time column").arg(m_runCol + 1).arg(m_header[m_runCol]));
+        used[m_runCol] = true;
+    }
     for (int c = 0; c < m_map.columns.size(); ++c) {
         const CsvColumnSpec &s = m_map.columns[c];
         const int col = resolve(s.column, s.index, QStringLiteral("columns[%1]").arg(c));
         if (used[col])
             throw CsvError(m_file, 0, 0, QStringLiteral("columns[%1]").arg(c),
-                           QStringLiteral("column %1 ('%2') is mapped twice (or is the time column)").arg(col + 1).arg(m_header[col]));
+                           QStringLiteral("column %1 ('%2') is mapped twice (or is the time or run column)").arg(col + 1).arg(m_header[col]));
         used[col] = true;
         double factor = 1, add = 0;
         ChannelInfo ch;
@@ -169,9 +188,31 @@ double CsvRowDecoder::number(const CsvRecord &r, int col, bool &missing) const
     return v;
 }
 
-double CsvRowDecoder::timeOf(const CsvRecord &r)
+int CsvRowDecoder::runOf(const CsvRecord &r)
+{
+    if (m_runCol < 0)
+        return 0;
+    const QString value = m_codec->toUnicode(r.fields[m_runCol]).trimmed();
+    if (value.isEmpty())
+        fail(r, m_runCol, QStringLiteral("empty run value (the run column names the session of every row)"));
+    const auto it = m_runIndex.constFind(value);
+    if (it != m_runIndex.constEnd())
+        return it.value();
+    if (m_runs.size() >= kMaxRuns)
+        fail(r, m_runCol, QStringLiteral("more than %1 distinct run values: is this the run column?").arg(kMaxRuns));
+    Run run;
+    run.value = value;
+    m_runs.push_back(run);
+    m_runIndex.insert(value, m_runs.size() - 1);
+    return m_runs.size() - 1;
+}
+
+double CsvRowDecoder::timeOf(const CsvRecord &r, int runIndex)
 {
     const CsvTimeSpec &t = m_map.time;
+    Run &run = m_runs[runIndex];
+    if (t.fromRows())
+        return static_cast<double>(run.rows) * t.interval_s;
     if (t.format.isEmpty()) {
         bool missing = false;
         const double raw = number(r, m_timeCol, missing);
@@ -180,11 +221,11 @@ double CsvRowDecoder::timeOf(const CsvRecord &r)
         const double s = toSeconds(raw, t.unit);
         if (!t.absolute())
             return s;
-        if (m_rows == 0) {
-            m_epochOrigin = s;
-            m_origin = QDateTime::fromMSecsSinceEpoch(static_cast<qint64>(std::llround(s * 1000.0)), Qt::UTC);
+        if (run.rows == 0) {
+            run.epochOrigin = s;
+            run.origin = QDateTime::fromMSecsSinceEpoch(static_cast<qint64>(std::llround(s * 1000.0)), Qt::UTC);
         }
-        return s - m_epochOrigin;
+        return s - run.epochOrigin;
     }
     const QString text = m_codec->toUnicode(r.fields[m_timeCol]).trimmed();
     if (text.isEmpty())
@@ -193,18 +234,11 @@ double CsvRowDecoder::timeOf(const CsvRecord &r)
                                                         : QDateTime::fromString(text, t.format);
     if (!dt.isValid())
         fail(r, m_timeCol, QStringLiteral("'%1' does not match the time format '%2'").arg(text.left(40), t.format));
-    if (dt.timeSpec() == Qt::LocalTime) { // no zone in the text: the map's time zone
-        if (t.timezone == QLatin1String("UTC"))
-            dt = QDateTime(dt.date(), dt.time(), Qt::UTC);
-        else if (t.timezone != QLatin1String("local"))
-            dt = QDateTime(dt.date(), dt.time(), Qt::OffsetFromUTC,
-                           (t.timezone[0] == QLatin1Char('-') ? -1 : 1) *
-                               (t.timezone.midRef(1, 2).toInt() * 3600 + t.timezone.midRef(4, 2).toInt() * 60));
-    }
+    dt = m_map.inTimeZone(dt); // no zone in the text: the map's time zone
     const qint64 ms = dt.toMSecsSinceEpoch();
-    if (m_rows == 0)
-        m_origin = QDateTime::fromMSecsSinceEpoch(ms, Qt::UTC);
-    return static_cast<double>(ms - m_origin.toMSecsSinceEpoch()) / 1000.0;
+    if (run.rows == 0)
+        run.origin = QDateTime::fromMSecsSinceEpoch(ms, Qt::UTC);
+    return static_cast<double>(ms - run.origin.toMSecsSinceEpoch()) / 1000.0;
 }
 
 bool CsvRowDecoder::accept(const CsvRecord &r)
@@ -225,10 +259,15 @@ bool CsvRowDecoder::accept(const CsvRecord &r)
         throw CsvError(m_file, r.line, 0, QString(),
                        QStringLiteral("expected %1 fields, found %2 (truncated or malformed line)").arg(m_width).arg(r.fields.size()));
     m_row.line = r.line;
-    m_row.time_s = timeOf(r);
-    if (m_row.time_s < m_lastTime)
-        fail(r, m_timeCol, QStringLiteral("time goes backwards (%1 s after %2 s)").arg(m_row.time_s, 0, 'g', 12).arg(m_lastTime, 0, 'g', 12));
-    m_lastTime = m_row.time_s;
+    m_row.run = runOf(r);
+    m_row.time_s = timeOf(r, m_row.run);
+    Run &run = m_runs[m_row.run];
+    if (m_row.time_s < run.lastTime)
+        fail(r, m_timeCol, QStringLiteral("time goes backwards (%1 s after %2 s%3)")
+                               .arg(m_row.time_s, 0, 'g', 12)
+                               .arg(run.lastTime, 0, 'g', 12)
+                               .arg(m_runCol >= 0 ? QStringLiteral(" in run '%1'").arg(run.value) : QString()));
+    run.lastTime = m_row.time_s;
     for (int c = 0; c < m_cols.size(); ++c) {
         bool missing = false;
         const double raw = number(r, m_cols[c], missing);
@@ -241,6 +280,7 @@ bool CsvRowDecoder::accept(const CsvRecord &r)
             fail(r, m_cols[c], QStringLiteral("value '%1' out of range after scaling").arg(shown(r.fields[m_cols[c]])));
         m_row.values[c] = v;
     }
+    ++run.rows;
     ++m_rows;
     return true;
 }

@@ -41,7 +41,9 @@ constexpr int kHeadBytes = 64 * 1024;
 constexpr int kPreviewRows = 20;
 enum Col { Use, Header, Id, Kind, Unit, Role, Target, Scale, Offset, Count };
 const QStringList kTimeUnits{QStringLiteral("s"), QStringLiteral("ms"), QStringLiteral("min"), QStringLiteral("h"),
-                             QStringLiteral("unix_s"), QStringLiteral("unix_ms"), QStringLiteral("date-time")};
+                             QStringLiteral("unix_s"), QStringLiteral("unix_ms"), QStringLiteral("date-time"),
+                             QStringLiteral("interval")};
+const QString kInterval = QStringLiteral("interval");
 
 QComboBox *combo(const QStringList &items, bool editable, const QString &current)
 {
@@ -90,15 +92,18 @@ void CsvImportDialog::buildUi()
     auto *format = new QGroupBox(tr("Format"));
     auto *ff = new QFormLayout(format);
     m_separator = new QComboBox;
+    m_separator->setObjectName(QStringLiteral("CsvSeparator"));
     const char *labels[] = {QT_TR_NOOP("Comma ,"), QT_TR_NOOP("Semicolon ;"), QT_TR_NOOP("Tab"), QT_TR_NOOP("Bar |"), QT_TR_NOOP("Space")};
     const char separators[] = {',', ';', '\t', '|', ' '};
     for (int i = 0; i < 5; ++i)
         m_separator->addItem(tr(labels[i]), QVariant(static_cast<int>(separators[i])));
     m_decimal = new QComboBox;
+    m_decimal->setObjectName(QStringLiteral("CsvDecimal"));
     m_decimal->addItem(tr("Point 1.5"), QVariant(static_cast<int>('.')));
     m_decimal->addItem(tr("Comma 1,5"), QVariant(static_cast<int>(',')));
     m_encoding = combo({QStringLiteral("utf-8"), QStringLiteral("windows-1252"), QStringLiteral("latin1")}, false, QStringLiteral("utf-8"));
     m_skip = new QSpinBox;
+    m_skip->setObjectName(QStringLiteral("CsvSkipLines"));
     m_skip->setRange(0, 10000);
     m_hasHeader = new QCheckBox(tr("First line is a header"));
     m_hasHeader->setChecked(true);
@@ -110,12 +115,26 @@ void CsvImportDialog::buildUi()
     auto *time = new QGroupBox(tr("Time and session"));
     auto *tf = new QFormLayout(time);
     m_timeColumn = new QComboBox;
+    m_timeColumn->setObjectName(QStringLiteral("CsvTimeColumn"));
     m_timeUnit = combo(kTimeUnits, false, QStringLiteral("s"));
+    m_timeUnit->setObjectName(QStringLiteral("CsvTimeUnit"));
     m_timeFormat = new QLineEdit;
     m_timeFormat->setPlaceholderText(QStringLiteral("iso8601 or e.g. dd.MM.yyyy HH:mm:ss"));
     m_timeZone = combo({QStringLiteral("UTC"), QStringLiteral("local"), QStringLiteral("+01:00"), QStringLiteral("+02:00")}, true,
                        QStringLiteral("UTC"));
+    m_interval = new QLineEdit;
+    m_interval->setObjectName(QStringLiteral("CsvInterval"));
+    m_interval->setPlaceholderText(tr("one row every, e.g. 1 min, 15 s, 0.5 h"));
+    m_runColumn = new QComboBox;
+    m_runColumn->setObjectName(QStringLiteral("CsvRunColumn"));
+    m_runColumn->setToolTip(tr("A column naming the run of each row: one session per distinct value, in file order"));
+    m_startWarning = new QLabel;
+    m_startWarning->setObjectName(QStringLiteral("CsvStartWarning"));
+    m_startWarning->setWordWrap(true);
+    m_startWarning->setStyleSheet(QStringLiteral("color: #a05a00;"));
+    m_startWarning->hide();
     m_started = new QDateTimeEdit(QDateTime::currentDateTimeUtc());
+    m_started->setObjectName(QStringLiteral("CsvStarted"));
     m_started->setTimeSpec(Qt::UTC);
     m_started->setDisplayFormat(QStringLiteral("yyyy-MM-dd HH:mm:ss 'UTC'"));
     m_name = new QLineEdit;
@@ -123,7 +142,10 @@ void CsvImportDialog::buildUi()
     tf->addRow(tr("Time unit"), m_timeUnit);
     tf->addRow(tr("Date-time format"), m_timeFormat);
     tf->addRow(tr("Time zone of the clock"), m_timeZone);
-    tf->addRow(tr("Session start (for s, ms, min, h)"), m_started);
+    tf->addRow(tr("Row interval"), m_interval);
+    tf->addRow(tr("Session start (clock without dates)"), m_started);
+    tf->addRow(QString(), m_startWarning);
+    tf->addRow(tr("Run column (one session per run)"), m_runColumn);
     tf->addRow(tr("Session name"), m_name);
     options->addWidget(format);
     options->addWidget(time, 1);
@@ -162,35 +184,115 @@ void CsvImportDialog::buildUi()
     connect(m_cancel, &QPushButton::clicked, this, [this] { isImporting() ? cancelImport() : reject(); });
     layout->addWidget(buttons);
     m_inputs = {browse, m_separator, m_decimal, m_encoding, m_skip, m_hasHeader, m_timeColumn, m_timeUnit, m_timeFormat,
-                m_timeZone, m_started, m_name, m_columns, load, save, m_import};
+                m_timeZone, m_interval, m_started, m_runColumn, m_name, m_columns, load, save, m_import};
 
     const auto dialectChanged = [this] {
         if (m_updating || m_path.isEmpty())
             return;
-        CsvColumnMap keep = columnMap();
+        const CsvColumnMap keep = columnMap();
+        const QStringList oldHeader = m_header;
         reloadPreview();
-        fillColumns(keep);
+        if (m_header == oldHeader) {
+            fillColumns(keep);
+            return;
+        }
+        // A fixed separator, preamble or encoding gives other columns: the old assignment names
+        // columns that are gone. Guess the new ones, keeping what was set for surviving columns.
+        CsvColumnMap guess = keep;
+        CsvMapGuesser::guessColumns(m_header, previewRows(), guess);
+        for (CsvColumnSpec &g : guess.columns) {
+            for (const CsvColumnSpec &k : keep.columns) {
+                if (k.index == 0 && g.index == 0 && k.column == g.column)
+                    g = k;
+            }
+        }
+        if (keep.time.fromRows() || (!keep.time.column.isEmpty() && m_header.contains(keep.time.column)))
+            guess.time = keep.time;
+        if (!keep.runColumn.isEmpty() && !m_header.contains(keep.runColumn))
+            guess.runColumn.clear();
+        if (keep.runIndex > m_header.size())
+            guess.runIndex = 0;
+        setColumnMap(guess);
     };
     connect(m_separator, QOverload<int>::of(&QComboBox::currentIndexChanged), this, dialectChanged);
     connect(m_decimal, QOverload<int>::of(&QComboBox::currentIndexChanged), this, dialectChanged);
     connect(m_encoding, QOverload<int>::of(&QComboBox::currentIndexChanged), this, dialectChanged);
     connect(m_skip, QOverload<int>::of(&QSpinBox::valueChanged), this, dialectChanged);
     connect(m_hasHeader, &QCheckBox::toggled, this, dialectChanged);
-    connect(m_timeColumn, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this] {
+    const auto columnsChanged = [this] {
         if (!m_updating && !m_path.isEmpty())
             fillColumns(columnMap());
+    };
+    connect(m_timeColumn, QOverload<int>::of(&QComboBox::currentIndexChanged), this, columnsChanged);
+    connect(m_runColumn, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this, columnsChanged] {
+        columnsChanged();
+        updateStartWarning();
     });
-    connect(m_timeUnit, &QComboBox::currentTextChanged, this, &CsvImportDialog::updateTimeWidgets);
+    connect(m_timeUnit, &QComboBox::currentTextChanged, this, [this, columnsChanged](const QString &unit) {
+        updateTimeWidgets();
+        if (unit == kInterval && m_interval->text().trimmed().isEmpty())
+            m_interval->setText(QStringLiteral("1 min"));
+        columnsChanged(); // the time column is a channel candidate with an interval clock
+    });
+    connect(m_started, &QDateTimeEdit::dateTimeChanged, this, [this] {
+        if (!m_updating) {
+            m_startGuessed = false;
+            updateStartWarning();
+        }
+    });
     updateTimeWidgets();
+}
+
+void CsvImportDialog::updateStartWarning()
+{
+    QString text;
+    if (m_started->isEnabled() || isImporting()) {
+        const bool relative = m_timeUnit->currentText() != QLatin1String("date-time") && !m_timeUnit->currentText().startsWith(QLatin1String("unix"));
+        if (relative && m_startGuessed)
+            text = tr("The session start is a guess (the file's modification time): check it.");
+        if (relative && m_runColumn->currentIndex() > 0)
+            text += (text.isEmpty() ? QString() : QStringLiteral(" ")) +
+                    tr("Every run gets this start: the clock has no dates.");
+    }
+    m_startWarning->setText(text);
+    m_startWarning->setVisible(!text.isEmpty());
+}
+
+QString CsvImportDialog::startWarning() const
+{
+    return m_startWarning->text();
+}
+
+void CsvImportDialog::clearError()
+{
+    m_status->clear();
+    m_status->setStyleSheet(QString());
+    m_status->setProperty("error", false);
+}
+
+QVector<QStringList> CsvImportDialog::previewRows() const
+{
+    QVector<QStringList> rows;
+    for (int r = 0; r < m_preview->rowCount(); ++r) {
+        QStringList row;
+        for (int c = 0; c < m_preview->columnCount(); ++c)
+            row << (m_preview->item(r, c) ? m_preview->item(r, c)->text() : QString());
+        rows << row;
+    }
+    return rows;
 }
 
 void CsvImportDialog::updateTimeWidgets()
 {
     const QString unit = m_timeUnit->currentText();
     const bool dateTime = unit == QLatin1String("date-time");
+    const bool interval = unit == kInterval;
     m_timeFormat->setEnabled(dateTime && !isImporting());
     m_timeZone->setEnabled(dateTime && !isImporting());
+    m_timeColumn->setEnabled(!interval && !isImporting());
+    m_interval->setEnabled(interval && !isImporting());
     m_started->setEnabled(!dateTime && !unit.startsWith(QLatin1String("unix")) && !isImporting());
+    updateStartWarning();
 }
 
 QString CsvImportDialog::signature(char separator, const QStringList &header)
@@ -199,8 +301,11 @@ QString CsvImportDialog::signature(char separator, const QStringList &header)
     return QString::fromLatin1(QCryptographicHash::hash(text, QCryptographicHash::Sha1).toHex());
 }
 
-void CsvImportDialog::remember(const CsvColumnMap &map) const
+void CsvImportDialog::remember(const CsvColumnMap &given) const
 {
+    CsvColumnMap map = given; // the assignment, not this file's name and start
+    map.session.remove(QStringLiteral("name"));
+    map.session.remove(QStringLiteral("started"));
     QSettings settings;
     settings.setValue(QStringLiteral("csvImport/maps/") + signature(map.separator, m_header),
                       QString::fromUtf8(QJsonDocument(map.toJson()).toJson(QJsonDocument::Compact)));
@@ -230,8 +335,11 @@ bool CsvImportDialog::openFile(const QString &path)
     m_head = f.read(kHeadBytes);
     m_file->setText(QDir::toNativeSeparators(path));
     m_name->setText(QFileInfo(path).completeBaseName());
+    m_updating = true;
     m_started->setDateTime(QFileInfo(path).lastModified().toUTC());
-    m_status->clear();
+    m_updating = false;
+    m_startGuessed = true;
+    clearError();
     CsvColumnMap map;
     CsvMapGuesser::guessDialect(m_head, map);
     setColumnMap(map); // shows the guessed dialect and reads the header
@@ -240,15 +348,8 @@ bool CsvImportDialog::openFile(const QString &path)
         m_status->setText(tr("Column assignment remembered from an earlier import of a table with this header."));
         return true;
     }
-    QVector<QStringList> rows;
-    for (int r = 0; r < m_preview->rowCount(); ++r) {
-        QStringList row;
-        for (int c = 0; c < m_preview->columnCount(); ++c)
-            row << (m_preview->item(r, c) ? m_preview->item(r, c)->text() : QString());
-        rows << row;
-    }
     map = columnMap();
-    CsvMapGuesser::guessColumns(m_header, rows, map);
+    CsvMapGuesser::guessColumns(m_header, previewRows(), map);
     setColumnMap(map);
     m_status->setText(tr("Kinds, units and roles guessed from the header: check them before importing."));
     return true;
@@ -300,6 +401,12 @@ void CsvImportDialog::reloadPreview()
     m_timeColumn->addItems(m_header);
     if (m_header.contains(time))
         m_timeColumn->setCurrentText(time);
+    const QString run = m_runColumn->currentIndex() > 0 ? m_runColumn->currentText() : QString();
+    m_runColumn->clear();
+    m_runColumn->addItem(tr("(none: one session)"));
+    m_runColumn->addItems(m_header);
+    if (!run.isEmpty() && m_header.contains(run))
+        m_runColumn->setCurrentText(run);
     m_updating = false;
 }
 
@@ -307,9 +414,10 @@ void CsvImportDialog::fillColumns(const CsvColumnMap &map)
 {
     m_updating = true;
     m_columns->setRowCount(0);
-    const int timeCol = m_timeColumn->currentIndex();
+    const int timeCol = m_timeUnit->currentText() == kInterval ? -1 : m_timeColumn->currentIndex();
+    const int runCol = m_runColumn->currentIndex() - 1;
     for (int c = 0; c < m_header.size(); ++c) {
-        if (c == timeCol)
+        if (c == timeCol || c == runCol)
             continue;
         const CsvColumnSpec *spec = nullptr;
         for (const CsvColumnSpec &s : map.columns) {
@@ -358,15 +466,26 @@ CsvColumnMap CsvImportDialog::columnMap() const
     m.encoding = m_encoding->currentText();
     m.skipLines = m_skip->value();
     m.header = m_hasHeader->isChecked();
-    if (m.header)
+    if (m_timeUnit->currentText() == kInterval) {
+        m.time.interval = m_interval->text().trimmed();
+        m.time.interval_s = CsvColumnMap::parseInterval(m.time.interval);
+        m.time.unit = QStringLiteral("s");
+    } else if (m.header) {
         m.time.column = m_timeColumn->currentText();
-    else
+    } else {
         m.time.index = m_timeColumn->currentIndex() + 1;
+    }
+    if (m_runColumn->currentIndex() > 0) {
+        if (m.header)
+            m.runColumn = m_runColumn->currentText();
+        else
+            m.runIndex = m_runColumn->currentIndex();
+    }
     if (m_timeUnit->currentText() == QLatin1String("date-time")) {
         m.time.unit.clear();
         m.time.format = m_timeFormat->text().trimmed();
         m.time.timezone = m_timeZone->currentText().trimmed();
-    } else {
+    } else if (m_timeUnit->currentText() != kInterval) {
         m.time.unit = m_timeUnit->currentText();
     }
     if (!m_name->text().trimmed().isEmpty())
@@ -396,6 +515,7 @@ CsvColumnMap CsvImportDialog::columnMap() const
 
 void CsvImportDialog::setColumnMap(const CsvColumnMap &map)
 {
+    clearError(); // an error about the previous assignment no longer holds
     m_updating = true;
     m_separator->setCurrentIndex(std::max(0, m_separator->findData(static_cast<int>(map.separator))));
     m_decimal->setCurrentIndex(std::max(0, m_decimal->findData(static_cast<int>(map.decimal))));
@@ -409,13 +529,22 @@ void CsvImportDialog::setColumnMap(const CsvColumnMap &map)
         m_timeColumn->setCurrentIndex(map.time.index - 1);
     else if (m_header.contains(map.time.column))
         m_timeColumn->setCurrentText(map.time.column);
-    m_timeUnit->setCurrentText(map.time.format.isEmpty() ? map.time.unit : QStringLiteral("date-time"));
+    m_timeUnit->setCurrentText(map.time.fromRows() ? kInterval : map.time.format.isEmpty() ? map.time.unit : QStringLiteral("date-time"));
+    m_interval->setText(map.time.interval);
+    m_runColumn->setCurrentIndex(0);
+    if (map.runIndex > 0 && map.runIndex <= m_header.size())
+        m_runColumn->setCurrentIndex(map.runIndex);
+    else if (!map.runColumn.isEmpty() && m_header.contains(map.runColumn))
+        m_runColumn->setCurrentIndex(m_header.indexOf(map.runColumn) + 1);
     m_timeFormat->setText(map.time.format);
     m_timeZone->setCurrentText(map.time.timezone);
     if (map.session.contains(QStringLiteral("name")))
         m_name->setText(map.session.value(QStringLiteral("name")).toString());
-    if (map.session.contains(QStringLiteral("started")))
+    if (map.session.contains(QStringLiteral("started")) &&
+        QDateTime::fromString(map.session.value(QStringLiteral("started")).toString(), Qt::ISODate).toUTC() != m_started->dateTime()) {
         m_started->setDateTime(QDateTime::fromString(map.session.value(QStringLiteral("started")).toString(), Qt::ISODate).toUTC());
+        m_startGuessed = false; // a start the map gives
+    }
     m_updating = false;
     updateTimeWidgets();
     fillColumns(map);
@@ -481,6 +610,7 @@ void CsvImportDialog::startImport()
     const QString db = m_database, path = m_path;
     m_worker = QThread::create([this, db, path, map, cancel] {
         qint64 id = 0, line = 0, rows = 0;
+        int sessions = 0;
         int column = 0;
         bool cancelled = false;
         QString error;
@@ -496,6 +626,7 @@ void CsvImportDialog::startImport()
             id = r.sessionId;
             cancelled = r.cancelled;
             rows = r.rows;
+            sessions = r.sessions.size();
         } catch (const CsvError &e) {
             error = QString::fromUtf8(e.what());
             line = e.line();
@@ -504,7 +635,7 @@ void CsvImportDialog::startImport()
             error = QString::fromUtf8(e.what());
         }
         QMetaObject::invokeMethod(
-            this, [this, id, cancelled, error, line, column, rows] { finishImport(id, cancelled, error, line, column, rows); },
+            this, [this, id, cancelled, error, line, column, rows, sessions] { finishImport(id, cancelled, error, line, column, rows, sessions); },
             Qt::QueuedConnection);
     });
     setBusy(true);
@@ -517,7 +648,8 @@ void CsvImportDialog::cancelImport()
         *m_cancelFlag = true;
 }
 
-void CsvImportDialog::finishImport(qint64 sessionId, bool cancelled, const QString &error, qint64 line, int column, qint64 rows)
+void CsvImportDialog::finishImport(qint64 sessionId, bool cancelled, const QString &error, qint64 line, int column, qint64 rows,
+                                   int sessions)
 {
     m_worker->wait();
     delete m_worker;
@@ -533,7 +665,8 @@ void CsvImportDialog::finishImport(qint64 sessionId, bool cancelled, const QStri
         emit importFinished(false);
         return;
     }
-    m_status->setText(tr("Session %1 imported: %2 rows.").arg(sessionId).arg(rows));
+    m_status->setText(sessions > 1 ? tr("%1 sessions imported (the first is %2): %3 rows.").arg(sessions).arg(sessionId).arg(rows)
+                                   : tr("Session %1 imported: %2 rows.").arg(sessionId).arg(rows));
     emit imported(sessionId);
     emit importFinished(true);
     accept();
@@ -568,13 +701,21 @@ void CsvImportDialog::chooseFile()
 void CsvImportDialog::loadMap()
 {
     const QString path = QFileDialog::getOpenFileName(this, tr("Column map"), QString(), tr("Column maps (*.json)"));
-    if (path.isEmpty())
-        return;
+    if (!path.isEmpty())
+        loadMapFile(path);
+}
+
+bool CsvImportDialog::loadMapFile(const QString &path)
+{
     try {
         setColumnMap(CsvColumnMap::load(path));
     } catch (const CsvError &e) {
         showError(QString::fromUtf8(e.what()));
+        return false;
     }
+    if (errorText().isEmpty())
+        m_status->setText(tr("Column map %1 applied.").arg(QDir::toNativeSeparators(path)));
+    return true;
 }
 
 void CsvImportDialog::chooseSaveMap()

@@ -1,6 +1,7 @@
 #pragma once
 // Imports a CSV table (a data logger's export) as a session: shows the file's first rows,
-// lets the user set the separator, decimal mark, encoding, preamble lines and the time column,
+// lets the user set the separator, decimal mark, encoding, preamble lines, the time column
+// (or a clock from the row number, "1 min"), a run column splitting the table into sessions,
 // and per column whether it is imported and as which channel (id, kind, unit, role, target,
 // scale, offset). The assignment is remembered per header signature (QSettings) and can be
 // saved as a column map for `driftlab-cli import-csv`. The import runs on a worker thread
@@ -42,6 +43,10 @@ public:
     CsvColumnMap columnMap() const;
     void setColumnMap(const CsvColumnMap &map);
     bool saveMap(const QString &path);
+    // Applies a column map file (Load map...); false (and the error shown) if it is not one.
+    bool loadMapFile(const QString &path);
+    // The warning shown while the session start is a guess (empty when it is not).
+    QString startWarning() const;
     // Starts the import on a worker thread; imported() or an error follows.
     void startImport();
     void cancelImport();
@@ -56,7 +61,7 @@ public:
     void reject() override; // while importing: cancels the import
 
 signals:
-    void imported(qint64 sessionId);
+    void imported(qint64 sessionId); // the first session (a run column makes several)
     void importFinished(bool ok);
 
 private:
@@ -66,18 +71,22 @@ private:
     void showError(const QString &message, qint64 line = 0, int column = 0);
     void remember(const CsvColumnMap &map) const;
     bool recall(CsvColumnMap &map) const;
-    void finishImport(qint64 sessionId, bool cancelled, const QString &error, qint64 line, int column, qint64 rows);
+    void finishImport(qint64 sessionId, bool cancelled, const QString &error, qint64 line, int column, qint64 rows, int sessions);
     void setBusy(bool busy);
     void chooseFile();
     void loadMap();
     void chooseSaveMap();
     void updateTimeWidgets();
+    void updateStartWarning();
+    void clearError();
+    QVector<QStringList> previewRows() const;
 
     QString m_database;
     QString m_path;
     QByteArray m_head;               // the file's first bytes (preview)
     QStringList m_header;            // header texts (or "column N")
     bool m_updating = false;
+    bool m_startGuessed = false;     // the start shown is the file's modification time
 
     QLineEdit *m_file = nullptr;
     QComboBox *m_separator = nullptr;
@@ -88,6 +97,9 @@ private:
     QComboBox *m_timeColumn = nullptr;
     QComboBox *m_timeUnit = nullptr;
     QLineEdit *m_timeFormat = nullptr;
+    QLineEdit *m_interval = nullptr;
+    QComboBox *m_runColumn = nullptr;
+    QLabel *m_startWarning = nullptr;
     QComboBox *m_timeZone = nullptr;
     QDateTimeEdit *m_started = nullptr;
     QLineEdit *m_name = nullptr;

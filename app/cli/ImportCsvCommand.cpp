@@ -6,6 +6,7 @@
 #include "SessionStore.h"
 
 #include <QCommandLineParser>
+#include <QDateTime>
 #include <QElapsedTimer>
 #include <QFileInfo>
 #include <QJsonArray>
@@ -29,25 +30,38 @@ int ImportCsvCommand::run(const QStringList &args)
                                  QStringLiteral("file"));
     const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database (default: driftlab.sqlite in the user's data directory)."),
                                 QStringLiteral("file"));
-    const QCommandLineOption name(QStringLiteral("name"), QStringLiteral("Session name (default: the map's session.name, else the file name)."),
+    const QCommandLineOption name(QStringLiteral("name"),
+                                  QStringLiteral("Session name (default: the map's session.name, else the file name; \" run VALUE\" is "
+                                                 "added per run, \" (FILE)\" with several files)."),
                                   QStringLiteral("text"));
-    const QCommandLineOption started(QStringLiteral("started"),
-                                     QStringLiteral("Session start, ISO 8601, for a time column in s/ms/min/h (default: the map's "
-                                                    "session.started, else the file's modification time)."),
+    const QCommandLineOption started(QStringList{QStringLiteral("started"), QStringLiteral("start")},
+                                     QStringLiteral("Session start, ISO 8601, for a clock without dates (s/ms/min/h or an interval; "
+                                                    "default: the map's session.started or session.started_from_file_name, else the "
+                                                    "file's modification time, with a warning)."),
                                      QStringLiteral("iso"));
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
                                   QStringLiteral("file"));
     p.addOptions({map, db, name, started, json});
-    p.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("CSV file."));
+    p.addPositionalArgument(QStringLiteral("FILE"),
+                            QStringLiteral("CSV file(s): one session each (one per run with the map's run column), all in one "
+                                           "transaction."),
+                            QStringLiteral("FILE..."));
     if (!parse(p, args))
         return 0;
-    if (p.positionalArguments().size() != 1)
-        throw UsageError(QStringLiteral("import-csv: expected one FILE argument, got %1").arg(p.positionalArguments().size()));
+    const QStringList files = p.positionalArguments();
+    if (files.isEmpty())
+        throw UsageError(QStringLiteral("import-csv: expected at least one FILE argument"));
     if (!p.isSet(map))
         throw UsageError(QStringLiteral("import-csv: --map MAP.json is required (docs/csv-import.md)"));
-    const QString file = p.positionalArguments().first();
-    if (!QFileInfo(file).isFile())
-        throw UsageError(QStringLiteral("import-csv: %1: no such file").arg(file));
+    for (const QString &file : files) {
+        if (!QFileInfo(file).isFile())
+            throw UsageError(QStringLiteral("import-csv: %1: no such file").arg(file));
+        if (files.count(file) > 1)
+            throw UsageError(QStringLiteral("import-csv: %1 is given twice").arg(file));
+    }
+    if (p.isSet(started) && !QDateTime::fromString(p.value(started), Qt::ISODateWithMs).isValid())
+        throw UsageError(QStringLiteral("import-csv: --started '%1' is not an ISO 8601 date-time (e.g. 2025-03-01T08:00:00Z)")
+                             .arg(p.value(started)));
     CsvImportResult r;
     QString path;
     QElapsedTimer timer;
@@ -55,7 +69,8 @@ int ImportCsvCommand::run(const QStringList &args)
         const CsvColumnMap columnMap = CsvColumnMap::load(p.value(map));
         path = CliSupport::databasePath(p.value(db), QString(), false);
         SessionStore store(path);
-        CliSupport::progress(QStringLiteral("importing %1 into %2 through %3").arg(file, path, p.value(map)));
+        CliSupport::progress(QStringLiteral("importing %1 into %2 through %3")
+                                 .arg(files.size() == 1 ? files.first() : QStringLiteral("%1 files").arg(files.size()), path, p.value(map)));
         CsvImportOptions options;
         options.sessionName = p.value(name);
         options.started = p.value(started);
@@ -69,16 +84,31 @@ int ImportCsvCommand::run(const QStringList &args)
             return true;
         };
         timer.start();
-        r = CsvImporter::importFile(store, file, columnMap, options);
+        r = CsvImporter::importFiles(store, files, columnMap, options);
     } catch (const CsvError &e) {
         throw UsageError(QStringLiteral("import-csv: %1 (nothing imported)").arg(QString::fromStdString(e.what())));
     }
-    if (r.startedFrom == QLatin1String("file modification time"))
-        CliSupport::progress(QStringLiteral("note: no session start in the map or --started: used the file's modification time %1").arg(r.started));
+    for (const QString &w : r.warnings)
+        CliSupport::progress(QStringLiteral("warning: ") + w);
     if (!r.ignoredColumns.isEmpty())
         CliSupport::progress(QStringLiteral("note: columns not in the map, not imported: %1").arg(r.ignoredColumns.join(QStringLiteral(", "))));
+    QJsonArray sessions;
+    for (const CsvImportedSession &s : r.sessions) {
+        QJsonObject o{{QStringLiteral("session"), static_cast<double>(s.sessionId)},
+                      {QStringLiteral("file"), s.file},
+                      {QStringLiteral("name"), s.name},
+                      {QStringLiteral("started"), s.started},
+                      {QStringLiteral("started_from"), s.startedFrom},
+                      {QStringLiteral("rows"), static_cast<double>(s.rows)},
+                      {QStringLiteral("samples"), static_cast<double>(s.samples)},
+                      {QStringLiteral("duration_s"), s.lastTime_s}};
+        if (!s.run.isEmpty())
+            o.insert(QStringLiteral("run"), s.run);
+        sessions.append(o);
+    }
+    // The first session's fields at the top level, as before several files and runs.
     const QJsonObject result{{QStringLiteral("database"), path},
-                             {QStringLiteral("file"), file},
+                             {QStringLiteral("file"), files.first()},
                              {QStringLiteral("map"), p.value(map)},
                              {QStringLiteral("session"), static_cast<double>(r.sessionId)},
                              {QStringLiteral("started"), r.started},
@@ -89,14 +119,19 @@ int ImportCsvCommand::run(const QStringList &args)
                              {QStringLiteral("duration_s"), r.lastTime_s},
                              {QStringLiteral("targets"), QJsonArray::fromStringList(r.targets)},
                              {QStringLiteral("ignored_columns"), QJsonArray::fromStringList(r.ignoredColumns)},
+                             {QStringLiteral("warnings"), QJsonArray::fromStringList(r.warnings)},
+                             {QStringLiteral("sessions"), sessions},
                              {QStringLiteral("wall_s"), static_cast<double>(timer.elapsed()) / 1000.0}};
-    if (p.isSet(json))
+    if (p.isSet(json)) {
         CliSupport::writeJson(QJsonDocument(result), p.value(json));
-    else
-        QTextStream(stdout) << "session " << r.sessionId << " in " << path << ": " << r.channels << " channels, " << r.rows
-                            << " rows, " << r.samples << " samples over " << QString::number(r.lastTime_s / 3600.0, 'f', 2)
-                            << " h" << (r.targets.isEmpty() ? QString() : QStringLiteral(", targets ") + r.targets.join(QLatin1Char(',')))
-                            << '\n';
+        return 0;
+    }
+    QTextStream out(stdout);
+    for (const CsvImportedSession &s : r.sessions)
+        out << "session " << s.sessionId << " in " << path << ": " << r.channels << " channels, " << s.rows << " rows, " << s.samples
+            << " samples over " << QString::number(s.lastTime_s / 3600.0, 'f', 2) << " h"
+            << (r.targets.isEmpty() ? QString() : QStringLiteral(", targets ") + r.targets.join(QLatin1Char(',')))
+            << (s.run.isEmpty() ? QString() : QStringLiteral(" (run %1)").arg(s.run)) << '\n';
     return 0;
 }
 

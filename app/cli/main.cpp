@@ -25,6 +25,7 @@
 
 #include <QApplication>
 #include <QCoreApplication>
+#include <QTextCodec>
 #include <QTextStream>
 
 #include <exception>
@@ -82,6 +83,9 @@ int main(int argc, char **argv)
         qputenv("QT_QPA_PLATFORM", "offscreen");
     std::unique_ptr<QCoreApplication> application =
         gui ? std::make_unique<QApplication>(argc, argv) : std::make_unique<QCoreApplication>(argc, argv);
+    // Every message is UTF-8 (°C, µm, file names), whatever the locale says: under LANG=C
+    // Qt 5 would otherwise write '?' or Latin-1 bytes, and decode UTF-8 arguments wrongly.
+    QTextCodec::setCodecForLocale(QTextCodec::codecForName("UTF-8"));
     QCoreApplication::setApplicationName(QStringLiteral("DriftLab"));
     QCoreApplication::setApplicationVersion(QStringLiteral(DRIFTLAB_VERSION));
     QTextStream err(stderr);
@@ -108,10 +112,11 @@ int main(int argc, char **argv)
         try {
             return c->run(args);
         } catch (const UsageError &e) {
-            err << "driftlab-cli: " << e.what() << '\n';
+            // what() holds UTF-8; QTextStream would read a const char * as Latin-1 ("Â°C").
+            err << "driftlab-cli: " << QString::fromUtf8(e.what()) << '\n';
             return 2;
         } catch (const std::exception &e) {
-            err << "driftlab-cli " << name << ": " << e.what() << '\n';
+            err << "driftlab-cli " << name << ": " << QString::fromUtf8(e.what()) << '\n';
             return 1;
         }
     }

@@ -6,6 +6,7 @@
 
 #include "SessionStore.h"
 
+#include <QDir>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -16,6 +17,7 @@
 #include "../support/CliRunner.h"
 
 #include <cmath>
+#include <cstdio>
 
 using namespace driftlab;
 
@@ -28,6 +30,9 @@ private slots:
     void badInputExitsTwoAndImportsNothing_data();
     void badInputExitsTwoAndImportsNothing();
     void usageErrorsExitTwo();
+    void severalFilesRunsAndInterval();
+    void utf8Messages_data();
+    void utf8Messages();
 
 private:
     using Result = clirunner::Result;
@@ -205,6 +210,116 @@ void TestCsvImportCli::usageErrorsExitTwo()
     const Result r = run({QStringLiteral("import-csv"), file, QStringLiteral("--map"), m_dir.filePath(QStringLiteral("missing.json"))});
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("missing.json: cannot open the column map"), r.err.constData());
+}
+
+// Issue 32 item 5: a logger with no time column (one row a minute), a run column splitting a
+// file into sessions, several files in one call, and a bad row in the last file refusing the
+// whole call.
+void TestCsvImportCli::severalFilesRunsAndInterval()
+{
+    const QString map = write(QStringLiteral("runs.json"), R"({"format":"driftlab-csv-map","version":1,
+        "csv":{"separator":";","decimal":","},"time":{"interval":"1 min"},"run":{"column":"Lauf"},
+        "columns":[{"column":"T1","id":"T1","kind":"temperature"},{"column":"S1","id":"S1","kind":"displacement","target":true}]})");
+    const QString a = write(QStringLiteral("campaign_a.csv"), "Lauf;T1;S1\n1;20;0\n1;21;1,5\n2;19;0\n2;19,5;0,5\n2;20;1\n");
+    const QString b = write(QStringLiteral("campaign_b.csv"), "Lauf;T1;S1\n7;22;0\n7;23;2\n");
+    const QString bad = write(QStringLiteral("campaign_c.csv"), "Lauf;T1;S1\n8;22;0\n8;2x;2\n");
+    const QString db = m_dir.filePath(QStringLiteral("runs.sqlite"));
+    Result r = run({QStringLiteral("import-csv"), a, b, bad, QStringLiteral("--map"), map, QStringLiteral("--db"), db});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("campaign_c.csv: line 3, column 2 (T1): non-numeric value '2x' (nothing imported)"), r.err.constData());
+    if (QFileInfo::exists(db))
+        QCOMPARE(SessionStore(db).sessions().size(), 0);
+
+    r = run({QStringLiteral("import-csv"), a, b, QStringLiteral("--map"), map, QStringLiteral("--db"), db, QStringLiteral("--json"),
+             QStringLiteral("-")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    // No start anywhere: guessed, and said so on standard error.
+    QVERIFY2(r.err.contains("warning: campaign_a.csv: no session start in the table, the map or an option: guessed from the file's "
+                            "modification time"),
+             r.err.constData());
+    QVERIFY(r.err.contains("warning: 2 sessions share the start"));
+    const QJsonObject j = QJsonDocument::fromJson(r.out).object();
+    const QJsonArray sessions = j.value(QStringLiteral("sessions")).toArray();
+    QCOMPARE(sessions.size(), 3);
+    QCOMPARE(j.value(QStringLiteral("rows")).toInt(), 7);
+    QCOMPARE(j.value(QStringLiteral("warnings")).toArray().size(), 3);
+    const QStringList runs{QStringLiteral("1"), QStringLiteral("2"), QStringLiteral("7")};
+    const QVector<double> durations{60, 120, 60};
+    SessionStore store(db);
+    QCOMPARE(store.sessions().size(), 3);
+    for (int i = 0; i < 3; ++i) {
+        const QJsonObject s = sessions[i].toObject();
+        QCOMPARE(s.value(QStringLiteral("run")).toString(), runs[i]);
+        QCOMPARE(s.value(QStringLiteral("duration_s")).toDouble(), durations[i]);
+        QCOMPARE(s.value(QStringLiteral("started_from")).toString(), QStringLiteral("file modification time"));
+        QCOMPARE(store.session(s.value(QStringLiteral("session")).toInt()).name,
+                 QStringLiteral("campaign_%1 run %2").arg(i < 2 ? QStringLiteral("a") : QStringLiteral("b"), runs[i]));
+    }
+    const qint64 second = sessions[1].toObject().value(QStringLiteral("session")).toInt();
+    QCOMPARE(store.samples(store.channels(second)[1].id).v, (QVector<double>{0.0, 0.5, 1.0}));
+    QCOMPARE(store.samples(store.channels(second)[1].id).t, (QVector<double>{0, 60, 120}));
+
+    // --start (alias of --started) gives every session that start: no guess, one warning.
+    const QString db2 = m_dir.filePath(QStringLiteral("runs2.sqlite"));
+    r = run({QStringLiteral("import-csv"), b, QStringLiteral("--map"), map, QStringLiteral("--db"), db2, QStringLiteral("--start"),
+             QStringLiteral("2025-03-01T08:00:00+01:00")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    QVERIFY2(!r.err.contains("warning"), r.err.constData());
+    QVERIFY2(r.out.contains("session 1 in ") && r.out.contains("2 rows") && r.out.contains("(run 7)"), r.out.constData());
+    QCOMPARE(SessionStore(db2).session(1).started, QStringLiteral("2025-03-01T07:00:00Z"));
+    // A bad --started is bad usage, decided before any work.
+    r = run({QStringLiteral("import-csv"), b, QStringLiteral("--map"), map, QStringLiteral("--db"), db2, QStringLiteral("--started"),
+             QStringLiteral("yesterday")});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--started 'yesterday' is not an ISO 8601 date-time"), r.err.constData());
+    QCOMPARE(SessionStore(db2).sessions().size(), 1);
+}
+
+// Every CLI message is UTF-8 whatever the locale: a map naming "T [°C]" against a header with
+// "Weg [µm]", from a file whose name holds "ü". Before the fix, e.what() went through
+// QTextStream's const char * operator (Latin-1): "Â°C", "Âµm".
+void TestCsvImportCli::utf8Messages_data()
+{
+    QTest::addColumn<QString>("lang");
+    QTest::newRow("C") << "C";
+    QTest::newRow("C.UTF-8") << "C.UTF-8";
+}
+
+void TestCsvImportCli::utf8Messages()
+{
+    QFETCH(QString, lang);
+    const QByteArray name = "Pr\xC3\xBC" "fstand.csv";
+    {
+        // The name's bytes as UTF-8, whatever this test's own locale.
+        const QByteArray full = QFile::encodeName(m_dir.path()) + '/' + name;
+        FILE *f = std::fopen(full.constData(), "wb");
+        QVERIFY(f);
+        const QByteArray text = "time_s,Weg [\xC2\xB5m]\n0,1\n";
+        QCOMPARE(std::fwrite(text.constData(), 1, static_cast<size_t>(text.size()), f), static_cast<size_t>(text.size()));
+        std::fclose(f);
+    }
+    const QString map = write(QStringLiteral("utf8.json"), "{\"format\":\"driftlab-csv-map\",\"version\":1,\"time\":{\"column\":\"time_s\"},"
+                                                           "\"columns\":[{\"column\":\"T [\xC2\xB0" "C]\",\"id\":\"T\",\"kind\":\"temperature\"}]}");
+    QProcess p;
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    for (const QString &k : env.keys()) {
+        if (k.startsWith(QLatin1String("LC_")) || k == QLatin1String("LANG") || k == QLatin1String("LANGUAGE"))
+            env.remove(k);
+    }
+    env.insert(QStringLiteral("LANG"), lang);
+    env.insert(QStringLiteral("LC_ALL"), lang);
+    env.insert(QStringLiteral("XDG_DATA_HOME"), m_dir.filePath(QStringLiteral("data")));
+    p.setProcessEnvironment(env);
+    p.setWorkingDirectory(m_dir.path());
+    p.start(QStringLiteral(DRIFTLAB_CLI), {QStringLiteral("import-csv"), QString::fromUtf8(name), QStringLiteral("--map"), map,
+                                           QStringLiteral("--db"), m_dir.filePath(QStringLiteral("utf8.sqlite"))});
+    QVERIFY(p.waitForFinished(60000));
+    const QByteArray err = p.readAllStandardError();
+    QCOMPARE(p.exitCode(), 2);
+    QVERIFY2(err.contains("Pr\xC3\xBC" "fstand.csv: field 'columns[0]': no column 'T [\xC2\xB0" "C]' in the header (columns: time_s, Weg [\xC2\xB5m])"),
+             err.constData());
+    QVERIFY2(!err.contains("\xC3\x82"), err.constData()); // no "Â": not encoded twice
+    QVERIFY2(err.contains("\xC2\xB0") && err.contains("\xC2\xB5"), err.constData());
 }
 
 QTEST_GUILESS_MAIN(TestCsvImportCli)

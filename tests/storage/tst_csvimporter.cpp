@@ -11,6 +11,7 @@
 #include <QCryptographicHash>
 #include <QJsonArray>
 #include <QJsonDocument>
+#include <QJsonObject>
 #include <QSqlDatabase>
 #include <QSqlQuery>
 #include <QSqlRecord>
@@ -79,6 +80,10 @@ private slots:
     void badRowsChangeNothing_data();
     void badRowsChangeNothing();
     void cancelLeavesNothing();
+    void intervalClock();
+    void runColumnSplitsSessions();
+    void severalFilesOneTransaction();
+    void startFromFileName();
 
 private:
     QString write(const QString &name, const QByteArray &bytes);
@@ -143,7 +148,7 @@ void TestCsvImporter::mapErrorsNameTheField_data()
     QTest::newRow("encoding") << mapJson(R"({"encoding":"ebcdic"})", time, col)
                               << QStringLiteral("m.json: field 'csv.encoding': unknown encoding 'ebcdic' (utf-8, latin1, windows-1252)");
     QTest::newRow("no time") << QByteArray(R"({"format":"driftlab-csv-map","version":1,"columns":[]})")
-                             << QStringLiteral("m.json: field 'time': missing: say which column holds the time");
+                             << QStringLiteral("m.json: field 'time': missing: say which column holds the time, or give the row \"interval\"");
     QTest::newRow("time unit") << mapJson({}, R"({"column":"t","unit":"days"})", col)
                                << QStringLiteral("m.json: field 'time.unit': unknown unit 'days' (s, ms, min, h, unix_s, unix_ms)");
     QTest::newRow("unit and format") << mapJson({}, R"({"column":"t","unit":"s","format":"iso8601"})", col)
@@ -164,11 +169,35 @@ void TestCsvImporter::mapErrorsNameTheField_data()
     QTest::newRow("bad id") << mapJson({}, time, R"([{"column":"a","id":"a,b"}])")
                             << QStringLiteral("m.json: field 'columns[0].id': invalid channel id 'a,b' (non-empty, no comma, quote or outer spaces, not time_s)");
     QTest::newRow("time mapped") << mapJson({}, time, R"([{"column":"t","id":"a"}])")
-                                 << QStringLiteral("m.json: field 'columns[0]': column 't' is mapped twice (or is the time column)");
+                                 << QStringLiteral("m.json: field 'columns[0]': column 't' is mapped twice (or is the time or run column)");
     QTest::newRow("scale 0") << mapJson({}, time, R"([{"column":"a","id":"a","scale":0}])")
                              << QStringLiteral("m.json: field 'columns[0].scale': must not be 0");
     QTest::newRow("started") << mapJson({}, time, col, R"(,"session":{"started":"yesterday"})")
                              << QStringLiteral("m.json: field 'session.started': 'yesterday' is not an ISO 8601 date-time");
+    // The clock from the row number, the run column and the start from the file name.
+    const QString interval = QStringLiteral("m.json: field 'time.interval': '%1' is not an interval: a positive number and a unit s, "
+                                            "min or h, e.g. \"1 min\" or \"15 s\"");
+    QTest::newRow("interval unit") << mapJson({}, R"({"interval":"1 minute"})", col) << interval.arg(QStringLiteral("1 minute"));
+    QTest::newRow("interval zero") << mapJson({}, R"({"interval":"0 s"})", col) << interval.arg(QStringLiteral("0 s"));
+    QTest::newRow("interval negative") << mapJson({}, R"({"interval":"-1 min"})", col) << interval.arg(QStringLiteral("-1 min"));
+    QTest::newRow("interval number") << mapJson({}, R"({"interval":60})", col) << QStringLiteral("m.json: field 'time.interval': must be a string");
+    QTest::newRow("interval and column") << mapJson({}, R"({"interval":"1 min","column":"t"})", col)
+                                         << QStringLiteral("m.json: field 'time.column': not with \"interval\" (the time is the row number "
+                                                           "times the interval; give one or the other)");
+    QTest::newRow("run without column") << mapJson({}, time, col, R"(,"run":{})")
+                                        << QStringLiteral("m.json: field 'run': give exactly one of \"column\" (header text) and \"index\" "
+                                                          "(1-based column number)");
+    QTest::newRow("run key") << mapJson({}, time, col, R"(,"run":{"column":"r","values":[1]})")
+                             << QStringLiteral("m.json: field 'run.values': unknown key (expected one of: column, index)");
+    QTest::newRow("run is time") << mapJson({}, time, col, R"(,"run":{"column":"t"})")
+                                 << QStringLiteral("m.json: field 'run': column 't' is the time column");
+    QTest::newRow("run mapped") << mapJson({}, time, col, R"(,"run":{"column":"a"})")
+                                << QStringLiteral("m.json: field 'columns[0]': column 'a' is mapped twice (or is the time or run column)");
+    QTest::newRow("start pattern") << mapJson({}, time, col, R"(,"session":{"started_from_file_name":"HHmmss"})")
+                                   << QStringLiteral("m.json: field 'session.started_from_file_name': 'HHmmss' is not a date-time pattern: "
+                                                     "it needs yyyy, MM and dd (and may hold HH, mm, ss, e.g. \"yyyyMMdd_HHmmss\")");
+    QTest::newRow("two starts") << mapJson({}, time, col, R"(,"session":{"started":"2025-01-01T00:00:00Z","started_from_file_name":"yyyyMMdd"})")
+                                << QStringLiteral("m.json: field 'session': give either \"started\" or \"started_from_file_name\", not both");
 }
 
 void TestCsvImporter::mapErrorsNameTheField()
@@ -368,6 +397,161 @@ void TestCsvImporter::cancelLeavesNothing()
     QCOMPARE(r.rows, qint64(60000));
     QCOMPARE(store.sampleCount(store.channels(r.sessionId)[1].id), qint64(60000));
     QCOMPARE(store.samples(store.channels(r.sessionId)[0].id, 59999, 59999).v, QVector<double>{20.999});
+}
+
+void TestCsvImporter::intervalClock()
+{
+    // A logger writing one row a minute and no time column; the start from the option.
+    const QString csv = write(QStringLiteral("interval.csv"), "T1;S1\n20,0;0,0\n20,5;1,5\n21,0;3,0\n");
+    const CsvColumnMap map = mapOf(mapJson(R"({"separator":";","decimal":","})", R"({"interval":"1 min"})",
+                                           R"([{"column":"T1","id":"T1","kind":"temperature"},{"column":"S1","id":"S1","kind":"displacement"}])"));
+    QCOMPARE(map.time.interval_s, 60.0);
+    QCOMPARE(mapOf(QJsonDocument(map.toJson()).toJson()).toJson(), map.toJson());
+    SessionStore store(m_db);
+    CsvImportOptions options;
+    options.started = QStringLiteral("2025-04-01T06:00:00Z");
+    const CsvImportResult r = CsvImporter::importFile(store, csv, map, options);
+    QCOMPARE(r.sessions.size(), 1);
+    QCOMPARE(r.rows, qint64(3));
+    QCOMPARE(r.lastTime_s, 120.0);
+    QCOMPARE(r.startedFrom, QStringLiteral("option"));
+    QVERIFY(r.warnings.isEmpty());
+    QCOMPARE(store.session(r.sessionId).started, QStringLiteral("2025-04-01T06:00:00Z"));
+    const QVector<ChannelInfo> ch = store.channels(r.sessionId);
+    QCOMPARE(ch.size(), 2);
+    QCOMPARE(store.samples(ch[0].id).t, (QVector<double>{0, 60, 120}));
+    QCOMPARE(store.samples(ch[1].id).v, (QVector<double>{0.0, 1.5, 3.0}));
+    // Half an hour and 15 s.
+    QCOMPARE(CsvColumnMap::parseInterval(QStringLiteral("0.5 h")), 1800.0);
+    QCOMPARE(CsvColumnMap::parseInterval(QStringLiteral("15s")), 15.0);
+    QCOMPARE(CsvColumnMap::parseInterval(QStringLiteral("1,5 min")), 0.0);
+}
+
+void TestCsvImporter::runColumnSplitsSessions()
+{
+    // Three runs in one file, each starting cold: date-time clock, so each run starts at its
+    // own first row. Run "B" comes back after "C": its rows join its session.
+    const QString csv = write(QStringLiteral("runs.csv"), "run,time,T1\n"
+                                                          "A,2025-03-01 08:00:00,20.0\n"
+                                                          "A,2025-03-01 08:01:00,20.5\n"
+                                                          "B,2025-03-02 09:00:00,19.0\n"
+                                                          "C,2025-03-03 10:00:00,18.0\n"
+                                                          "B,2025-03-02 09:02:00,19.8\n");
+    const CsvColumnMap map = mapOf(mapJson({}, R"({"column":"time","format":"yyyy-MM-dd HH:mm:ss","timezone":"+01:00"})",
+                                           R"([{"column":"T1","id":"T1","kind":"temperature"}])", R"(,"run":{"column":"run"})"));
+    SessionStore store(m_db);
+    const int before = store.sessions().size();
+    const CsvImportResult r = CsvImporter::importFile(store, csv, map);
+    QCOMPARE(store.sessions().size(), before + 3);
+    QCOMPARE(r.sessions.size(), 3);
+    QCOMPARE(r.rows, qint64(5));
+    const QStringList runs{QStringLiteral("A"), QStringLiteral("B"), QStringLiteral("C")};
+    const QStringList starts{QStringLiteral("2025-03-01T07:00:00Z"), QStringLiteral("2025-03-02T08:00:00Z"),
+                             QStringLiteral("2025-03-03T09:00:00Z")};
+    const QVector<QVector<double>> times{{0, 60}, {0, 120}, {0}};
+    const QVector<QVector<double>> values{{20.0, 20.5}, {19.0, 19.8}, {18.0}};
+    for (int i = 0; i < 3; ++i) {
+        const CsvImportedSession &s = r.sessions[i];
+        QCOMPARE(s.run, runs[i]);
+        QCOMPARE(s.startedFrom, QStringLiteral("time column"));
+        const SessionInfo info = store.session(s.sessionId);
+        QCOMPARE(info.name, QStringLiteral("runs run ") + runs[i]);
+        QCOMPARE(info.started, starts[i]);
+        QCOMPARE(info.manifest.value(QStringLiteral("imported_from")).toObject().value(QStringLiteral("run")).toString(), runs[i]);
+        const QVector<ChannelInfo> ch = store.channels(s.sessionId);
+        QCOMPARE(ch.size(), 1); // the run column is no channel
+        QCOMPARE(store.samples(ch[0].id).t, times[i]);
+        QCOMPARE(store.samples(ch[0].id).v, values[i]);
+    }
+    QVERIFY(r.warnings.isEmpty());
+    // Time going backwards is checked within each run, and names the run; an empty run value
+    // is refused.
+    const QByteArray hash = contentHash(m_db);
+    for (const QByteArray &bad : {QByteArray("run,time,T1\nA,2025-03-01 08:01:00,1\nB,2025-03-01 07:00:00,1\nA,2025-03-01 08:00:00,1\n"),
+                                  QByteArray("run,time,T1\nA,2025-03-01 08:01:00,1\n ,2025-03-01 08:02:00,1\n")}) {
+        try {
+            SessionStore s2(m_db);
+            CsvImporter::importFile(s2, write(QStringLiteral("badruns.csv"), bad), map);
+            QFAIL("accepted");
+        } catch (const CsvError &e) {
+            const QString m = QString::fromUtf8(e.what());
+            QVERIFY2(m.contains(QStringLiteral("line 4, column 2 (time): time goes backwards (-60 s after 0 s in run 'A')")) ||
+                         m.contains(QStringLiteral("line 3, column 1 (run): empty run value")),
+                     qPrintable(m));
+        }
+    }
+    QCOMPARE(contentHash(m_db), hash);
+    // An interval clock with runs: the row number counts within each run; no dates, so the
+    // runs share the given start, and the result says so.
+    const QString relative = write(QStringLiteral("relruns.csv"), "Lauf;T1\n1;20\n1;21\n2;19\n2;19,5\n2;20\n");
+    const CsvColumnMap rel = mapOf(mapJson(R"({"separator":";","decimal":","})", R"({"interval":"15 s"})",
+                                           R"([{"column":"T1","id":"T1","kind":"temperature"}])", R"(,"run":{"column":"Lauf"})"));
+    CsvImportOptions options;
+    options.started = QStringLiteral("2025-05-05T05:05:05Z");
+    const CsvImportResult rr = CsvImporter::importFile(store, relative, rel, options);
+    QCOMPARE(rr.sessions.size(), 2);
+    QCOMPARE(store.samples(store.channels(rr.sessions[1].sessionId)[0].id).t, (QVector<double>{0, 15, 30}));
+    QCOMPARE(rr.sessions[1].lastTime_s, 30.0);
+    QCOMPARE(rr.warnings.size(), 1);
+    QVERIFY2(rr.warnings[0].startsWith(QStringLiteral("2 sessions share the start 2025-05-05T05:05:05Z")), qPrintable(rr.warnings[0]));
+}
+
+void TestCsvImporter::severalFilesOneTransaction()
+{
+    const CsvColumnMap map = mapOf(mapJson({}, R"({"column":"t","unit":"min"})", R"([{"column":"T1","id":"T1","kind":"temperature"}])",
+                                           R"(,"session":{"name":"warm-up"})"));
+    const QString a = write(QStringLiteral("day1.csv"), "t,T1\n0,20\n1,21\n");
+    const QString b = write(QStringLiteral("day2.csv"), "t,T1\n0,19\n1,20\n2,21\n");
+    const QString bad = write(QStringLiteral("day3.csv"), "t,T1\n0,19\n1,x\n");
+    const QByteArray hash = contentHash(m_db);
+    {
+        SessionStore store(m_db);
+        try {
+            CsvImporter::importFiles(store, {a, b, bad}, map);
+            QFAIL("accepted");
+        } catch (const CsvError &e) {
+            QCOMPARE(QString::fromUtf8(e.what()).replace(m_dir.path() + QLatin1Char('/'), QString()),
+                     QStringLiteral("day3.csv: line 3, column 2 (T1): non-numeric value 'x'"));
+        }
+    }
+    QCOMPARE(contentHash(m_db), hash); // the two good files are not imported either
+    SessionStore store(m_db);
+    const CsvImportResult r = CsvImporter::importFiles(store, {a, b}, map);
+    QCOMPARE(r.sessions.size(), 2);
+    QCOMPARE(r.rows, qint64(5));
+    QCOMPARE(store.session(r.sessions[0].sessionId).name, QStringLiteral("warm-up (day1)"));
+    QCOMPARE(store.session(r.sessions[1].sessionId).name, QStringLiteral("warm-up (day2)"));
+    QCOMPARE(r.sessions[1].lastTime_s, 120.0);
+    // No start anywhere: each file's modification time, with a warning naming the file.
+    QCOMPARE(r.sessions[0].startedFrom, QStringLiteral("file modification time"));
+    QCOMPARE(r.warnings.filter(QStringLiteral("guessed from the file's modification time")).size(), 2);
+    QVERIFY(r.warnings[0].startsWith(QStringLiteral("day1.csv: no session start")));
+}
+
+void TestCsvImporter::startFromFileName()
+{
+    const CsvColumnMap map = mapOf(mapJson({}, R"({"column":"t","timezone":"+01:00"})", R"([{"column":"T1","id":"T1","kind":"temperature"}])",
+                                           R"(,"session":{"started_from_file_name":"yyyyMMdd_HHmm"})"));
+    const QString good = write(QStringLiteral("spindle3_20250301_0815.csv"), "t,T1\n0,20\n");
+    SessionStore store(m_db);
+    const CsvImportResult r = CsvImporter::importFile(store, good, map);
+    QCOMPARE(r.startedFrom, QStringLiteral("file name"));
+    QCOMPARE(store.session(r.sessionId).started, QStringLiteral("2025-03-01T07:15:00Z"));
+    QVERIFY(r.warnings.isEmpty());
+    // A name without the pattern, or an impossible date: refused before anything is imported.
+    const QByteArray hash = contentHash(m_db);
+    for (const QString &name : {QStringLiteral("spindle3.csv"), QStringLiteral("log_20251301_0815.csv")}) {
+        const QString bad = write(name, "t,T1\n0,20\n");
+        try {
+            SessionStore s2(m_db);
+            CsvImporter::importFiles(s2, {good, bad}, map);
+            QFAIL("accepted");
+        } catch (const CsvError &e) {
+            QCOMPARE(e.field(), QStringLiteral("session.started_from_file_name"));
+            QVERIFY2(QString::fromUtf8(e.what()).contains(QStringLiteral("holds no date-time 'yyyyMMdd_HHmm'")), e.what());
+        }
+    }
+    QCOMPARE(contentHash(m_db), hash);
 }
 
 QTEST_GUILESS_MAIN(TestCsvImporter)

@@ -3,8 +3,11 @@
 // time column with its unit or date-time format.
 
 #include "CsvMapGuesser.h"
+#include "CsvReader.h"
+#include "CsvRowDecoder.h"
 
 #include <QFile>
+#include <QJsonDocument>
 #include <QtTest>
 
 using namespace driftlab;
@@ -17,6 +20,9 @@ private slots:
     void headerTexts_data();
     void headerTexts();
     void timeColumns();
+    void loggerFiles_data();
+    void loggerFiles();
+    void preambleAndHeaderlessTables();
 };
 
 void TestCsvMapGuesser::dialect()
@@ -80,6 +86,8 @@ void TestCsvMapGuesser::headerTexts_data()
     QTest::newRow("no unit, temperature name") << "Temp motor" << "Temp_motor" << "temperature" << "degC" << "motor";
     QTest::newRow("other") << "Power [W]" << "Power" << "other" << "W" << "";
     QTest::newRow("empty") << "" << "col4" << "other" << "" << "";
+    QTest::newRow("spindle temperature is no drive") << "Spindle Temp (C)" << "Spindle_Temp" << "temperature" << "degC" << "";
+    QTest::newRow("German speed") << "Drehzahl [1/min]" << "Drehzahl" << "other" << "1/min" << "spindle";
 }
 
 void TestCsvMapGuesser::headerTexts()
@@ -111,6 +119,106 @@ void TestCsvMapGuesser::timeColumns()
     QCOMPARE(m.time.column, QStringLiteral("when")); // no time-like name: the first column
     QCOMPARE(m.time.format, QStringLiteral("iso8601"));
     QCOMPARE(m.columns.size(), 1);
+}
+
+// The fixtures in tests/data/csv (written for these tests, see its README): the whole guess,
+// dialect then columns from the header and rows the guessed dialect reads, as the dialog runs it.
+void TestCsvMapGuesser::loggerFiles_data()
+{
+    QTest::addColumn<QString>("file");
+    QTest::addColumn<char>("separator");
+    QTest::addColumn<char>("decimal");
+    QTest::addColumn<QString>("encoding");
+    QTest::addColumn<int>("skip");
+    QTest::addColumn<QString>("timeColumn");
+    QTest::addColumn<QString>("timeFormatOrUnit");
+    QTest::addColumn<QStringList>("kinds");
+    QTest::addColumn<QStringList>("units");
+    QTest::addColumn<QStringList>("roles");
+    QTest::newRow("German logger") << "german_logger.csv" << ';' << ',' << "windows-1252" << 3 << "Datum" << "dd.MM.yyyy HH:mm:ss"
+                                   << QStringList{"temperature", "temperature", "displacement", "other"}
+                                   << QStringList{"\u00b0C", "\u00b0C", "\u00b5m", "1/min"}
+                                   << QStringList{"", "ambient", "", "spindle"};
+    QTest::newRow("US logger") << "us_logger.csv" << ',' << '.' << "utf-8" << 1 << "Timestamp" << "MM/dd/yyyy HH:mm:ss"
+                               << QStringList{"temperature", "temperature", "displacement", "other"}
+                               << QStringList{"degC", "degC", "um", "rpm"} << QStringList{"", "ambient", "", "spindle"};
+    QTest::newRow("semicolon, decimal comma") << "semicolon_comma.csv" << ';' << ',' << "utf-8" << 0 << "Zeit [min]" << "min"
+                                              << QStringList{"temperature", "temperature", "displacement"}
+                                              << QStringList{"\u00b0C", "\u00b0C", "mm"} << QStringList{"motor", "nut", ""};
+}
+
+void TestCsvMapGuesser::loggerFiles()
+{
+    QFETCH(QString, file);
+    QFETCH(char, separator);
+    QFETCH(char, decimal);
+    QFETCH(QString, encoding);
+    QFETCH(int, skip);
+    QFETCH(QString, timeColumn);
+    QFETCH(QString, timeFormatOrUnit);
+    QFETCH(QStringList, kinds);
+    QFETCH(QStringList, units);
+    QFETCH(QStringList, roles);
+    QFile f(QStringLiteral(DRIFTLAB_SOURCE_DIR "/tests/data/csv/") + file);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QByteArray bytes = f.readAll();
+    CsvColumnMap m;
+    CsvMapGuesser::guessDialect(bytes, m);
+    QCOMPARE(m.separator, separator);
+    QCOMPARE(m.decimal, decimal);
+    QCOMPARE(m.encoding, encoding);
+    QCOMPARE(m.skipLines, skip);
+    QVERIFY(m.header);
+    // The header and rows as the guessed dialect reads them.
+    CsvRowDecoder decoder(m, file);
+    QStringList header;
+    QVector<QStringList> rows;
+    for (const CsvRecord &r : CsvReader::parse(bytes, file, m.separator)) {
+        if (r.line <= m.skipLines)
+            continue;
+        QStringList texts;
+        for (const QByteArray &cell : r.fields)
+            texts << decoder.text(cell).trimmed();
+        if (header.isEmpty())
+            header = texts;
+        else
+            rows << texts;
+    }
+    CsvMapGuesser::guessColumns(header, rows, m);
+    QCOMPARE(m.time.column, timeColumn);
+    QCOMPARE(m.time.format.isEmpty() ? m.time.unit : m.time.format, timeFormatOrUnit);
+    QCOMPARE(m.columns.size(), kinds.size());
+    for (int i = 0; i < kinds.size(); ++i) {
+        QCOMPARE(m.columns[i].kind, kinds[i]);
+        QCOMPARE(m.columns[i].unit, units[i]);
+        QCOMPARE(m.columns[i].role, roles[i]);
+    }
+    // The guess imports: every row decodes (numbers, dates, units) with no error.
+    CsvRowDecoder check(CsvColumnMap::fromJson(QJsonDocument(m.toJson()).toJson(), QStringLiteral("guess.json")), file);
+    for (const CsvRecord &r : CsvReader::parse(bytes, file, m.separator))
+        check.accept(r);
+    QCOMPARE(check.rows(), qint64(12));
+    QVERIFY(check.row().time_s > 0);
+}
+
+void TestCsvMapGuesser::preambleAndHeaderlessTables()
+{
+    CsvColumnMap m;
+    // A preamble line with as many separators as the table is still not the header: the last
+    // text line before the data is.
+    CsvMapGuesser::guessDialect("Messung 17;Spindel 3;Halle 2\nZeit;T1;T2\n0;20,5;21,0\n1;20,6;21,1\n", m);
+    QCOMPARE(m.separator, ';');
+    QCOMPARE(m.decimal, ',');
+    QCOMPARE(m.skipLines, 1);
+    QVERIFY(m.header);
+    // Numbers from the first line: no header.
+    CsvMapGuesser::guessDialect("0,20.5,1.25\n1,20.6,1.5\n2,20.7,1.75\n", m);
+    QCOMPARE(m.separator, ',');
+    QCOMPARE(m.skipLines, 0);
+    QVERIFY(!m.header);
+    // Dates with points are not decimal points: the numbers decide.
+    CsvMapGuesser::guessDialect("Datum;T\n01.03.2025 08:00;20,5\n01.03.2025 08:01;20,6\n", m);
+    QCOMPARE(m.decimal, ',');
 }
 
 QTEST_APPLESS_MAIN(TestCsvMapGuesser)

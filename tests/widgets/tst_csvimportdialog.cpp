@@ -11,8 +11,12 @@
 
 #include <QAction>
 #include <QComboBox>
+#include <QDateTimeEdit>
+#include <QJsonDocument>
+#include <QLineEdit>
 #include <QSettings>
 #include <QSignalSpy>
+#include <QSpinBox>
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QtTest>
@@ -28,10 +32,16 @@ private slots:
     void badRowNamesLineAndColumn();
     void cancelLeavesNothing();
     void mainWindowHasTheAction();
+    void loggerFilesGuessedRight_data();
+    void loggerFilesGuessedRight();
+    void fixingTheFormatKeepsColumnsTicked();
+    void loadingAMapClearsTheError();
+    void intervalClockAndRunColumn();
 
 private:
     QString write(const QString &name, const QByteArray &bytes);
     int row(CsvImportDialog &d, const QString &header);
+    static int ticked(CsvImportDialog &d);
     QTemporaryDir m_dir;
     QString m_db;
 };
@@ -52,6 +62,14 @@ int TestCsvImportDialog::row(CsvImportDialog &d, const QString &header)
             return r;
     }
     return -1;
+}
+
+int TestCsvImportDialog::ticked(CsvImportDialog &d)
+{
+    int n = 0;
+    for (int r = 0; r < d.columnTable()->rowCount(); ++r)
+        n += d.columnTable()->item(r, 0)->checkState() == Qt::Checked ? 1 : 0;
+    return n;
 }
 
 void TestCsvImportDialog::initTestCase()
@@ -186,6 +204,167 @@ void TestCsvImportDialog::mainWindowHasTheAction()
     auto *action = w.findChild<QAction *>(QStringLiteral("ImportCsvAction"));
     QVERIFY(action);
     QVERIFY(action->text().contains(QStringLiteral("CSV")));
+}
+
+// The fixtures in tests/data/csv: German logger (preamble "Messung 17;Spindel 3", ';',
+// decimal comma, dd.MM.yyyy, windows-1252), US logger (',', point, MM/dd/yyyy) and a ';' /
+// decimal-comma table. The dialog's guess reads every row; imported, the values are the file's.
+void TestCsvImportDialog::loggerFilesGuessedRight_data()
+{
+    QTest::addColumn<QString>("file");
+    QTest::addColumn<char>("separator");
+    QTest::addColumn<char>("decimal");
+    QTest::addColumn<int>("skip");
+    QTest::addColumn<QString>("timeColumn");
+    QTest::addColumn<double>("lastTime");
+    QTest::addColumn<QString>("channel");
+    QTest::addColumn<double>("lastValue");
+    QTest::newRow("German") << "german_logger.csv" << ';' << ',' << 3 << "Datum" << 660.0 << "Weg_X" << 9.0;
+    QTest::newRow("US") << "us_logger.csv" << ',' << '.' << 1 << "Timestamp" << 3300.0 << "Z_Growth" << 13.75;
+    QTest::newRow("semicolon") << "semicolon_comma.csv" << ';' << ',' << 0 << "Zeit [min]" << 330.0 << "Verlagerung_Z" << 13.2;
+}
+
+void TestCsvImportDialog::loggerFilesGuessedRight()
+{
+    QFETCH(QString, file);
+    QFETCH(char, separator);
+    QFETCH(char, decimal);
+    QFETCH(int, skip);
+    QFETCH(QString, timeColumn);
+    QFETCH(double, lastTime);
+    QFETCH(QString, channel);
+    QFETCH(double, lastValue);
+    CsvImportDialog d(m_db);
+    QVERIFY(d.openFile(QStringLiteral(DRIFTLAB_SOURCE_DIR "/tests/data/csv/") + file));
+    const CsvColumnMap m = d.columnMap();
+    QCOMPARE(m.separator, separator);
+    QCOMPARE(m.decimal, decimal);
+    QCOMPARE(m.skipLines, skip);
+    QCOMPARE(m.time.column, timeColumn);
+    QCOMPARE(d.preview()->rowCount(), 12);
+    QCOMPARE(d.columnTable()->rowCount(), d.preview()->columnCount() - 1);
+    QCOMPARE(ticked(d), d.columnTable()->rowCount()); // every column but the time is imported
+    QVERIFY(d.errorText().isEmpty());
+    QSignalSpy imported(&d, &CsvImportDialog::imported);
+    QSignalSpy finished(&d, &CsvImportDialog::importFinished);
+    d.startImport();
+    QVERIFY(finished.wait(20000));
+    QVERIFY2(finished.front().front().toBool(), qPrintable(d.errorText()));
+    SessionStore store(m_db);
+    const qint64 id = imported.front().front().toLongLong();
+    for (const ChannelInfo &c : store.channels(id)) {
+        const SampleBlock b = store.samples(c.id);
+        QCOMPARE(b.t.size(), 12);
+        QCOMPARE(b.t.back(), lastTime);
+        if (c.key == channel)
+            QVERIFY2(std::fabs(b.v.back() - lastValue) < 1e-9, qPrintable(QString::number(b.v.back())));
+    }
+    QVERIFY(store.channels(id).size() == d.preview()->columnCount() - 1);
+}
+
+// The old guess on the German logger: ',' and no preamble, so the header was "Messung 17;
+// Spindel 3". Fixing the separator and the preamble must give the table's columns, ticked.
+void TestCsvImportDialog::fixingTheFormatKeepsColumnsTicked()
+{
+    CsvImportDialog d(m_db);
+    QVERIFY(d.openFile(QStringLiteral(DRIFTLAB_SOURCE_DIR "/tests/data/csv/german_logger.csv")));
+    auto *separator = d.findChild<QComboBox *>(QStringLiteral("CsvSeparator"));
+    auto *skip = d.findChild<QSpinBox *>(QStringLiteral("CsvSkipLines"));
+    QVERIFY(separator && skip);
+    separator->setCurrentIndex(separator->findData(static_cast<int>(',')));
+    skip->setValue(0);
+    QCOMPARE(d.columnMap().time.column, QStringLiteral("Messung 17;Spindel 3"));
+    separator->setCurrentIndex(separator->findData(static_cast<int>(';')));
+    skip->setValue(3);
+    const CsvColumnMap m = d.columnMap();
+    QCOMPARE(m.time.column, QStringLiteral("Datum"));
+    QCOMPARE(m.time.format, QStringLiteral("dd.MM.yyyy HH:mm:ss"));
+    QCOMPARE(m.columns.size(), 4);
+    QCOMPARE(ticked(d), 4);
+    // A change the user made survives a format change that keeps the header.
+    const int bearing = row(d, QStringLiteral("T Lager [\u00b0C]"));
+    QVERIFY(bearing >= 0);
+    d.columnTable()->item(bearing, 2)->setText(QStringLiteral("T_fixed"));
+    auto *decimal = d.findChild<QComboBox *>(QStringLiteral("CsvDecimal"));
+    decimal->setCurrentIndex(decimal->findData(static_cast<int>('.')));
+    decimal->setCurrentIndex(decimal->findData(static_cast<int>(',')));
+    QCOMPARE(ticked(d), 4);
+    QCOMPARE(d.columnMap().columns[0].id, QStringLiteral("T_fixed"));
+}
+
+void TestCsvImportDialog::loadingAMapClearsTheError()
+{
+    const QString file = write(QStringLiteral("twocols.csv"), "time_s,t1_C,ch1_um\n0,20,0\n15,20.5,1.5\n");
+    CsvImportDialog d(m_db);
+    QVERIFY(d.openFile(file));
+    const CsvColumnMap good = d.columnMap();
+    for (int r = 0; r < d.columnTable()->rowCount(); ++r)
+        d.columnTable()->item(r, 0)->setCheckState(Qt::Unchecked);
+    d.startImport();
+    QVERIFY(!d.isImporting());
+    QVERIFY2(d.errorText().contains(QStringLiteral("field 'columns': missing or empty")), qPrintable(d.errorText()));
+    const QString json = m_dir.filePath(QStringLiteral("twocols.json"));
+    QFile f(json);
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write(QJsonDocument(good.toJson()).toJson());
+    f.close();
+    QVERIFY(d.loadMapFile(json));
+    QVERIFY2(d.errorText().isEmpty(), qPrintable(d.errorText()));
+    QCOMPARE(ticked(d), 2);
+    // A map that is not one: the error names it, and stays until the next good one.
+    const QString broken = write(QStringLiteral("broken.json"), R"({"format":"driftlab-csv-map","version":1,"time":{"interval":"soon"},"columns":[]})");
+    QVERIFY(!d.loadMapFile(broken));
+    QVERIFY2(d.errorText().contains(QStringLiteral("field 'time.interval'")), qPrintable(d.errorText()));
+    QVERIFY(d.loadMapFile(json));
+    QVERIFY(d.errorText().isEmpty());
+}
+
+void TestCsvImportDialog::intervalClockAndRunColumn()
+{
+    const QString file = write(QStringLiteral("lauf.csv"), "Lauf;T Motor [\xC2\xB0" "C];Weg [\xC2\xB5m]\n1;20,0;0,0\n1;20,5;1,0\n"
+                                                           "2;19,0;0,0\n2;19,4;0,8\n2;19,8;1,5\n");
+    CsvImportDialog d(m_db);
+    QVERIFY(d.openFile(file));
+    QVERIFY2(d.startWarning().contains(QStringLiteral("guess")), qPrintable(d.startWarning())); // the file's modification time
+    auto *unit = d.findChild<QComboBox *>(QStringLiteral("CsvTimeUnit"));
+    auto *run = d.findChild<QComboBox *>(QStringLiteral("CsvRunColumn"));
+    auto *interval = d.findChild<QLineEdit *>(QStringLiteral("CsvInterval"));
+    auto *started = d.findChild<QDateTimeEdit *>(QStringLiteral("CsvStarted"));
+    QVERIFY(unit && run && interval && started);
+    unit->setCurrentText(QStringLiteral("interval"));
+    QCOMPARE(interval->text(), QStringLiteral("1 min"));
+    QVERIFY(interval->isEnabled());
+    QVERIFY(!d.findChild<QComboBox *>(QStringLiteral("CsvTimeColumn"))->isEnabled());
+    run->setCurrentText(QStringLiteral("Lauf"));
+    QVERIFY(d.startWarning().contains(QStringLiteral("Every run gets this start")));
+    started->setDateTime(QDateTime(QDate(2025, 6, 1), QTime(7, 0), Qt::UTC));
+    QVERIFY(!d.startWarning().contains(QStringLiteral("guess"))); // the user set it
+    const CsvColumnMap m = d.columnMap();
+    QCOMPARE(m.time.interval_s, 60.0);
+    QCOMPARE(m.runColumn, QStringLiteral("Lauf"));
+    QCOMPARE(m.columns.size(), 2);
+    QCOMPARE(ticked(d), 2);
+    QCOMPARE(d.columnTable()->rowCount(), 2); // the run column is no channel
+    // The map the dialog saves is the CLI's, with the new fields.
+    const QString json = m_dir.filePath(QStringLiteral("lauf.json"));
+    QVERIFY(d.saveMap(json));
+    const CsvColumnMap loaded = CsvColumnMap::load(json);
+    QCOMPARE(loaded.time.interval, QStringLiteral("1 min"));
+    QCOMPARE(loaded.runColumn, QStringLiteral("Lauf"));
+    QSignalSpy imported(&d, &CsvImportDialog::imported);
+    QSignalSpy finished(&d, &CsvImportDialog::importFinished);
+    const int before = SessionStore(m_db).sessions().size();
+    d.startImport();
+    QVERIFY(finished.wait(20000));
+    QVERIFY2(finished.front().front().toBool(), qPrintable(d.errorText()));
+    SessionStore store(m_db);
+    QCOMPARE(store.sessions().size(), before + 2);
+    const qint64 first = imported.front().front().toLongLong();
+    QCOMPARE(store.session(first).name, QStringLiteral("lauf run 1"));
+    QCOMPARE(store.session(first + 1).name, QStringLiteral("lauf run 2"));
+    QCOMPARE(store.session(first + 1).started, QStringLiteral("2025-06-01T07:00:00Z"));
+    QCOMPARE(store.samples(store.channels(first + 1)[1].id).t, (QVector<double>{0, 60, 120}));
+    QCOMPARE(store.samples(store.channels(first + 1)[1].id).v, (QVector<double>{0.0, 0.8, 1.5}));
 }
 
 QTEST_MAIN(TestCsvImportDialog)
