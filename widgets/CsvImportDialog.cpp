@@ -1,14 +1,16 @@
 #include "CsvImportDialog.h"
 
+#include "CsvColumnTable.h"
+#include "CsvMapMemory.h"
+#include "CsvPreviewTable.h"
+
 #include "CsvError.h"
 #include "CsvImporter.h"
 #include "CsvMapGuesser.h"
-#include "CsvReader.h"
 #include "SessionStore.h"
 
 #include <QCheckBox>
 #include <QComboBox>
-#include <QCryptographicHash>
 #include <QDateTimeEdit>
 #include <QDialogButtonBox>
 #include <QDir>
@@ -25,11 +27,10 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSaveFile>
-#include <QSettings>
+#include <QSet>
 #include <QSpinBox>
 #include <QSplitter>
 #include <QTableWidget>
-#include <QTextCodec>
 #include <QThread>
 #include <QVBoxLayout>
 
@@ -38,23 +39,10 @@ namespace driftlab {
 namespace {
 
 constexpr int kHeadBytes = 64 * 1024;
-constexpr int kPreviewRows = 20;
-enum Col { Use, Header, Id, Kind, Unit, Role, Target, Scale, Offset, Count };
 const QStringList kTimeUnits{QStringLiteral("s"), QStringLiteral("ms"), QStringLiteral("min"), QStringLiteral("h"),
                              QStringLiteral("unix_s"), QStringLiteral("unix_ms"), QStringLiteral("date-time"),
                              QStringLiteral("interval")};
 const QString kInterval = QStringLiteral("interval");
-
-QComboBox *combo(const QStringList &items, bool editable, const QString &current)
-{
-    auto *c = new QComboBox;
-    c->setEditable(editable);
-    c->addItems(items);
-    if (c->findText(current) < 0 && !current.isEmpty())
-        c->addItem(current);
-    c->setCurrentText(current);
-    return c;
-}
 
 } // namespace
 
@@ -101,7 +89,7 @@ void CsvImportDialog::buildUi()
     m_decimal->setObjectName(QStringLiteral("CsvDecimal"));
     m_decimal->addItem(tr("Point 1.5"), QVariant(static_cast<int>('.')));
     m_decimal->addItem(tr("Comma 1,5"), QVariant(static_cast<int>(',')));
-    m_encoding = combo({QStringLiteral("utf-8"), QStringLiteral("windows-1252"), QStringLiteral("latin1")}, false, QStringLiteral("utf-8"));
+    m_encoding = CsvColumnTable::comboBox({QStringLiteral("utf-8"), QStringLiteral("windows-1252"), QStringLiteral("latin1")}, false, QStringLiteral("utf-8"));
     m_skip = new QSpinBox;
     m_skip->setObjectName(QStringLiteral("CsvSkipLines"));
     m_skip->setRange(0, 10000);
@@ -116,11 +104,11 @@ void CsvImportDialog::buildUi()
     auto *tf = new QFormLayout(time);
     m_timeColumn = new QComboBox;
     m_timeColumn->setObjectName(QStringLiteral("CsvTimeColumn"));
-    m_timeUnit = combo(kTimeUnits, false, QStringLiteral("s"));
+    m_timeUnit = CsvColumnTable::comboBox(kTimeUnits, false, QStringLiteral("s"));
     m_timeUnit->setObjectName(QStringLiteral("CsvTimeUnit"));
     m_timeFormat = new QLineEdit;
     m_timeFormat->setPlaceholderText(QStringLiteral("iso8601 or e.g. dd.MM.yyyy HH:mm:ss"));
-    m_timeZone = combo({QStringLiteral("UTC"), QStringLiteral("local"), QStringLiteral("+01:00"), QStringLiteral("+02:00")}, true,
+    m_timeZone = CsvColumnTable::comboBox({QStringLiteral("UTC"), QStringLiteral("local"), QStringLiteral("+01:00"), QStringLiteral("+02:00")}, true,
                        QStringLiteral("UTC"));
     m_interval = new QLineEdit;
     m_interval->setObjectName(QStringLiteral("CsvInterval"));
@@ -152,15 +140,8 @@ void CsvImportDialog::buildUi()
     layout->addLayout(options);
 
     auto *split = new QSplitter(Qt::Vertical);
-    m_preview = new QTableWidget;
-    m_preview->setObjectName(QStringLiteral("CsvPreview"));
-    m_preview->setEditTriggers(QAbstractItemView::NoEditTriggers);
-    m_columns = new QTableWidget(0, Count);
-    m_columns->setObjectName(QStringLiteral("CsvColumns"));
-    m_columns->setHorizontalHeaderLabels({tr("Import"), tr("Column"), tr("Channel id"), tr("Kind"), tr("Unit in file"), tr("Role"),
-                                          tr("Target"), tr("Scale"), tr("Offset")});
-    m_columns->horizontalHeader()->setSectionResizeMode(Header, QHeaderView::Stretch);
-    m_columns->verticalHeader()->hide();
+    m_preview = new CsvPreviewTable;
+    m_columns = new CsvColumnTable;
     split->addWidget(m_preview);
     split->addWidget(m_columns);
     layout->addWidget(split, 1);
@@ -272,14 +253,7 @@ void CsvImportDialog::clearError()
 
 QVector<QStringList> CsvImportDialog::previewRows() const
 {
-    QVector<QStringList> rows;
-    for (int r = 0; r < m_preview->rowCount(); ++r) {
-        QStringList row;
-        for (int c = 0; c < m_preview->columnCount(); ++c)
-            row << (m_preview->item(r, c) ? m_preview->item(r, c)->text() : QString());
-        rows << row;
-    }
-    return rows;
+    return m_preview->rows();
 }
 
 void CsvImportDialog::updateTimeWidgets()
@@ -295,35 +269,6 @@ void CsvImportDialog::updateTimeWidgets()
     updateStartWarning();
 }
 
-QString CsvImportDialog::signature(char separator, const QStringList &header)
-{
-    const QByteArray text = QByteArray(1, separator) + header.join(QChar(0x1f)).toUtf8();
-    return QString::fromLatin1(QCryptographicHash::hash(text, QCryptographicHash::Sha1).toHex());
-}
-
-void CsvImportDialog::remember(const CsvColumnMap &given) const
-{
-    CsvColumnMap map = given; // the assignment, not this file's name and start
-    map.session.remove(QStringLiteral("name"));
-    map.session.remove(QStringLiteral("started"));
-    QSettings settings;
-    settings.setValue(QStringLiteral("csvImport/maps/") + signature(map.separator, m_header),
-                      QString::fromUtf8(QJsonDocument(map.toJson()).toJson(QJsonDocument::Compact)));
-}
-
-bool CsvImportDialog::recall(CsvColumnMap &map) const
-{
-    const QString json = QSettings().value(QStringLiteral("csvImport/maps/") + signature(map.separator, m_header)).toString();
-    if (json.isEmpty())
-        return false;
-    try {
-        map = CsvColumnMap::fromJson(json.toUtf8(), QStringLiteral("remembered map"));
-        return true;
-    } catch (const CsvError &) {
-        return false; // from another version: guess instead
-    }
-}
-
 bool CsvImportDialog::openFile(const QString &path)
 {
     QFile f(path);
@@ -336,14 +281,16 @@ bool CsvImportDialog::openFile(const QString &path)
     m_file->setText(QDir::toNativeSeparators(path));
     m_name->setText(QFileInfo(path).completeBaseName());
     m_updating = true;
-    m_started->setDateTime(QFileInfo(path).lastModified().toUTC());
+    QDateTime modified = QFileInfo(path).lastModified().toUTC();
+    modified.setTime(QTime(modified.time().hour(), modified.time().minute(), modified.time().second()));
+    m_started->setDateTime(modified);
     m_updating = false;
     m_startGuessed = true;
     clearError();
     CsvColumnMap map;
     CsvMapGuesser::guessDialect(m_head, map);
     setColumnMap(map); // shows the guessed dialect and reads the header
-    if (recall(map)) {
+    if (CsvMapMemory::recall(map, m_header)) {
         setColumnMap(map);
         m_status->setText(tr("Column assignment remembered from an earlier import of a table with this header."));
         return true;
@@ -357,44 +304,13 @@ bool CsvImportDialog::openFile(const QString &path)
 
 void CsvImportDialog::reloadPreview()
 {
-    const char separator = static_cast<char>(m_separator->currentData().toInt());
-    QTextCodec *codec = QTextCodec::codecForName(m_encoding->currentText() == QLatin1String("latin1") ? "ISO-8859-1"
-                                                                                                     : m_encoding->currentText().toLatin1());
-    QVector<CsvRecord> records;
-    try {
-        CsvReader reader(m_path, separator);
-        const CsvReader::Sink sink = [&](const CsvRecord &r) {
-            if (r.line > m_skip->value() && records.size() <= kPreviewRows)
-                records.push_back(r);
-        };
-        reader.feed(m_head, sink);
-        reader.finish(sink); // m_head may end mid-line: the last record is then cut short
-    } catch (const CsvError &e) {
-        // A quote left open where the first 64 kB end is the cut, not the file's fault.
-        if (m_head.size() < kHeadBytes || records.size() <= kPreviewRows)
-            showError(QString::fromUtf8(e.what()), e.line(), e.column());
-    }
-    m_header.clear();
-    int width = 0;
-    for (const CsvRecord &r : records)
-        width = std::max(width, static_cast<int>(r.fields.size()));
-    const bool header = m_hasHeader->isChecked() && !records.isEmpty();
-    for (int c = 0; c < width; ++c)
-        m_header << (header && c < records.front().fields.size() ? codec->toUnicode(records.front().fields[c]).trimmed()
-                                                                : tr("column %1").arg(c + 1));
-    if (header)
-        records.removeFirst();
-    m_preview->clear();
-    m_preview->setColumnCount(width);
-    m_preview->setRowCount(records.size());
-    m_preview->setHorizontalHeaderLabels(m_header);
-    QStringList lines;
-    for (int r = 0; r < records.size(); ++r) {
-        lines << QString::number(records[r].line);
-        for (int c = 0; c < records[r].fields.size(); ++c)
-            m_preview->setItem(r, c, new QTableWidgetItem(codec->toUnicode(records[r].fields[c])));
-    }
-    m_preview->setVerticalHeaderLabels(lines); // file line numbers, as errors name them
+    QString error;
+    qint64 line = 0;
+    int column = 0;
+    m_header = m_preview->load(m_head, m_head.size() < kHeadBytes, m_path, static_cast<char>(m_separator->currentData().toInt()),
+                               m_encoding->currentText(), m_skip->value(), m_hasHeader->isChecked(), error, line, column);
+    if (!error.isEmpty())
+        showError(error, line, column);
     m_updating = true;
     const QString time = m_timeColumn->currentText();
     m_timeColumn->clear();
@@ -410,50 +326,23 @@ void CsvImportDialog::reloadPreview()
     m_updating = false;
 }
 
+QTableWidget *CsvImportDialog::preview() const
+{
+    return m_preview;
+}
+
+QTableWidget *CsvImportDialog::columnTable() const
+{
+    return m_columns;
+}
+
 void CsvImportDialog::fillColumns(const CsvColumnMap &map)
 {
     m_updating = true;
-    m_columns->setRowCount(0);
-    const int timeCol = m_timeUnit->currentText() == kInterval ? -1 : m_timeColumn->currentIndex();
-    const int runCol = m_runColumn->currentIndex() - 1;
-    for (int c = 0; c < m_header.size(); ++c) {
-        if (c == timeCol || c == runCol)
-            continue;
-        const CsvColumnSpec *spec = nullptr;
-        for (const CsvColumnSpec &s : map.columns) {
-            if ((s.index > 0 && s.index == c + 1) || (s.index == 0 && s.column == m_header[c]))
-                spec = &s;
-        }
-        const CsvColumnSpec s = spec ? *spec : CsvMapGuesser::guessColumn(m_hasHeader->isChecked() ? m_header[c] : QString(), c + 1);
-        const int row = m_columns->rowCount();
-        m_columns->insertRow(row);
-        auto *use = new QTableWidgetItem;
-        use->setCheckState(spec ? Qt::Checked : Qt::Unchecked);
-        m_columns->setItem(row, Use, use);
-        auto *header = new QTableWidgetItem(m_header[c]);
-        header->setFlags(header->flags() & ~Qt::ItemIsEditable);
-        header->setData(Qt::UserRole, c);
-        m_columns->setItem(row, Header, header);
-        m_columns->setItem(row, Id, new QTableWidgetItem(s.id));
-        auto *kind = combo(CsvColumnMap::kinds(), false, s.kind);
-        auto *unit = combo(CsvColumnMap::units(s.kind), true, s.unit);
-        auto *role = combo(QStringList{QString()} + CsvColumnMap::knownRoles(), true, s.role);
-        m_columns->setCellWidget(row, Kind, kind);
-        m_columns->setCellWidget(row, Unit, unit);
-        m_columns->setCellWidget(row, Role, role);
-        auto *target = new QTableWidgetItem;
-        target->setCheckState(s.target ? Qt::Checked : Qt::Unchecked);
-        m_columns->setItem(row, Target, target);
-        m_columns->setItem(row, Scale, new QTableWidgetItem(QString::number(s.scale, 'g', 12)));
-        m_columns->setItem(row, Offset, new QTableWidgetItem(QString::number(s.offset, 'g', 12)));
-        connect(kind, &QComboBox::currentTextChanged, unit, [unit, target](const QString &k) {
-            const QStringList units = CsvColumnMap::units(k);
-            unit->clear();
-            unit->addItems(units);
-            target->setCheckState(k == QLatin1String("displacement") ? Qt::Checked : Qt::Unchecked);
-        });
-    }
-    m_columns->resizeColumnsToContents();
+    QSet<int> skip{m_runColumn->currentIndex() - 1};
+    if (m_timeUnit->currentText() != kInterval)
+        skip.insert(m_timeColumn->currentIndex());
+    m_columns->fill(m_header, m_hasHeader->isChecked(), map.columns, skip);
     m_updating = false;
 }
 
@@ -492,24 +381,7 @@ CsvColumnMap CsvImportDialog::columnMap() const
         m.session.insert(QStringLiteral("name"), m_name->text().trimmed());
     if (m_started->isEnabled())
         m.session.insert(QStringLiteral("started"), m_started->dateTime().toUTC().toString(Qt::ISODate));
-    for (int row = 0; row < m_columns->rowCount(); ++row) {
-        if (m_columns->item(row, Use)->checkState() != Qt::Checked)
-            continue;
-        CsvColumnSpec s;
-        const int c = m_columns->item(row, Header)->data(Qt::UserRole).toInt();
-        if (m.header)
-            s.column = m_header.value(c);
-        else
-            s.index = c + 1;
-        s.id = m_columns->item(row, Id)->text().trimmed();
-        s.kind = qobject_cast<QComboBox *>(m_columns->cellWidget(row, Kind))->currentText();
-        s.unit = qobject_cast<QComboBox *>(m_columns->cellWidget(row, Unit))->currentText().trimmed();
-        s.role = qobject_cast<QComboBox *>(m_columns->cellWidget(row, Role))->currentText().trimmed();
-        s.target = m_columns->item(row, Target)->checkState() == Qt::Checked && s.kind == QLatin1String("displacement");
-        s.scale = m_columns->item(row, Scale)->text().toDouble();
-        s.offset = m_columns->item(row, Offset)->text().toDouble();
-        m.columns.push_back(s);
-    }
+    m.columns = m_columns->specs(m_header, m.header);
     return m;
 }
 
@@ -541,7 +413,8 @@ void CsvImportDialog::setColumnMap(const CsvColumnMap &map)
     if (map.session.contains(QStringLiteral("name")))
         m_name->setText(map.session.value(QStringLiteral("name")).toString());
     if (map.session.contains(QStringLiteral("started")) &&
-        QDateTime::fromString(map.session.value(QStringLiteral("started")).toString(), Qt::ISODate).toUTC() != m_started->dateTime()) {
+        QDateTime::fromString(map.session.value(QStringLiteral("started")).toString(), Qt::ISODate).toSecsSinceEpoch() !=
+            m_started->dateTime().toSecsSinceEpoch()) {
         m_started->setDateTime(QDateTime::fromString(map.session.value(QStringLiteral("started")).toString(), Qt::ISODate).toUTC());
         m_startGuessed = false; // a start the map gives
     }
@@ -560,12 +433,7 @@ void CsvImportDialog::showError(const QString &message, qint64 line, int column)
     m_status->setText(message);
     m_status->setStyleSheet(QStringLiteral("color: #b00020;"));
     m_status->setProperty("error", true);
-    for (int r = 0; line > 0 && r < m_preview->rowCount(); ++r) {
-        if (m_preview->verticalHeaderItem(r) && m_preview->verticalHeaderItem(r)->text().toLongLong() == line) {
-            m_preview->setCurrentCell(r, std::max(0, column - 1));
-            m_preview->scrollToItem(m_preview->item(r, std::max(0, column - 1)));
-        }
-    }
+    m_preview->selectCell(line, column);
 }
 
 bool CsvImportDialog::saveMap(const QString &path)
@@ -583,7 +451,7 @@ bool CsvImportDialog::saveMap(const QString &path)
         showError(tr("%1: cannot write: %2").arg(path, f.errorString()));
         return false;
     }
-    remember(map);
+    CsvMapMemory::remember(map, m_header);
     m_status->setStyleSheet(QString());
     m_status->setProperty("error", false);
     m_status->setText(tr("Map saved to %1: driftlab-cli import-csv FILE --map %1").arg(QDir::toNativeSeparators(path)));
@@ -601,7 +469,7 @@ void CsvImportDialog::startImport()
         showError(QString::fromUtf8(e.what()));
         return;
     }
-    remember(map);
+    CsvMapMemory::remember(map, m_header);
     m_status->setStyleSheet(QString());
     m_status->setProperty("error", false);
     m_status->setText(tr("Importing %1 ...").arg(QFileInfo(m_path).fileName()));

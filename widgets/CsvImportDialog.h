@@ -3,7 +3,7 @@
 // lets the user set the separator, decimal mark, encoding, preamble lines, the time column
 // (or a clock from the row number, "1 min"), a run column splitting the table into sessions,
 // and per column whether it is imported and as which channel (id, kind, unit, role, target,
-// scale, offset). The assignment is remembered per header signature (QSettings) and can be
+// scale, offset). The assignment is remembered per header signature (CsvMapMemory) and can be
 // saved as a column map for `driftlab-cli import-csv`. The import runs on a worker thread
 // with its own database connection, with progress and cancel; errors name line and column.
 
@@ -29,6 +29,9 @@ class QThread;
 
 namespace driftlab {
 
+class CsvColumnTable;
+class CsvPreviewTable;
+
 class CsvImportDialog : public QDialog {
     Q_OBJECT
 public:
@@ -52,11 +55,9 @@ public:
     void cancelImport();
     bool isImporting() const { return m_worker != nullptr; }
     QString errorText() const;
-    // Header signature the assignment is remembered under (separator + header texts).
-    static QString signature(char separator, const QStringList &header);
 
-    QTableWidget *preview() const { return m_preview; }
-    QTableWidget *columnTable() const { return m_columns; }
+    QTableWidget *preview() const;
+    QTableWidget *columnTable() const;
 
     void reject() override; // while importing: cancels the import
 
@@ -69,8 +70,6 @@ private:
     void reloadPreview();          // re-reads the first rows with the current dialect
     void fillColumns(const CsvColumnMap &map);
     void showError(const QString &message, qint64 line = 0, int column = 0);
-    void remember(const CsvColumnMap &map) const;
-    bool recall(CsvColumnMap &map) const;
     void finishImport(qint64 sessionId, bool cancelled, const QString &error, qint64 line, int column, qint64 rows, int sessions);
     void setBusy(bool busy);
     void chooseFile();
@@ -103,8 +102,8 @@ private:
     QComboBox *m_timeZone = nullptr;
     QDateTimeEdit *m_started = nullptr;
     QLineEdit *m_name = nullptr;
-    QTableWidget *m_preview = nullptr;
-    QTableWidget *m_columns = nullptr;
+    CsvPreviewTable *m_preview = nullptr;
+    CsvColumnTable *m_columns = nullptr;
     QLabel *m_status = nullptr;
     QProgressBar *m_progress = nullptr;
     QPushButton *m_import = nullptr;
