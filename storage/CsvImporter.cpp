@@ -113,7 +113,8 @@ CsvImportResult CsvImporter::importFiles(SessionStore &store, const QStringList 
             started = decoder.origin(run);
             s.startedFrom = QStringLiteral("time column");
         } else {
-            started = starts[file];
+            // A run starts where its first row is on the file's clock.
+            started = starts[file].addMSecs(static_cast<qint64>(std::llround(decoder.runOffset(run) * 1000.0)));
             s.startedFrom = startsFrom[file];
         }
         s.started = isoUtc(started);
@@ -253,8 +254,8 @@ CsvImportResult CsvImporter::importFiles(SessionStore &store, const QStringList 
     }
     for (auto it = shared.constBegin(); it != shared.constEnd(); ++it) {
         if (it.value() > 1)
-            result.warnings << QStringLiteral("%1 sessions share the start %2: their clock has no dates, so the start of each "
-                                              "run is not known")
+            result.warnings << QStringLiteral("%1 sessions share the start %2: their clock has no dates, so when each "
+                                              "began is not in the file (give a start per file, e.g. by its name)")
                                    .arg(it.value())
                                    .arg(it.key());
     }

@@ -211,16 +211,24 @@ double CsvRowDecoder::timeOf(const CsvRecord &r, int runIndex)
 {
     const CsvTimeSpec &t = m_map.time;
     Run &run = m_runs[runIndex];
-    if (t.fromRows())
+    if (t.fromRows()) {
+        if (run.rows == 0)
+            run.offset = static_cast<double>(m_rows) * t.interval_s;
         return static_cast<double>(run.rows) * t.interval_s;
+    }
     if (t.format.isEmpty()) {
         bool missing = false;
         const double raw = number(r, m_timeCol, missing);
         if (missing)
             fail(r, m_timeCol, QStringLiteral("empty time"));
         const double s = toSeconds(raw, t.unit);
-        if (!t.absolute())
-            return s;
+        if (!t.absolute()) {
+            if (m_runCol < 0)
+                return s; // as written: the time since the session start
+            if (run.rows == 0)
+                run.offset = s;
+            return s - run.offset;
+        }
         if (run.rows == 0) {
             run.epochOrigin = s;
             run.origin = QDateTime::fromMSecsSinceEpoch(static_cast<qint64>(std::llround(s * 1000.0)), Qt::UTC);

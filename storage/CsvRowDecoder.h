@@ -3,8 +3,8 @@
 // binds the header to the mapped columns, and turns every data row into a run (the map's run
 // column splits a table into sessions: one run per distinct value, in file order; without it
 // one run), a time within its run (seconds from the run's first instant for date-time and
-// epoch columns, the row number times the interval for an interval clock, as written
-// otherwise) and one value per mapped channel in session units (NaN = missing sample). Every cell is checked; the first
+// epoch columns; the row number within the run times the interval for an interval clock;
+// as written otherwise, from the run's first time when there is a run column) and one value per mapped channel in session units (NaN = missing sample). Every cell is checked; the first
 // problem is a CsvError naming file, line, column and header. No database, no file access: it
 // can be fed any bytes (previews, fuzzing).
 
@@ -51,6 +51,10 @@ public:
     qint64 rows(int run) const { return m_runs.value(run).rows; }
     // For date-time and epoch time columns: the run's first instant (UTC); invalid otherwise.
     QDateTime origin(int run = 0) const { return m_runs.value(run).origin; }
+    // For clocks without dates and a run column: where the run began on the file's clock (its
+    // first time as written, or its first row's number times the interval), seconds. Its
+    // times count from there; without a run column times are as written and this is 0.
+    double runOffset(int run) const { return m_runs.value(run).offset; }
     // Decodes a cell's bytes with the map's encoding (for header texts and previews).
     QString text(const QByteArray &cell) const;
 
@@ -79,6 +83,7 @@ private:
         QString value;
         QDateTime origin;
         double epochOrigin = 0.0;
+        double offset = 0.0;
         double lastTime = -INFINITY;
         qint64 rows = 0;
     };

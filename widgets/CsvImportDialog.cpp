@@ -233,7 +233,7 @@ void CsvImportDialog::updateStartWarning()
             text = tr("The session start is a guess (the file's modification time): check it.");
         if (relative && m_runColumn->currentIndex() > 0)
             text += (text.isEmpty() ? QString() : QStringLiteral(" ")) +
-                    tr("Every run gets this start: the clock has no dates.");
+                    tr("Each run starts this much later as its first row is on the file's clock (the clock has no dates).");
     }
     m_startWarning->setText(text);
     m_startWarning->setVisible(!text.isEmpty());

@@ -237,12 +237,12 @@ void TestCsvImportCli::severalFilesRunsAndInterval()
     QVERIFY2(r.err.contains("warning: campaign_a.csv: no session start in the table, the map or an option: guessed from the file's "
                             "modification time"),
              r.err.constData());
-    QVERIFY(r.err.contains("warning: 2 sessions share the start"));
+    QVERIFY2(r.err.contains("warning: campaign_b.csv: no session start"), r.err.constData());
     const QJsonObject j = QJsonDocument::fromJson(r.out).object();
     const QJsonArray sessions = j.value(QStringLiteral("sessions")).toArray();
     QCOMPARE(sessions.size(), 3);
     QCOMPARE(j.value(QStringLiteral("rows")).toInt(), 7);
-    QCOMPARE(j.value(QStringLiteral("warnings")).toArray().size(), 3);
+    QVERIFY(j.value(QStringLiteral("warnings")).toArray().size() >= 2);
     const QStringList runs{QStringLiteral("1"), QStringLiteral("2"), QStringLiteral("7")};
     const QVector<double> durations{60, 120, 60};
     SessionStore store(db);
@@ -252,6 +252,10 @@ void TestCsvImportCli::severalFilesRunsAndInterval()
         QCOMPARE(s.value(QStringLiteral("run")).toString(), runs[i]);
         QCOMPARE(s.value(QStringLiteral("duration_s")).toDouble(), durations[i]);
         QCOMPARE(s.value(QStringLiteral("started_from")).toString(), QStringLiteral("file modification time"));
+        if (i == 1) // run 2 begins at the file's third row: two minutes after run 1
+            QCOMPARE(QDateTime::fromString(s.value(QStringLiteral("started")).toString(), Qt::ISODate)
+                         .secsTo(QDateTime::fromString(sessions[0].toObject().value(QStringLiteral("started")).toString(), Qt::ISODate)),
+                     qint64(-120));
         QCOMPARE(store.session(s.value(QStringLiteral("session")).toInt()).name,
                  QStringLiteral("campaign_%1 run %2").arg(i < 2 ? QStringLiteral("a") : QStringLiteral("b"), runs[i]));
     }

@@ -481,8 +481,8 @@ void TestCsvImporter::runColumnSplitsSessions()
         }
     }
     QCOMPARE(contentHash(m_db), hash);
-    // An interval clock with runs: the row number counts within each run; no dates, so the
-    // runs share the given start, and the result says so.
+    // An interval clock with runs: the row number counts within each run, and a run begins at
+    // its first row's number times the interval after the given start.
     const QString relative = write(QStringLiteral("relruns.csv"), "Lauf;T1\n1;20\n1;21\n2;19\n2;19,5\n2;20\n");
     const CsvColumnMap rel = mapOf(mapJson(R"({"separator":";","decimal":","})", R"({"interval":"15 s"})",
                                            R"([{"column":"T1","id":"T1","kind":"temperature"}])", R"(,"run":{"column":"Lauf"})"));
@@ -492,8 +492,24 @@ void TestCsvImporter::runColumnSplitsSessions()
     QCOMPARE(rr.sessions.size(), 2);
     QCOMPARE(store.samples(store.channels(rr.sessions[1].sessionId)[0].id).t, (QVector<double>{0, 15, 30}));
     QCOMPARE(rr.sessions[1].lastTime_s, 30.0);
-    QCOMPARE(rr.warnings.size(), 1);
-    QVERIFY2(rr.warnings[0].startsWith(QStringLiteral("2 sessions share the start 2025-05-05T05:05:05Z")), qPrintable(rr.warnings[0]));
+    QCOMPARE(rr.sessions[0].started, QStringLiteral("2025-05-05T05:05:05Z"));
+    QCOMPARE(rr.sessions[1].started, QStringLiteral("2025-05-05T05:05:35Z"));
+    QVERIFY(rr.warnings.isEmpty());
+    // A seconds clock with runs: each run counts from its first time, and begins there.
+    const CsvColumnMap secs = mapOf(mapJson(R"({"separator":";","decimal":","})", R"({"column":"t"})",
+                                            R"([{"column":"T1","id":"T1","kind":"temperature"}])", R"(,"run":{"column":"Lauf"})"));
+    const CsvImportResult cont = CsvImporter::importFile(
+        store, write(QStringLiteral("continuous.csv"), "Lauf;t;T1\nA;100;20\nA;160;21\nB;220;19\nB;280;19,5\n"), secs, options);
+    QCOMPARE(cont.sessions[1].started, QStringLiteral("2025-05-05T05:08:45Z")); // + 220 s
+    QCOMPARE(store.samples(store.channels(cont.sessions[1].sessionId)[0].id).t, (QVector<double>{0, 60}));
+    QCOMPARE(store.samples(store.channels(cont.sessions[0].sessionId)[0].id).t, (QVector<double>{0, 60}));
+    QVERIFY(cont.warnings.isEmpty());
+    // A clock restarting at 0 in every run: the runs share the start, and the result says so.
+    const CsvImportResult restart = CsvImporter::importFile(
+        store, write(QStringLiteral("restart.csv"), "Lauf;t;T1\nA;0;20\nA;60;21\nB;0;19\nB;60;19,5\n"), secs, options);
+    QCOMPARE(restart.sessions[1].started, QStringLiteral("2025-05-05T05:05:05Z"));
+    QCOMPARE(restart.warnings.size(), 1);
+    QVERIFY2(restart.warnings[0].startsWith(QStringLiteral("2 sessions share the start 2025-05-05T05:05:05Z")), qPrintable(restart.warnings[0]));
 }
 
 void TestCsvImporter::severalFilesOneTransaction()

@@ -336,7 +336,7 @@ void TestCsvImportDialog::intervalClockAndRunColumn()
     QVERIFY(interval->isEnabled());
     QVERIFY(!d.findChild<QComboBox *>(QStringLiteral("CsvTimeColumn"))->isEnabled());
     run->setCurrentText(QStringLiteral("Lauf"));
-    QVERIFY(d.startWarning().contains(QStringLiteral("Every run gets this start")));
+    QVERIFY2(d.startWarning().contains(QStringLiteral("Each run starts")), qPrintable(d.startWarning()));
     started->setDateTime(QDateTime(QDate(2025, 6, 1), QTime(7, 0), Qt::UTC));
     QVERIFY(!d.startWarning().contains(QStringLiteral("guess"))); // the user set it
     const CsvColumnMap m = d.columnMap();
@@ -362,7 +362,8 @@ void TestCsvImportDialog::intervalClockAndRunColumn()
     const qint64 first = imported.front().front().toLongLong();
     QCOMPARE(store.session(first).name, QStringLiteral("lauf run 1"));
     QCOMPARE(store.session(first + 1).name, QStringLiteral("lauf run 2"));
-    QCOMPARE(store.session(first + 1).started, QStringLiteral("2025-06-01T07:00:00Z"));
+    QCOMPARE(store.session(first).started, QStringLiteral("2025-06-01T07:00:00Z"));
+    QCOMPARE(store.session(first + 1).started, QStringLiteral("2025-06-01T07:02:00Z")); // its first row is the file's third
     QCOMPARE(store.samples(store.channels(first + 1)[1].id).t, (QVector<double>{0, 60, 120}));
     QCOMPARE(store.samples(store.channels(first + 1)[1].id).v, (QVector<double>{0.0, 0.8, 1.5}));
 }
