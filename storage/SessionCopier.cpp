@@ -1,5 +1,7 @@
 #include "SessionCopier.h"
 
+#include "CentralDigest.h"
+#include "IrFrameCodec.h"
 #include "SessionStore.h"
 #include "Sha256.h"
 #include "StorageError.h"
@@ -90,9 +92,11 @@ public:
     {
         SessionInfo copy = info;
         copy.id = 0;
-        // Complete and content hash go in with the session: a copy never updates a session row
-        // (rig accounts of a central store may only add).
+        // Added open and marked complete at the end (finish()): a central store takes rows only
+        // into an open session of their adder, and checks the digest when it is marked complete.
+        copy.complete = false;
         m_id = m_to.createSession(copy);
+        m_claim.session(copy);
     }
     void channel(const ChannelInfo &ch)
     {
@@ -100,11 +104,13 @@ public:
         c.id = 0;
         c.sessionId = m_id;
         m_channel = m_to.addChannel(m_id, c);
+        m_claim.channel(c);
         m_pending = 0;
     }
     void samples(const QVector<double> &t, const QVector<double> &v)
     {
         m_to.appendSamples(m_channel, t, v);
+        m_claim.samples(t, v);
         m_pending += t.size();
         bytes += 16LL * t.size();
         if (m_pending >= 1000000) { // bounded memory: write the buffered blocks
@@ -116,7 +122,11 @@ public:
     void channelsDone() { m_to.flushSamples(); }
     void frame(const IrFrame &f)
     {
-        m_to.addIrFrame(m_id, f);
+        if (f.width <= 0 || f.height <= 0 || f.pixels.size() != f.width * f.height)
+            m_to.addIrFrame(m_id, f); // refused with the store's message
+        const QByteArray blob = IrFrameCodec::compress(f.pixels, f.width, f.height);
+        m_to.addCompressedIrFrame(m_id, f, blob);
+        m_claim.frame(f.t, f.width, f.height, IrFrameCodec::storeEncoding(), f.sourceName, blob);
         bytes += 2LL * f.pixels.size();
         step(10000.0);
     }
@@ -124,13 +134,24 @@ public:
               const QVector<AnalysisResult> &results)
     {
         m_to.addInterferometerPoints(m_id, points);
-        for (const EventRecord &e : events)
+        for (const InterferometerPoint &p : points)
+            m_claim.point(p);
+        for (const EventRecord &e : events) {
             m_to.addEvent(m_id, e);
-        for (const FittedModel &m : models)
+            m_claim.event(e);
+        }
+        for (const FittedModel &m : models) {
             m_to.addFittedModel(m_id, m);
-        for (const AnalysisResult &a : results)
+            m_claim.model(m);
+        }
+        for (const AnalysisResult &a : results) {
             m_to.addAnalysisResult(m_id, a.kind, a.result, a.created);
+            m_claim.result(a);
+        }
     }
+    // Marks the copy complete: a central store checks the claimed digest of what was sent
+    // against its own computation from the stored rows.
+    void finish() { m_to.setComplete(m_id, true, m_claim.hex()); }
     qint64 id() const { return m_id; }
     qint64 bytes = 0;
 
@@ -149,6 +170,7 @@ private:
     qint64 m_channel = 0;
     qint64 m_pending = 0;
     double m_done = 0.0;
+    CentralDigest m_claim; // what the server will compute from what was written
 };
 
 // Walks a session in digest order, hashing everything; with a target, writes each part there
@@ -281,6 +303,7 @@ SessionCopier::Result SessionCopier::copy(const SessionStore &from, qint64 sessi
     try {
         r.sha256 = walk(from, sessionId, &r.counts, &writer);
         r.bytes = writer.bytes;
+        writer.finish();
         // Read the copy back inside the transaction: the same counts and digest, or nothing.
         Counts c;
         const QString got = digest(to, writer.id(), &c);
