@@ -1,5 +1,6 @@
 #include "SessionCopier.h"
 
+#include "CentralConnection.h"
 #include "CentralDigest.h"
 #include "IrFrameCodec.h"
 #include "SessionStore.h"
@@ -260,6 +261,22 @@ QString SessionCopier::digest(const SessionStore &store, qint64 sessionId, Count
 }
 
 SessionCopier::Result SessionCopier::copy(const SessionStore &from, qint64 sessionId, SessionStore &to, const Progress &progress)
+{
+    try {
+        return copySession(from, sessionId, to, progress);
+    } catch (const StorageError &e) {
+        // A stalled server (CentralConnection's watchdog): say what the copy was doing.
+        if (CentralConnection::stallNote(to.path()).isEmpty() && CentralConnection::stallNote(from.path()).isEmpty())
+            throw;
+        throw StorageError(QStringLiteral("%1 (while copying session %2 of %3 to %4)")
+                               .arg(QString::fromUtf8(e.what()))
+                               .arg(sessionId)
+                               .arg(from.path(), to.path())
+                               .toStdString());
+    }
+}
+
+SessionCopier::Result SessionCopier::copySession(const SessionStore &from, qint64 sessionId, SessionStore &to, const Progress &progress)
 {
     Result r;
     r.sourceId = sessionId;
