@@ -116,7 +116,7 @@ QString CentralConnection::stallNote(const QString &path)
 }
 
 // Every quarter second: has DriftLab sent data more recently than it received any (a request
-// waiting for its answer), and has nothing come for the limit? Then the server is stalled:
+// waiting for its answer), and has that request waited for the limit? Then the server is stalled:
 // shutting the socket down makes libpq's blocked wait return with a lost connection (the
 // server rolls the open transaction back when it notices). An idle connection (the last data
 // was the server's answer) is never touched.
@@ -129,14 +129,16 @@ void CentralConnection::watch()
         socklen_t size = sizeof info;
         if (::getsockopt(m_socket, IPPROTO_TCP, TCP_INFO, &info, &size) != 0)
             return;
+        // Sent more recently than received: a request waits for its answer, since the last send
+        // (a long upload keeps sending, so only a request that has been waiting counts).
         const bool waiting = info.tcpi_last_data_sent < info.tcpi_last_data_recv;
-        if (!waiting || info.tcpi_last_data_recv < limit_ms)
+        if (!waiting || info.tcpi_last_data_sent < limit_ms)
             continue;
         {
             std::lock_guard<std::mutex> notes(g_notesMutex);
             g_notes.insert(m_path, QStringLiteral("the server did not answer for %1 s (time limit DRIFTLAB_PG_TIMEOUT_S = %2 s); DriftLab "
                                                   "closed the connection, and the server rolls back what was not committed")
-                                       .arg(info.tcpi_last_data_recv / 1000)
+                                       .arg(info.tcpi_last_data_sent / 1000)
                                        .arg(m_limit_s));
         }
         ::shutdown(m_socket, SHUT_RDWR);

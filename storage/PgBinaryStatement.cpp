@@ -71,7 +71,7 @@ PGresult *run(const QSqlDatabase &db, const QString &path, const char *sql, cons
         const bool lost = PQstatus(conn) != CONNECTION_OK;
         const QString stalled = CentralConnection::stallNote(path);
         if (!stalled.isEmpty())
-            throw StorageError(QStringLiteral("%1: %2: %3 (%4)").arg(path, what, stalled, message).toStdString());
+            throw StorageError(QStringLiteral("%1: %2: %3").arg(path, what, stalled).toStdString());
         if (message.contains(QLatin1String("statement timeout")))
             throw StorageError(QStringLiteral("%1: %2: the server took longer than the time limit (DRIFTLAB_PG_TIMEOUT_S = %3 s) and "
                                               "cancelled it (%4)")

@@ -27,7 +27,7 @@ void SqlSupport::fail(const QString &path, const QString &what, const QSqlError 
     // A central store whose server stalled: the watchdog closed the connection (CentralConnection).
     const QString stalled = CentralConnection::stallNote(path);
     if (!stalled.isEmpty())
-        throw StorageError(QStringLiteral("%1: %2: %3 (%4)").arg(path, what, stalled, error.text().trimmed()).toStdString());
+        throw StorageError(QStringLiteral("%1: %2: %3").arg(path, what, stalled).toStdString());
     if (error.databaseText().contains(QLatin1String("statement timeout")))
         throw StorageError(QStringLiteral("%1: %2: the server took longer than the time limit (DRIFTLAB_PG_TIMEOUT_S = %3 s) and cancelled "
                                           "it (%4)")
