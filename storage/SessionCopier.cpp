@@ -6,6 +6,7 @@
 #include "SessionStore.h"
 #include "Sha256.h"
 #include "StorageError.h"
+#include "StoreTransaction.h"
 
 #include <QJsonDocument>
 #include <QtEndian>
@@ -316,8 +317,8 @@ SessionCopier::Result SessionCopier::copySession(const SessionStore &from, qint6
     const double total = static_cast<double>(std::max<qint64>(1, samples + from.irFrames(sessionId).size() * 10000LL));
     Writer writer(to, progress, total,
                   QStringLiteral("%1: copy of session %2 cancelled; nothing was copied").arg(to.path()).arg(sessionId));
-    to.begin();
     try {
+        StoreTransaction transaction(to); // rolled back on any exception
         r.sha256 = walk(from, sessionId, &r.counts, &writer);
         r.bytes = writer.bytes;
         writer.finish();
@@ -333,10 +334,9 @@ SessionCopier::Result SessionCopier::copySession(const SessionStore &from, qint6
                                    .arg(r.counts.samples)
                                    .arg(got.left(12), r.sha256.left(12))
                                    .toStdString());
-        to.commit();
+        transaction.commit();
         r.targetId = writer.id();
     } catch (const StorageError &) {
-        to.rollback();
         // Another writer may have committed the same session meanwhile (two pushes at once).
         try {
             r.sha256.clear();

@@ -7,6 +7,7 @@
 #include "SchemaMigrator.h"
 #include "SqlSupport.h"
 #include "StorageError.h"
+#include "StoreTransaction.h"
 
 #include <QAtomicInteger>
 #include <QFile>
@@ -259,18 +260,13 @@ void SessionStore::rollback()
 
 void SessionStore::inTransaction(const std::function<void()> &work)
 {
-    const bool own = !m_inTransaction;
-    if (own)
-        begin();
-    try {
+    if (m_inTransaction) {
         work();
-    } catch (...) {
-        if (own)
-            rollback();
-        throw;
+        return;
     }
-    if (own)
-        commit();
+    StoreTransaction transaction(*this);
+    work();
+    transaction.commit();
 }
 
 QSqlQuery &SessionStore::cached(const char *sql)
