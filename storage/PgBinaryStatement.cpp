@@ -1,5 +1,6 @@
 #include "PgBinaryStatement.h"
 
+#include "CentralConnection.h"
 #include "StorageError.h"
 
 #include <QSqlDriver>
@@ -68,6 +69,16 @@ PGresult *run(const QSqlDatabase &db, const QString &path, const char *sql, cons
         const QString message = QString::fromUtf8(PQresultErrorMessage(r)).trimmed();
         PQclear(r);
         const bool lost = PQstatus(conn) != CONNECTION_OK;
+        const QString stalled = CentralConnection::stallNote(path);
+        if (!stalled.isEmpty())
+            throw StorageError(QStringLiteral("%1: %2: %3").arg(path, what, stalled).toStdString());
+        if (message.contains(QLatin1String("statement timeout")))
+            throw StorageError(QStringLiteral("%1: %2: the server took longer than the time limit (DRIFTLAB_PG_TIMEOUT_S = %3 s) and "
+                                              "cancelled it (%4)")
+                                   .arg(path, what)
+                                   .arg(CentralConnection::timeout_s())
+                                   .arg(message)
+                                   .toStdString());
         throw StorageError(QStringLiteral("%1: %2: %3%4")
                                .arg(path, what, message.isEmpty() ? QStringLiteral("statement failed") : message,
                                     lost ? QStringLiteral(" (the connection to the server is lost)") : QString())

@@ -1,5 +1,6 @@
 #include "SchemaMigrator.h"
 
+#include "CentralSchema.h"
 #include "StorageError.h"
 
 #include <QSqlError>
@@ -193,6 +194,7 @@ void SchemaMigrator::migrate(QSqlDatabase &db, const DataStep &dataStep)
         exec(db, QStringLiteral("SELECT pg_advisory_lock(727274)"));
         try {
             migrateLocked(db, dataStep);
+            CentralSchema::install(db); // the server's own ownership and verification rules
         } catch (...) {
             QSqlQuery(db).exec(QStringLiteral("SELECT pg_advisory_unlock(727274)"));
             throw;

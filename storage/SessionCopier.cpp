@@ -1,8 +1,12 @@
 #include "SessionCopier.h"
 
+#include "CentralConnection.h"
+#include "CentralDigest.h"
+#include "IrFrameCodec.h"
 #include "SessionStore.h"
 #include "Sha256.h"
 #include "StorageError.h"
+#include "StoreTransaction.h"
 
 #include <QJsonDocument>
 #include <QtEndian>
@@ -90,9 +94,11 @@ public:
     {
         SessionInfo copy = info;
         copy.id = 0;
-        // Complete and content hash go in with the session: a copy never updates a session row
-        // (rig accounts of a central store may only add).
+        // Added open and marked complete at the end (finish()): a central store takes rows only
+        // into an open session of their adder, and checks the digest when it is marked complete.
+        copy.complete = false;
         m_id = m_to.createSession(copy);
+        m_claim.session(copy);
     }
     void channel(const ChannelInfo &ch)
     {
@@ -100,11 +106,13 @@ public:
         c.id = 0;
         c.sessionId = m_id;
         m_channel = m_to.addChannel(m_id, c);
+        m_claim.channel(c);
         m_pending = 0;
     }
     void samples(const QVector<double> &t, const QVector<double> &v)
     {
         m_to.appendSamples(m_channel, t, v);
+        m_claim.samples(t, v);
         m_pending += t.size();
         bytes += 16LL * t.size();
         if (m_pending >= 1000000) { // bounded memory: write the buffered blocks
@@ -116,7 +124,11 @@ public:
     void channelsDone() { m_to.flushSamples(); }
     void frame(const IrFrame &f)
     {
-        m_to.addIrFrame(m_id, f);
+        if (f.width <= 0 || f.height <= 0 || f.pixels.size() != f.width * f.height)
+            m_to.addIrFrame(m_id, f); // refused with the store's message
+        const QByteArray blob = IrFrameCodec::compress(f.pixels, f.width, f.height);
+        m_to.addCompressedIrFrame(m_id, f, blob);
+        m_claim.frame(f.t, f.width, f.height, IrFrameCodec::storeEncoding(), f.sourceName, blob);
         bytes += 2LL * f.pixels.size();
         step(10000.0);
     }
@@ -124,13 +136,24 @@ public:
               const QVector<AnalysisResult> &results)
     {
         m_to.addInterferometerPoints(m_id, points);
-        for (const EventRecord &e : events)
+        for (const InterferometerPoint &p : points)
+            m_claim.point(p);
+        for (const EventRecord &e : events) {
             m_to.addEvent(m_id, e);
-        for (const FittedModel &m : models)
+            m_claim.event(e);
+        }
+        for (const FittedModel &m : models) {
             m_to.addFittedModel(m_id, m);
-        for (const AnalysisResult &a : results)
+            m_claim.model(m);
+        }
+        for (const AnalysisResult &a : results) {
             m_to.addAnalysisResult(m_id, a.kind, a.result, a.created);
+            m_claim.result(a);
+        }
     }
+    // Marks the copy complete: a central store checks the claimed digest of what was sent
+    // against its own computation from the stored rows.
+    void finish() { m_to.setComplete(m_id, true, m_claim.hex()); }
     qint64 id() const { return m_id; }
     qint64 bytes = 0;
 
@@ -149,6 +172,7 @@ private:
     qint64 m_channel = 0;
     qint64 m_pending = 0;
     double m_done = 0.0;
+    CentralDigest m_claim; // what the server will compute from what was written
 };
 
 // Walks a session in digest order, hashing everything; with a target, writes each part there
@@ -239,6 +263,22 @@ QString SessionCopier::digest(const SessionStore &store, qint64 sessionId, Count
 
 SessionCopier::Result SessionCopier::copy(const SessionStore &from, qint64 sessionId, SessionStore &to, const Progress &progress)
 {
+    try {
+        return copySession(from, sessionId, to, progress);
+    } catch (const StorageError &e) {
+        // A stalled server (CentralConnection's watchdog): say what the copy was doing.
+        if (CentralConnection::stallNote(to.path()).isEmpty() && CentralConnection::stallNote(from.path()).isEmpty())
+            throw;
+        throw StorageError(QStringLiteral("%1 (while copying session %2 of %3 to %4)")
+                               .arg(QString::fromUtf8(e.what()))
+                               .arg(sessionId)
+                               .arg(from.path(), to.path())
+                               .toStdString());
+    }
+}
+
+SessionCopier::Result SessionCopier::copySession(const SessionStore &from, qint64 sessionId, SessionStore &to, const Progress &progress)
+{
     Result r;
     r.sourceId = sessionId;
     const SessionInfo info = from.session(sessionId); // throws for no such session
@@ -277,10 +317,11 @@ SessionCopier::Result SessionCopier::copy(const SessionStore &from, qint64 sessi
     const double total = static_cast<double>(std::max<qint64>(1, samples + from.irFrames(sessionId).size() * 10000LL));
     Writer writer(to, progress, total,
                   QStringLiteral("%1: copy of session %2 cancelled; nothing was copied").arg(to.path()).arg(sessionId));
-    to.begin();
     try {
+        StoreTransaction transaction(to); // rolled back on any exception
         r.sha256 = walk(from, sessionId, &r.counts, &writer);
         r.bytes = writer.bytes;
+        writer.finish();
         // Read the copy back inside the transaction: the same counts and digest, or nothing.
         Counts c;
         const QString got = digest(to, writer.id(), &c);
@@ -293,10 +334,9 @@ SessionCopier::Result SessionCopier::copy(const SessionStore &from, qint64 sessi
                                    .arg(r.counts.samples)
                                    .arg(got.left(12), r.sha256.left(12))
                                    .toStdString());
-        to.commit();
+        transaction.commit();
         r.targetId = writer.id();
     } catch (const StorageError &) {
-        to.rollback();
         // Another writer may have committed the same session meanwhile (two pushes at once).
         try {
             r.sha256.clear();

@@ -55,6 +55,7 @@ public:
 
 private:
     class Writer;
+    static Result copySession(const SessionStore &from, qint64 sessionId, SessionStore &to, const Progress &progress);
     static QString walk(const SessionStore &store, qint64 sessionId, Counts *counts, Writer *writer);
 };
 

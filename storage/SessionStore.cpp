@@ -1,10 +1,13 @@
 #include "SessionStore.h"
 
+#include "CentralConnection.h"
+#include "CentralDigest.h"
 #include "IrFrameCodec.h"
 #include "SampleChannels.h"
 #include "SchemaMigrator.h"
 #include "SqlSupport.h"
 #include "StorageError.h"
+#include "StoreTransaction.h"
 
 #include <QAtomicInteger>
 #include <QFile>
@@ -135,30 +138,13 @@ SessionStore::SessionStore(const QString &path) : m_path(displayPath(path))
 
 void SessionStore::openCentral(const QString &url)
 {
-    // postgresql://[user[:password]@]host[:port]/database: libpq finds a password the URL
-    // lacks in PGPASSWORD or ~/.pgpass (PGPASSFILE), so none needs to be written in a file of ours.
-    const QUrl u(url);
-    if (!u.isValid() || u.host().isEmpty() || u.path().size() < 2)
-        throw StorageError(QStringLiteral("%1: expected postgresql://[USER@]HOST[:PORT]/DATABASE").arg(m_path).toStdString());
     if (!QSqlDatabase::isDriverAvailable(QStringLiteral("QPSQL")))
         throw StorageError(QStringLiteral("%1: Qt's PostgreSQL driver (QPSQL) is not installed (Debian package libqt5sql5-psql)")
                                .arg(m_path)
                                .toStdString());
     m_central = true;
     m_db = QSqlDatabase::addDatabase(QStringLiteral("QPSQL"), m_connection);
-    m_db.setHostName(u.host());
-    m_db.setPort(u.port(5432));
-    m_db.setDatabaseName(u.path().mid(1));
-    if (!u.userName().isEmpty())
-        m_db.setUserName(u.userName());
-    if (!u.password().isEmpty())
-        m_db.setPassword(u.password());
-    QString options = QStringLiteral("connect_timeout=5");
-    if (u.hasQuery())
-        options += QLatin1Char(';') + u.query().replace(QLatin1Char('&'), QLatin1Char(';'));
-    m_db.setConnectOptions(options);
-    if (!m_db.open())
-        SqlSupport::fail(m_path, QStringLiteral("cannot connect to the central store"), m_db.lastError());
+    m_link = std::make_unique<CentralConnection>(m_db, url, m_path); // address, time limits, stall watchdog
     m_samples = std::make_unique<SampleChannels>(m_db, m_path);
     SchemaMigrator::migrate(m_db); // a new central store has nothing to convert
 }
@@ -230,6 +216,7 @@ SessionStore::~SessionStore()
     if (m_inTransaction)
         m_db.rollback();
     m_db.close();
+    m_link.reset(); // after the close: its watchdog also guards the rollback above
     m_db = QSqlDatabase();
     QSqlDatabase::removeDatabase(m_connection);
 }
@@ -273,18 +260,13 @@ void SessionStore::rollback()
 
 void SessionStore::inTransaction(const std::function<void()> &work)
 {
-    const bool own = !m_inTransaction;
-    if (own)
-        begin();
-    try {
+    if (m_inTransaction) {
         work();
-    } catch (...) {
-        if (own)
-            rollback();
-        throw;
+        return;
     }
-    if (own)
-        commit();
+    StoreTransaction transaction(*this);
+    work();
+    transaction.commit();
 }
 
 QSqlQuery &SessionStore::cached(const char *sql)
@@ -488,12 +470,25 @@ void SessionStore::addEvent(qint64 sessionId, const EventRecord &event)
     SqlSupport::run(q, m_path, QStringLiteral("cannot add event"));
 }
 
-void SessionStore::setComplete(qint64 sessionId, bool complete)
+void SessionStore::setComplete(qint64 sessionId, bool complete, const QString &centralDigest)
 {
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("UPDATE sessions SET complete = ? WHERE id = ?"));
+    if (!m_central) {
+        QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("UPDATE sessions SET complete = ? WHERE id = ?"));
+        q.addBindValue(complete ? 1 : 0);
+        q.addBindValue(sessionId);
+        SqlSupport::run(q, m_path, QStringLiteral("cannot mark session %1").arg(sessionId));
+        return;
+    }
+    if (m_inTransaction)
+        m_samples->flush(); // the server reads every sample of the session
+    const QString digest = !complete ? QString() : !centralDigest.isEmpty() ? centralDigest : CentralDigest::of(*this, sessionId);
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("UPDATE sessions SET complete = ?, verified_sha256 = ? WHERE id = ?"));
     q.addBindValue(complete ? 1 : 0);
+    q.addBindValue(digest);
     q.addBindValue(sessionId);
-    SqlSupport::run(q, m_path, QStringLiteral("cannot mark session %1").arg(sessionId));
+    SqlSupport::run(q, m_path, QStringLiteral("cannot mark session %1 %2").arg(sessionId).arg(complete ? "complete" : "incomplete"));
+    if (q.numRowsAffected() != 1)
+        throw StorageError(QStringLiteral("%1: no session with id %2").arg(m_path).arg(sessionId).toStdString());
 }
 
 qint64 SessionStore::addAnalysisResult(qint64 sessionId, const QString &kind, const QJsonObject &result, const QString &created)
@@ -659,6 +654,18 @@ IrFrame SessionStore::irFrame(qint64 frameId) const
         throw StorageError(QStringLiteral("%1: unknown encoding '%2'").arg(what, q.value(5).toString()).toStdString());
     f.pixels = IrFrameCodec::decompress(q.value(6).toByteArray(), f.width, f.height, what);
     return f;
+}
+
+QByteArray SessionStore::irFrameBlob(qint64 frameId, QString *encoding) const
+{
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT encoding, data FROM ir_frames WHERE id = ?"));
+    q.addBindValue(frameId);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot read infrared frame %1").arg(frameId));
+    if (!q.next())
+        throw StorageError(QStringLiteral("%1: no infrared frame with id %2").arg(m_path).arg(frameId).toStdString());
+    if (encoding)
+        *encoding = q.value(0).toString();
+    return q.value(1).toByteArray();
 }
 
 QVector<InterferometerPoint> SessionStore::interferometerPoints(qint64 sessionId) const

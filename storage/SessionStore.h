@@ -16,6 +16,7 @@
 
 namespace driftlab {
 
+class CentralConnection;
 class SampleChannels;
 
 class SessionStore {
@@ -60,7 +61,10 @@ public:
     void addInterferometerPoints(qint64 sessionId, const QVector<InterferometerPoint> &points);
     qint64 addFittedModel(qint64 sessionId, const FittedModel &model);
     void addEvent(qint64 sessionId, const EventRecord &event);
-    void setComplete(qint64 sessionId, bool complete);
+    // Marks a session complete (or not). On a central store the server marks it complete only
+    // when centralDigest (CentralDigest of what was written; empty: computed here by reading the
+    // session back) equals the digest it computes itself (CentralSchema), else StorageError.
+    void setComplete(qint64 sessionId, bool complete, const QString &centralDigest = QString());
     // created: empty = now (a copy passes the original's time).
     qint64 addAnalysisResult(qint64 sessionId, const QString &kind, const QJsonObject &result, const QString &created = QString());
 
@@ -90,6 +94,8 @@ public:
     // Frames of a session in time order, without pixels; irFrame() reads one with pixels.
     QVector<IrFrame> irFrames(qint64 sessionId) const;
     IrFrame irFrame(qint64 frameId) const;
+    // A frame's stored (compressed) bytes and their encoding, as they are.
+    QByteArray irFrameBlob(qint64 frameId, QString *encoding) const;
     QVector<InterferometerPoint> interferometerPoints(qint64 sessionId) const;
     QVector<FittedModel> fittedModels(qint64 sessionId) const;
     QVector<EventRecord> events(qint64 sessionId) const;
@@ -120,6 +126,7 @@ private:
     bool m_inTransaction = false;
     QHash<const char *, QSqlQuery> m_queries;   // prepared write statements, reused
     std::unique_ptr<SampleChannels> m_samples;  // blocks + mipmap of every channel
+    std::unique_ptr<CentralConnection> m_link;  // a central store's connection limits and watchdog
 };
 
 } // namespace driftlab

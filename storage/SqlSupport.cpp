@@ -1,5 +1,6 @@
 #include "SqlSupport.h"
 
+#include "CentralConnection.h"
 #include "StorageError.h"
 
 #include <QSqlError>
@@ -22,6 +23,17 @@ void SqlSupport::fail(const QString &path, const QString &what, const QSqlError 
         throw StorageError(QStringLiteral("%1: read-only: %2: the database cannot be written (read-only media or no write "
                                           "permission); nothing was changed")
                                .arg(path, what)
+                               .toStdString());
+    // A central store whose server stalled: the watchdog closed the connection (CentralConnection).
+    const QString stalled = CentralConnection::stallNote(path);
+    if (!stalled.isEmpty())
+        throw StorageError(QStringLiteral("%1: %2: %3").arg(path, what, stalled).toStdString());
+    if (error.databaseText().contains(QLatin1String("statement timeout")))
+        throw StorageError(QStringLiteral("%1: %2: the server took longer than the time limit (DRIFTLAB_PG_TIMEOUT_S = %3 s) and cancelled "
+                                          "it (%4)")
+                               .arg(path, what)
+                               .arg(CentralConnection::timeout_s())
+                               .arg(error.text().trimmed())
                                .toStdString());
     throw StorageError(QStringLiteral("%1: %2: %3").arg(path, what, error.text()).toStdString());
 }
