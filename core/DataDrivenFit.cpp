@@ -3,7 +3,9 @@
 #include "DataDrivenAuto.h"
 #include "DataDrivenModelJson.h"
 #include "DataDrivenPredictor.h"
+#include "DataDrivenSelection.h"
 #include "DataDrivenSession.h"
+#include "DataDrivenValidator.h"
 #include "ExponentialWarmupFitter.h"
 #include "LinearLagFitter.h"
 #include "ModelSelection.h"
@@ -27,14 +29,6 @@ namespace {
 [[noreturn]] void bad(const QString &message)
 {
     throw std::invalid_argument(message.toStdString());
-}
-
-QJsonArray jsonStrings(const std::vector<std::string> &v)
-{
-    QJsonArray a;
-    for (const std::string &s : v)
-        a.append(QString::fromStdString(s));
-    return a;
 }
 
 std::vector<std::string> toStd(const QStringList &list)
@@ -113,38 +107,17 @@ QList<qint64> DataDrivenFitRequest::heldOutSessions() const
 
 QJsonObject DataDrivenFit::metricsJson(const ErrorMetrics &m)
 {
-    return QJsonObject{{QStringLiteral("samples"), static_cast<double>(m.n)},
-                       {QStringLiteral("mse_um2"), m.mse},
-                       {QStringLiteral("rmse_um"), m.rmse},
-                       {QStringLiteral("mae_um"), m.mae},
-                       {QStringLiteral("max_abs_um"), m.maxAbs},
-                       {QStringLiteral("mean_error_um"), m.meanError},
-                       {QStringLiteral("fitting_degree_pct"), m.fittingDegree_pct}};
+    return DataDrivenValidator::metricsJson(m);
 }
 
 QJsonObject DataDrivenFit::validationJson(const ValidationSeries &s)
 {
-    QJsonObject o = metricsJson(s.metrics);
-    o.insert(QStringLiteral("session"), s.session);
-    o.insert(QStringLiteral("range"), rangeJson(s.range));
-    return o;
+    return DataDrivenValidator::validationJson(s);
 }
 
 QJsonObject DataDrivenFit::validationSetJson(const ValidationSet &set)
 {
-    QJsonObject o = metricsJson(set.pooled.metrics);
-    o.insert(QStringLiteral("range"), rangeJson(set.pooled.range));
-    QJsonArray sessions, extrapolation;
-    for (const ValidationSeries &s : set.sessions) {
-        sessions.append(validationJson(s));
-        for (int i = 0; i < s.extrapolated.size(); ++i)
-            extrapolation.append(QJsonObject{{QStringLiteral("session"), s.session},
-                                             {QStringLiteral("channel"), s.extrapolated[i]},
-                                             {QStringLiteral("fraction_outside"), s.extrapolatedFraction[static_cast<std::size_t>(i)]}});
-    }
-    o.insert(QStringLiteral("sessions"), sessions);
-    o.insert(QStringLiteral("extrapolation"), extrapolation);
-    return o;
+    return DataDrivenValidator::validationSetJson(set);
 }
 
 QJsonObject DataDrivenFit::comparisonJson(const std::vector<FamilyComparison> &comparison)
@@ -174,233 +147,29 @@ QJsonObject DataDrivenFit::comparisonJson(const std::vector<FamilyComparison> &c
 
 QJsonObject DataDrivenFit::selectionJson(const SelectionResult &r)
 {
-    QJsonArray perK;
-    for (const ClusteringForK &e : r.perK) {
-        QJsonArray clusters;
-        for (int c = 0; c < e.k; ++c) {
-            QJsonArray members;
-            for (std::size_t i = 0; i < e.labels.size(); ++i)
-                if (e.labels[i] == c)
-                    members.append(QString::fromStdString(r.channels[i]));
-            clusters.append(members);
-        }
-        perK.append(QJsonObject{{QStringLiteral("k"), e.k},
-                                {QStringLiteral("silhouette"), e.silhouette},
-                                {QStringLiteral("compactness"), e.compactness},
-                                {QStringLiteral("clusters"), clusters}});
-    }
-    QJsonArray channels;
-    for (std::size_t i = 0; i < r.channels.size(); ++i) {
-        const bool chosen = std::find(r.chosen.begin(), r.chosen.end(), r.channels[i]) != r.chosen.end();
-        channels.append(QJsonObject{{QStringLiteral("channel"), QString::fromStdString(r.channels[i])},
-                                    {QStringLiteral("cluster"), r.labels[i] + 1},
-                                    {QStringLiteral("grade"), r.grade[i]},
-                                    {QStringLiteral("grade_all"), r.gradeAll[i]},
-                                    {QStringLiteral("correlation"), r.correlation[i]},
-                                    {QStringLiteral("chosen"), chosen}});
-    }
-    QJsonArray excluded;
-    for (const ExcludedChannel &e : r.excluded)
-        excluded.append(QJsonObject{{QStringLiteral("channel"), QString::fromStdString(e.id)},
-                                    {QStringLiteral("reason"), QString::fromStdString(e.reason)}});
-    QJsonArray matrix;
-    const std::size_t n = r.channels.size();
-    for (std::size_t i = 0; i < n && r.correlationMatrix.size() == n * n; ++i)
-        matrix.append(DataDrivenModelJson::numbers(std::vector<double>(r.correlationMatrix.begin() + static_cast<std::ptrdiff_t>(i * n),
-                                                      r.correlationMatrix.begin() + static_cast<std::ptrdiff_t>((i + 1) * n))));
-    QJsonArray clusters;
-    for (const std::vector<int> &members : r.clusters) {
-        QJsonArray m;
-        for (int i : members)
-            m.append(QString::fromStdString(r.channels[static_cast<std::size_t>(i)]));
-        clusters.append(m);
-    }
-    return QJsonObject{{QStringLiteral("target"), QString::fromStdString(r.target)},
-                       {QStringLiteral("samples"), static_cast<double>(r.rows)},
-                       {QStringLiteral("from_s"), r.from_s},
-                       {QStringLiteral("to_s"), r.to_s},
-                       {QStringLiteral("k"), r.chosenK},
-                       {QStringLiteral("silhouettes"), perK},
-                       {QStringLiteral("clusters"), clusters},
-                       {QStringLiteral("channels"), channels},
-                       {QStringLiteral("chosen"), jsonStrings(r.chosen)},
-                       {QStringLiteral("excluded"), excluded},
-                       {QStringLiteral("correlation_matrix"), matrix},
-                       {QStringLiteral("rule"), QString::fromStdString(r.rule)}};
+    return DataDrivenSelection::json(r);
 }
 
 SelectionResult DataDrivenFit::selectPoints(qint64 session, const QString &target, const HourRange &range, int kMin,
                                             int kMax, const QStringList &channels, const Progress &progress) const
 {
-    return selectPoints(QList<qint64>{session}, target, range, kMin, kMax, channels, progress);
+    return DataDrivenSelection(m_store).select(QList<qint64>{session}, target, range, kMin, kMax, channels, progress);
 }
 
 SelectionResult DataDrivenFit::selectPoints(const QList<qint64> &sessions, const QString &target, const HourRange &range,
                                             int kMin, int kMax, const QStringList &channels, const Progress &progress) const
 {
-    if (sessions.isEmpty())
-        bad(QStringLiteral("select-points: no session given"));
-    std::vector<SignalTable> tables;
-    std::vector<std::vector<char>> rows;
-    std::vector<std::string> temperatures;
-    for (qint64 id : sessions) {
-        const DataDrivenSession s(m_store, id);
-        if (!s.hasChannel(target))
-            bad(QStringLiteral("--target: session %1 has no channel '%2'").arg(id).arg(target));
-        for (const QString &c : channels)
-            if (!s.hasChannel(c))
-                bad(QStringLiteral("--channels: session %1 has no channel '%2'").arg(id).arg(c));
-        if (progress && !progress(0.2 * static_cast<double>(tables.size()) / static_cast<double>(sessions.size()),
-                                  QStringLiteral("reading session %1").arg(id)))
-            throw std::runtime_error("cancelled");
-        tables.push_back(s.table(target));
-        rows.push_back(tables.back().rowsIn(range.from_h * 3600.0, range.to_h * 3600.0));
-        if (temperatures.empty())
-            temperatures = toStd(s.temperatureChannels());
-    }
-    SelectionOptions o;
-    o.target = target.toStdString();
-    o.channels = toStd(channels);
-    o.kMin = kMin;
-    o.kMax = kMax;
-    SignalTable joined;
-    const SignalTable *table = &tables.front();
-    if (tables.size() == 1) {
-        o.rows = rows.front();
-    } else {
-        std::vector<const SignalTable *> runs;
-        for (const SignalTable &t : tables)
-            runs.push_back(&t);
-        joined = SignalTable::concatenate(runs, rows, 0.0, {}, temperatures, &o.rows);
-        table = &joined;
-    }
-    return SensitivePointSelector::select(*table, o, [&](double f) {
-        return !progress || progress(0.2 + 0.8 * f, QStringLiteral("K-means and grey grades"));
-    });
+    return DataDrivenSelection(m_store).select(sessions, target, range, kMin, kMax, channels, progress);
 }
 
 ValidationSeries DataDrivenFit::validate(const DataDrivenModel &model, qint64 session, const HourRange &range) const
 {
-    const DataDrivenSession s(m_store, session);
-    for (std::size_t i = 0; i < model.inputs.size(); ++i)
-        if (!s.hasChannel(QString::fromStdString(model.inputs[i].id)))
-            bad(QStringLiteral("session %1 has no channel '%2' (input %3 of the model)")
-                    .arg(session)
-                    .arg(QString::fromStdString(model.inputs[i].id))
-                    .arg(i));
-    ValidationSeries out;
-    out.session = session;
-    out.range = range;
-    const double from = range.from_h * 3600.0, to = range.to_h * 3600.0;
-    if (model.kind == "synthetic" && model.target.id == "interferometer") {
-        std::vector<PositioningErrorPoint> points;
-        for (const PositioningErrorPoint &p : s.interferometerErrors())
-            if (p.t_s >= from && p.t_s < to)
-                points.push_back(p);
-        if (points.empty())
-            bad(QStringLiteral("session %1 has no interferometer thermal errors in the range").arg(session));
-        const SignalTable table = s.table(QString::fromStdString(model.inputs.front().id));
-        out.predicted = SyntheticModelFitter::predictPoints(model, table, points);
-        for (const PositioningErrorPoint &p : points) {
-            out.t.push_back(p.t_s);
-            out.measured.push_back(p.error_um);
-            out.position_mm.push_back(p.position_mm);
-        }
-        out.metrics = ErrorMetrics::compute(out.measured, out.predicted);
-        return out;
-    }
-    const QString target = QString::fromStdString(model.target.id);
-    if (!s.hasChannel(target))
-        bad(QStringLiteral("session %1 has no channel '%2' (the model's target)").arg(session).arg(target));
-    const SignalTable table = s.table(target);
-    std::vector<std::vector<double>> columns;
-    for (const ModelChannel &c : model.inputs)
-        columns.push_back(table.column(c.id).v);
-    const std::vector<double> predicted = DataDrivenPredictor::run(model, table.t, columns);
-    const std::vector<double> &measured = table.column(model.target.id).v;
-    // The inputs as the model reads them (held, minus the run's reference where it takes rises).
-    std::vector<std::vector<double>> seen(model.inputs.size());
-    for (std::size_t i = 0; i < model.inputs.size(); ++i) {
-        std::vector<double> h = columns[i];
-        double last = std::numeric_limits<double>::quiet_NaN();
-        for (double v : h)
-            if (std::isfinite(v)) {
-                last = v;
-                break;
-            }
-        for (double &v : h)
-            v = std::isfinite(v) ? (last = v) : last;
-        if (model.inputIsRise(static_cast<int>(i))) {
-            const std::vector<double> r = DataDrivenPredictor::referenceSeries(model.reference, table.t, h);
-            for (std::size_t k = 0; k < h.size(); ++k)
-                h[k] -= r[k];
-        }
-        seen[i] = std::move(h);
-    }
-    out.inputMin.assign(model.inputs.size(), std::numeric_limits<double>::infinity());
-    out.inputMax.assign(model.inputs.size(), -std::numeric_limits<double>::infinity());
-    std::vector<double> outside(model.inputs.size(), 0.0);
-    for (std::size_t k = 0; k < table.t.size(); ++k)
-        if (table.t[k] >= from && table.t[k] < to) {
-            out.t.push_back(table.t[k]);
-            out.measured.push_back(measured[k]);
-            out.predicted.push_back(predicted[k]);
-            for (std::size_t i = 0; i < seen.size(); ++i) {
-                const double v = seen[i][k];
-                if (!std::isfinite(v))
-                    continue;
-                out.inputMin[i] = std::min(out.inputMin[i], v);
-                out.inputMax[i] = std::max(out.inputMax[i], v);
-                const ModelChannel &c = model.inputs[i];
-                if (std::isfinite(c.trainingMin) && std::isfinite(c.trainingMax)) {
-                    const double m = DataDrivenModel::extrapolationMargin(c.trainingMin, c.trainingMax);
-                    if (v < c.trainingMin - m || v > c.trainingMax + m)
-                        outside[i] += 1.0;
-                }
-            }
-        }
-    out.metrics = ErrorMetrics::compute(out.measured, out.predicted);
-    if (out.metrics.n == 0)
-        bad(QStringLiteral("session %1: no samples of '%2' with predictions in the range").arg(session).arg(target));
-    for (std::size_t i = 0; i < outside.size(); ++i)
-        if (outside[i] > 0) {
-            out.extrapolated << QString::fromStdString(model.inputs[i].id);
-            out.extrapolatedFraction.push_back(outside[i] / static_cast<double>(out.t.size()));
-        }
-    return out;
+    return DataDrivenValidator(m_store).validate(model, session, range);
 }
 
 ValidationSet DataDrivenFit::validate(const DataDrivenModel &model, const QList<qint64> &sessions, const HourRange &range) const
 {
-    ValidationSet set;
-    if (sessions.isEmpty())
-        bad(QStringLiteral("validate: no session given"));
-    for (qint64 id : sessions)
-        set.sessions.push_back(validate(model, id, range));
-    if (set.sessions.size() == 1) {
-        set.pooled = set.sessions.front();
-        return set;
-    }
-    ValidationSeries &p = set.pooled;
-    p.session = 0;
-    p.range = range;
-    p.inputMin.assign(model.inputs.size(), std::numeric_limits<double>::infinity());
-    p.inputMax.assign(model.inputs.size(), -std::numeric_limits<double>::infinity());
-    for (const ValidationSeries &s : set.sessions) {
-        p.t.insert(p.t.end(), s.t.begin(), s.t.end());
-        p.measured.insert(p.measured.end(), s.measured.begin(), s.measured.end());
-        p.predicted.insert(p.predicted.end(), s.predicted.begin(), s.predicted.end());
-        p.position_mm.insert(p.position_mm.end(), s.position_mm.begin(), s.position_mm.end());
-        for (std::size_t i = 0; i < s.inputMin.size() && i < p.inputMin.size(); ++i) {
-            p.inputMin[i] = std::min(p.inputMin[i], s.inputMin[i]);
-            p.inputMax[i] = std::max(p.inputMax[i], s.inputMax[i]);
-        }
-        for (int i = 0; i < s.extrapolated.size(); ++i)
-            if (!p.extrapolated.contains(s.extrapolated[i]))
-                p.extrapolated << s.extrapolated[i];
-    }
-    p.metrics = ErrorMetrics::compute(p.measured, p.predicted);
-    return set;
+    return DataDrivenValidator(m_store).validate(model, sessions, range);
 }
 
 namespace {

@@ -19,19 +19,24 @@ using namespace driftlab;
 
 namespace {
 
-// One run: 8 h at 60 s; heat input off then on with a run-specific programme; two temperatures that
-// rise from the run's ambient A with time constants 1200 s and 3600 s; the displacement
+// One run: 8 h at 60 s; two heat inputs off then on with run-specific programmes; two
+// temperatures that rise from the run's ambient A with time constants 1200 s and 3600 s; the displacement
 // 3 um/K * lag_1800(T1 - A) + 2 um/K * (T2 - A) + noise. Column ids T1, T2, y.
 SignalTable makeRun(double ambient_C, double onHours, double power, unsigned seed)
 {
     SignalTable table;
     for (double t = 0; t <= 8 * 3600.0; t += 60.0)
         table.t.push_back(t);
-    std::vector<double> q(table.t.size());
-    for (std::size_t k = 0; k < q.size(); ++k)
+    // Two independent heat sources (the second with its own programme), so that the ambient
+    // cannot be told from the temperatures' shapes.
+    const double on2 = 0.6 * onHours + 0.7;
+    std::vector<double> q(table.t.size()), q2(table.t.size());
+    for (std::size_t k = 0; k < q.size(); ++k) {
         q[k] = std::fmod(table.t[k], 2 * onHours * 3600.0) >= onHours * 3600.0 ? power : 0.0; // off first
+        q2[k] = std::fmod(table.t[k], 2 * on2 * 3600.0) >= on2 * 3600.0 ? 1.0 : 0.0;
+    }
     const std::vector<double> r1 = DataDrivenPredictor::lagSeries(table.t, q, 1200.0);
-    const std::vector<double> r2 = DataDrivenPredictor::lagSeries(table.t, q, 3600.0);
+    const std::vector<double> r2 = DataDrivenPredictor::lagSeries(table.t, q2, 3600.0);
     std::vector<double> T1(q.size()), T2(q.size()), rise1(q.size());
     for (std::size_t k = 0; k < q.size(); ++k) {
         rise1[k] = 8.0 * r1[k]; // q(0) = 0: every run starts cold
