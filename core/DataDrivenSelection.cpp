@@ -96,7 +96,7 @@ QJsonObject DataDrivenSelection::json(const SelectionResult &r)
 }
 
 SelectionResult DataDrivenSelection::select(const QList<qint64> &sessions, const QString &target, const HourRange &range,
-                                            int kMin, int kMax, const QStringList &channels, const Progress &progress) const
+                                            int kMin, int kMax, const QStringList &channels, const DataDrivenFit::Progress &progress) const
 {
     if (sessions.isEmpty())
         bad(QStringLiteral("select-points: no session given"));
