@@ -98,9 +98,11 @@ ExportResult CCodeExporter::exportModel(const ExportableModel &model, const Expo
         h << "#define " << upper(p) << "_INPUTS " << m.inputs.size() << " /* temperatures[i], MODEL.json inputs:";
         for (const ModelChannel &c : m.inputs)
             h << ' ' << c.id;
+        const std::size_t nin = std::max<std::size_t>(m.inputs.size(), 1);
         h << " */\n\ntypedef struct {\n    double x[" << std::max<std::size_t>(states, 1) << "];\n    double held["
-          << std::max<std::size_t>(m.inputs.size(), 1) << "];\n    double y, last_time;\n    int started;\n} " << p
-          << "_state;\n\n";
+          << nin << "];\n    double ref[" << nin << "], ref_sum[" << nin
+          << "]; /* temperature reference captured at start-up */\n    double ref_count, elapsed;\n"
+          << "    double y, last_time;\n    int started;\n} " << p << "_state;\n\n";
         source = dataDrivenSource(model, p);
     }
     h << "void " << p << "_init(" << p << "_state *s);\n"
@@ -286,12 +288,13 @@ double PREFIX_error_at(const PREFIX_state *s, double position_mm)
 std::string CCodeExporter::dataDrivenSource(const ExportableModel &model, const std::string &p)
 {
     const DataDrivenModel &m = model.dataDriven;
-    std::vector<int> stateInput, statePower;
+    std::vector<int> stateInput, statePower, stateRise;
     std::vector<double> stateOffset, stateScale, stateLag, stateCoef;
     for (const ModelTerm &t : m.terms)
         for (std::size_t l = 0; l < t.lags_s.size(); ++l) {
             stateInput.push_back(t.input);
             statePower.push_back(t.power);
+            stateRise.push_back(t.rise ? 1 : 0);
             stateOffset.push_back(t.offset);
             stateScale.push_back(t.scale);
             stateLag.push_back(t.lags_s[l]);
@@ -299,7 +302,7 @@ std::string CCodeExporter::dataDrivenSource(const ExportableModel &model, const 
         }
     const int kind = m.linearLag() ? 0 : (m.kind == "exp" ? 1 : 2);
     if (stateInput.empty()) { // C forbids empty arrays
-        stateInput = statePower = {0};
+        stateInput = statePower = stateRise = {0};
         stateOffset = stateScale = stateLag = stateCoef = {0.0};
     }
     const ExponentialLaw &e = m.exponential;
@@ -316,6 +319,9 @@ std::string CCodeExporter::dataDrivenSource(const ExportableModel &model, const 
       << "#define NTEMP " << s.temperatures.size() << "\n"
       << "static const int STATE_INPUT[] = " << intArray(stateInput) << ";\n"
       << "static const int STATE_POWER[] = " << intArray(statePower) << ";\n"
+      << "static const int STATE_RISE[] = " << intArray(stateRise) << "; /* 1: input minus its reference */\n"
+      << "#define REF_START " << (m.usesRises() && m.reference.kind == "start" ? 1 : 0) << "\n"
+      << "static const double REF_WINDOW = " << num(m.reference.window_s) << ";\n"
       << "static const double STATE_OFFSET[] = " << array(stateOffset) << ";\n"
       << "static const double STATE_SCALE[] = " << array(stateScale) << ";\n"
       << "static const double STATE_LAG[] = " << array(stateLag) << ";\n"
@@ -329,8 +335,10 @@ std::string CCodeExporter::dataDrivenSource(const ExportableModel &model, const 
       << "static const int SYN_TEMP[] = " << intArray(temps) << ";\n"
       << "static const double SYN_A = " << num(s.a) << ", SYN_B = " << num(s.b_perK) << ", SYN_C = " << num(s.c)
       << ", SYN_T0 = " << num(s.t0_C) << ", SYN_P0 = " << num(s.p0_mm) << ", SYN_PREF = " << num(s.pRef_mm) << ";\n\n"
-      << R"C(static double feature(int k, double u)
+      << R"C(static double feature(const PREFIX_state *s, int k)
 {
+    const int in = STATE_INPUT[k];
+    const double u = s->held[in] - (STATE_RISE[k] ? s->ref[in] : 0.0);
     const double z = (u - STATE_OFFSET[k]) / STATE_SCALE[k];
     return STATE_POWER[k] == 2 ? z * z : z;
 }
@@ -357,7 +365,8 @@ void PREFIX_init(PREFIX_state *s)
     for (i = 0; i < (int)(sizeof s->x / sizeof s->x[0]); ++i)
         s->x[i] = 0.0;
     for (i = 0; i < (int)(sizeof s->held / sizeof s->held[0]); ++i)
-        s->held[i] = 0.0;
+        s->held[i] = s->ref[i] = s->ref_sum[i] = 0.0;
+    s->ref_count = s->elapsed = 0.0;
     s->y = 0.0;
     s->last_time = 0.0;
     s->started = 0;
@@ -373,8 +382,12 @@ int PREFIX_step(PREFIX_state *s, double time_s, double position_mm, double feed_
         if (isfinite(temperatures[i]))
             s->held[i] = temperatures[i];
     if (!s->started) {
+        for (i = 0; i < NIN; ++i)
+            s->ref[i] = s->ref_sum[i] = REF_START ? s->held[i] : 0.0;
+        s->ref_count = 1.0;
+        s->elapsed = 0.0;
         for (i = 0; i < NSTATE; ++i)
-            s->x[i] = feature(i, s->held[STATE_INPUT[i]]);
+            s->x[i] = feature(s, i);
         s->last_time = time_s;
         s->started = 1;
     }
@@ -383,9 +396,17 @@ int PREFIX_step(PREFIX_state *s, double time_s, double position_mm, double feed_
     dt = time_s - s->last_time;
     s->last_time = time_s;
     if (KIND == 0) {
+        s->elapsed += dt;
+        if (REF_START && REF_WINDOW > 0 && dt > 0 && s->elapsed <= REF_WINDOW) {
+            s->ref_count += 1.0;
+            for (i = 0; i < NIN; ++i) {
+                s->ref_sum[i] += s->held[i];
+                s->ref[i] = s->ref_sum[i] / s->ref_count;
+            }
+        }
         y = INTERCEPT;
         for (i = 0; i < NSTATE; ++i) {
-            s->x[i] = lag_step(s->x[i], feature(i, s->held[STATE_INPUT[i]]), dt, STATE_LAG[i]);
+            s->x[i] = lag_step(s->x[i], feature(s, i), dt, STATE_LAG[i]);
             y += STATE_COEF[i] * s->x[i];
         }
     } else if (KIND == 1) {

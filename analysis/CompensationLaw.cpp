@@ -34,6 +34,11 @@ CompensationLaw CompensationLaw::from(const ExportableModel &model)
     DataDrivenPredictor check(m); // throws std::invalid_argument for an inconsistent model
     CompensationLaw law(m);
     if (m.linearLag()) {
+        if (m.usesRises())
+            throw ExportRefused(m.kind + ": its temperatures enter as rises from each run's start (reference '" +
+                                m.reference.label() + "'); a controller's temperature table assumes absolute "
+                                "temperatures and holds no start state; refit with --reference absolute, or export "
+                                "it as C code (--target c), which captures the reference at start-up");
         for (const ModelTerm &t : m.terms) {
             double sum = 0.0;
             for (std::size_t l = 0; l < t.lags_s.size(); ++l) {

@@ -20,6 +20,12 @@ void require(bool ok, const std::string &what)
 DataDrivenPredictor::DataDrivenPredictor(const DataDrivenModel &model) : m_model(model)
 {
     const int n = static_cast<int>(model.inputs.size());
+    m_ref.assign(model.inputs.size(), 0.0);
+    m_refSum.assign(model.inputs.size(), 0.0);
+    m_rises = model.usesRises();
+    require(model.reference.kind == "absolute" || model.reference.kind == "start",
+            "reference.kind must be absolute or start");
+    require(std::isfinite(model.reference.window_s) && model.reference.window_s >= 0, "reference.window_s must be >= 0");
     if (model.linearLag()) {
         for (std::size_t i = 0; i < model.terms.size(); ++i) {
             const ModelTerm &t = model.terms[i];
@@ -66,6 +72,46 @@ std::vector<double> DataDrivenPredictor::lagSeries(const std::vector<double> &t,
     return x;
 }
 
+std::vector<double> DataDrivenPredictor::referenceSeries(const TemperatureReference &reference,
+                                                        const std::vector<double> &t, const std::vector<double> &u)
+{
+    std::vector<double> r(u.size(), 0.0);
+    if (reference.kind != "start" || u.empty())
+        return r;
+    double sum = u[0], count = 1.0, elapsed = 0.0;
+    r[0] = u[0];
+    for (std::size_t k = 1; k < u.size(); ++k) {
+        const double dt = t[k] - t[k - 1];
+        elapsed += dt;
+        if (reference.window_s > 0 && dt > 0 && elapsed <= reference.window_s) {
+            sum += u[k];
+            count += 1.0;
+        }
+        r[k] = sum / count;
+    }
+    return r;
+}
+
+void DataDrivenPredictor::captureReference(double dt_s, const double *inputs)
+{
+    if (!m_rises || m_model.reference.kind != "start")
+        return;
+    m_elapsed_s += dt_s;
+    if (!(m_model.reference.window_s > 0 && dt_s > 0 && m_elapsed_s <= m_model.reference.window_s))
+        return;
+    m_refCount += 1.0;
+    for (std::size_t i = 0; i < m_ref.size(); ++i) {
+        m_refSum[i] += inputs[i];
+        m_ref[i] = m_refSum[i] / m_refCount;
+    }
+}
+
+double DataDrivenPredictor::termFeature(const ModelTerm &term, const double *inputs) const
+{
+    const double u = inputs[term.input];
+    return feature(term, term.rise ? u - m_ref[static_cast<std::size_t>(term.input)] : u);
+}
+
 double DataDrivenPredictor::feature(const ModelTerm &term, double u)
 {
     const double z = (u - term.offset) / term.scale;
@@ -95,9 +141,14 @@ void DataDrivenPredictor::reset(const double *inputs)
 {
     m_started = true;
     m_expState = 0.0;
+    m_elapsed_s = 0.0;
+    m_refCount = 1.0;
+    const bool start = m_rises && m_model.reference.kind == "start";
+    for (std::size_t i = 0; i < m_ref.size(); ++i)
+        m_ref[i] = m_refSum[i] = start ? inputs[i] : 0.0;
     for (std::size_t i = 0; i < m_model.terms.size(); ++i) {
         const ModelTerm &t = m_model.terms[i];
-        const double f = feature(t, inputs[t.input]);
+        const double f = termFeature(t, inputs);
         for (std::size_t l = 0; l < t.lags_s.size(); ++l)
             m_states[m_first[i] + l] = f;
     }
@@ -108,9 +159,10 @@ double DataDrivenPredictor::step(double dt_s, const double *inputs)
     if (!m_started)
         reset(inputs);
     if (m_model.linearLag()) {
+        captureReference(dt_s, inputs);
         for (std::size_t i = 0; i < m_model.terms.size(); ++i) {
             const ModelTerm &t = m_model.terms[i];
-            const double f = feature(t, inputs[t.input]);
+            const double f = termFeature(t, inputs);
             for (std::size_t l = 0; l < t.lags_s.size(); ++l) {
                 double &x = m_states[m_first[i] + l];
                 x = lagStep(x, f, dt_s, t.lags_s[l]);

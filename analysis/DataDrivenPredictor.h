@@ -8,6 +8,8 @@
 //
 // A first-order lag advances as x += (1 - exp(-dt / tau)) (u - x) with the input at the end
 // of the step; the fitters build their lagged features with the same recursion.
+// Terms with rise = true read u - r with the run's temperature reference r, which the
+// predictor captures itself from the inputs it is given after reset() (referenceSeries()).
 
 #include "DataDrivenModel.h"
 
@@ -42,14 +44,25 @@ public:
     // u through a first-order lag on the grid t, starting at equilibrium with u[0]: the
     // features the fitters regress on are exactly what run() produces.
     static std::vector<double> lagSeries(const std::vector<double> &t, const std::vector<double> &u, double tau_s);
+    // The reference r[k] the predictor uses at each sample of a run that starts at t[0]
+    // (all zero for kind absolute).
+    static std::vector<double> referenceSeries(const TemperatureReference &reference, const std::vector<double> &t,
+                                               const std::vector<double> &u);
+    // The reference captured so far for input i (0 for kind absolute).
+    double reference(std::size_t input) const { return m_ref[input]; }
 
 private:
     double linearOutput() const;
     double characteristicTemperature(const double *inputs) const;
+    double termFeature(const ModelTerm &term, const double *inputs) const;
+    void captureReference(double dt_s, const double *inputs);
 
     DataDrivenModel m_model;
     std::vector<double> m_states;     // linear-lag: one per (term, lag)
     std::vector<std::size_t> m_first; // first state index of each term
+    std::vector<double> m_ref, m_refSum; // per input
+    double m_refCount = 0.0, m_elapsed_s = 0.0;
+    bool m_rises = false;
     double m_expState = 0.0;
     bool m_started = false;
 };

@@ -2,7 +2,6 @@
 
 #include "DataDrivenPredictor.h"
 #include "NonlinearUncertainty.h"
-#include "TimeBlockedFolds.h"
 
 #include <Eigen/Dense>
 
@@ -110,43 +109,110 @@ struct Structure {
     int components = 0;
     std::vector<double> temperatureLags{0.0};
     std::vector<double> driveLags;
+    std::size_t reference = 0; // index into the candidate references
+};
+
+struct Row {
+    std::size_t run = 0, k = 0;
+};
+
+// Inputs under one temperature reference: normalised values on every run's grid.
+struct Prepared {
+    std::vector<double> offset, scale;
+    std::vector<std::vector<std::vector<double>>> z; // run, input, grid row
+    Eigen::MatrixXd W;                               // dynamic: components x inputs
+    std::vector<double> componentVariance;
 };
 
 } // namespace
 
+std::vector<TimeBlockedFold> LinearLagFitter::folds(const std::vector<std::size_t> &rowCounts,
+                                                    const std::vector<double> &times, int timeFolds, double gap_s,
+                                                    int maxRunFolds, std::string &rule)
+{
+    if (rowCounts.size() <= 1) {
+        rule = "time-blocked";
+        return TimeBlockedFolds::make(times, timeFolds, gap_s);
+    }
+    rule = "leave-runs-out";
+    const std::size_t runs = rowCounts.size();
+    const std::size_t groups = std::min<std::size_t>(runs, static_cast<std::size_t>(std::max(2, maxRunFolds)));
+    std::vector<TimeBlockedFold> out;
+    std::size_t at = 0, run = 0;
+    for (std::size_t g = 0; g < groups; ++g) {
+        const std::size_t last = runs * (g + 1) / groups; // runs [run, last)
+        TimeBlockedFold f;
+        f.begin = f.excludeBegin = at;
+        for (; run < last; ++run)
+            at += rowCounts[run];
+        f.end = f.excludeEnd = at;
+        out.push_back(f);
+    }
+    return out;
+}
+
 LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptions &o,
                                   const std::function<bool(double)> &progress)
 {
-    if (o.kind != "mlr" && o.kind != "ridge" && o.kind != "dynamic")
-        throw std::invalid_argument("model '" + o.kind + "' is not a linear-lag model (mlr, ridge, dynamic)");
+    if (!o.trainRows.empty() && o.trainRows.size() != table.t.size())
+        throw std::invalid_argument("training rows do not match the grid");
+    return fit(std::vector<LinearLagRun>{LinearLagRun{&table, o.trainRows}}, o, progress);
+}
+
+LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const LinearLagOptions &o,
+                                  const std::function<bool(double)> &progress)
+{
+    if (o.kind != "mlr" && o.kind != "ridge" && o.kind != "lagridge" && o.kind != "dynamic")
+        throw std::invalid_argument("model '" + o.kind + "' is not a linear-lag model (mlr, ridge, lagridge, dynamic)");
+    if (runs.empty())
+        throw std::invalid_argument(o.kind + ": no training runs");
     if (o.inputs.empty())
         throw std::invalid_argument(o.kind + ": no input channels");
     if (o.kind != "dynamic" && !o.drive.empty())
         throw std::invalid_argument(o.kind + ": a drive channel is used by the dynamic model only");
-    const SignalColumn &target = table.column(o.target);
+    if (o.references.empty())
+        throw std::invalid_argument(o.kind + ": no temperature reference candidate");
     std::set<std::string> unique;
-    std::vector<const SignalColumn *> inputs;
     for (const std::string &id : o.inputs) {
         if (id == o.target)
             throw std::invalid_argument("input '" + id + "' is the target");
         if (!unique.insert(id).second)
             throw std::invalid_argument("input '" + id + "' given twice");
-        inputs.push_back(&table.column(id));
     }
-    const SignalColumn *drive = o.drive.empty() ? nullptr : &table.column(o.drive);
-    const std::size_t N = table.t.size();
-    if (!o.trainRows.empty() && o.trainRows.size() != N)
-        throw std::invalid_argument("training rows do not match the grid");
+    const std::size_t R = runs.size();
+    const std::size_t nInputs = o.inputs.size();
+    const bool hasDrive = !o.drive.empty();
 
-    std::vector<std::size_t> rows;
-    for (std::size_t k = 0; k < N; ++k) {
-        if ((!o.trainRows.empty() && !o.trainRows[k]) || !std::isfinite(target.v[k]))
-            continue;
-        bool ok = !drive || std::isfinite(drive->v[k]);
-        for (const SignalColumn *c : inputs)
-            ok = ok && std::isfinite(c->v[k]);
-        if (ok)
-            rows.push_back(k);
+    // Columns of every run and the training rows (target and every input present).
+    std::vector<const SignalColumn *> targets(R), drives(R, nullptr);
+    std::vector<std::vector<const SignalColumn *>> inputs(R);
+    std::vector<Row> rows;
+    std::vector<std::size_t> rowCounts;
+    for (std::size_t ri = 0; ri < R; ++ri) {
+        const SignalTable &table = *runs[ri].table;
+        const std::string where = R > 1 ? "run " + std::to_string(ri) + ": " : std::string();
+        if (!runs[ri].rows.empty() && runs[ri].rows.size() != table.t.size())
+            throw std::invalid_argument(where + "training rows do not match the grid");
+        targets[ri] = &table.column(o.target);
+        for (const std::string &id : o.inputs)
+            inputs[ri].push_back(&table.column(id));
+        if (hasDrive)
+            drives[ri] = &table.column(o.drive);
+        std::size_t count = 0;
+        for (std::size_t k = 0; k < table.t.size(); ++k) {
+            if ((!runs[ri].rows.empty() && !runs[ri].rows[k]) || !std::isfinite(targets[ri]->v[k]))
+                continue;
+            bool ok = !hasDrive || std::isfinite(drives[ri]->v[k]);
+            for (const SignalColumn *c : inputs[ri])
+                ok = ok && std::isfinite(c->v[k]);
+            if (ok) {
+                rows.push_back({ri, k});
+                ++count;
+            }
+        }
+        if (R > 1 && count == 0)
+            throw std::invalid_argument(where + "no training sample has the target and every input");
+        rowCounts.push_back(count);
     }
     const std::size_t minRows = std::max<std::size_t>(20, static_cast<std::size_t>(5 * std::max(o.folds, 2)));
     if (rows.size() < minRows)
@@ -154,55 +220,88 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
                                     " training samples have the target and every input; at least " +
                                     std::to_string(minRows) + " are needed");
     const Index n = static_cast<Index>(rows.size());
-    const Index nT = static_cast<Index>(inputs.size());
+    const Index nT = static_cast<Index>(nInputs);
 
-    // Normalised inputs on the whole grid (lag states run from the session start).
-    std::vector<double> offset(inputs.size()), scale(inputs.size());
-    std::vector<std::vector<double>> z(inputs.size());
-    for (std::size_t i = 0; i < inputs.size(); ++i) {
-        const std::vector<double> h = held(inputs[i]->v);
-        double mean = 0.0, var = 0.0;
-        for (std::size_t r : rows)
-            mean += h[r];
-        mean /= static_cast<double>(n);
-        for (std::size_t r : rows)
-            var += (h[r] - mean) * (h[r] - mean);
-        const double sd = std::sqrt(var / static_cast<double>(n));
-        if (!(sd > 1e-9 * (1.0 + std::fabs(mean))))
-            throw std::invalid_argument("input '" + inputs[i]->id + "' is constant over the training samples");
-        offset[i] = mean;
-        scale[i] = std::max(sd, o.scaleFloor);
-        z[i].resize(N);
-        for (std::size_t k = 0; k < N; ++k)
-            z[i][k] = (h[k] - mean) / scale[i];
+    // Held inputs on every run's grid (lag states and references run from each run's start).
+    std::vector<std::vector<std::vector<double>>> heldInputs(R);
+    for (std::size_t ri = 0; ri < R; ++ri)
+        for (const SignalColumn *c : inputs[ri])
+            heldInputs[ri].push_back(held(c->v));
+    std::vector<Prepared> prepared(o.references.size());
+    for (std::size_t ci = 0; ci < o.references.size(); ++ci) {
+        const TemperatureReference &ref = o.references[ci];
+        if (ref.kind != "absolute" && ref.kind != "start")
+            throw std::invalid_argument(o.kind + ": unknown temperature reference '" + ref.kind + "'");
+        Prepared &p = prepared[ci];
+        p.offset.resize(nInputs);
+        p.scale.resize(nInputs);
+        p.z.assign(R, std::vector<std::vector<double>>(nInputs));
+        std::vector<std::vector<std::vector<double>>> x(R, std::vector<std::vector<double>>(nInputs));
+        for (std::size_t ri = 0; ri < R; ++ri)
+            for (std::size_t i = 0; i < nInputs; ++i) {
+                const std::vector<double> &h = heldInputs[ri][i];
+                const std::vector<double> r = DataDrivenPredictor::referenceSeries(ref, runs[ri].table->t, h);
+                x[ri][i].resize(h.size());
+                for (std::size_t k = 0; k < h.size(); ++k)
+                    x[ri][i][k] = h[k] - r[k];
+            }
+        for (std::size_t i = 0; i < nInputs; ++i) {
+            double mean = 0.0, var = 0.0;
+            for (const Row &r : rows)
+                mean += x[r.run][i][r.k];
+            mean /= static_cast<double>(n);
+            for (const Row &r : rows)
+                var += (x[r.run][i][r.k] - mean) * (x[r.run][i][r.k] - mean);
+            const double sd = std::sqrt(var / static_cast<double>(n));
+            if (!(sd > 1e-9 * (1.0 + std::fabs(mean)))) {
+                if (ref.kind == "absolute" || o.references.size() == 1)
+                    throw std::invalid_argument("input '" + o.inputs[i] + "' is constant over the training samples");
+            }
+            p.offset[i] = mean;
+            p.scale[i] = std::max({sd, o.scaleFloor, 1e-12});
+            for (std::size_t ri = 0; ri < R; ++ri) {
+                std::vector<double> &zz = p.z[ri][i];
+                zz.resize(x[ri][i].size());
+                for (std::size_t k = 0; k < zz.size(); ++k)
+                    zz[k] = (x[ri][i][k] - mean) / p.scale[i];
+            }
+        }
     }
     double driveScale = 1.0;
-    std::vector<double> driveHeld;
-    if (drive) {
-        driveHeld = held(drive->v);
+    std::vector<std::vector<double>> driveHeld(R);
+    if (hasDrive) {
         driveScale = 0.0;
-        for (std::size_t r : rows)
-            driveScale = std::max(driveScale, std::fabs(driveHeld[r]));
+        for (std::size_t ri = 0; ri < R; ++ri)
+            driveHeld[ri] = held(drives[ri]->v);
+        for (const Row &r : rows)
+            driveScale = std::max(driveScale, std::fabs(driveHeld[r.run][r.k]));
         if (!(driveScale > 0))
-            throw std::invalid_argument("drive '" + drive->id + "' is zero over the training samples");
+            throw std::invalid_argument("drive '" + o.drive + "' is zero over the training samples");
     }
     VectorXd y(n);
-    for (Index r = 0; r < n; ++r)
-        y(r) = target.v[rows[static_cast<std::size_t>(r)]];
+    for (Index r = 0; r < n; ++r) {
+        const Row &row = rows[static_cast<std::size_t>(r)];
+        y(r) = targets[row.run]->v[row.k];
+    }
 
-    // Lagged normalised temperatures at the training rows, per time constant.
-    std::map<double, MatrixXd> lagged;
-    auto laggedZ = [&](double tau) -> const MatrixXd & {
-        auto it = lagged.find(tau);
+    // Lagged normalised temperatures at the training rows, per reference and time constant.
+    std::map<std::pair<std::size_t, double>, MatrixXd> lagged;
+    auto laggedZ = [&](std::size_t ci, double tau) -> const MatrixXd & {
+        const auto key = std::make_pair(ci, tau);
+        auto it = lagged.find(key);
         if (it != lagged.end())
             return it->second;
         MatrixXd m(n, nT);
         for (Index i = 0; i < nT; ++i) {
-            const std::vector<double> x = DataDrivenPredictor::lagSeries(table.t, z[static_cast<std::size_t>(i)], tau);
-            for (Index r = 0; r < n; ++r)
-                m(r, i) = x[rows[static_cast<std::size_t>(r)]];
+            std::vector<std::vector<double>> x(R);
+            for (std::size_t ri = 0; ri < R; ++ri)
+                x[ri] = DataDrivenPredictor::lagSeries(runs[ri].table->t, prepared[ci].z[ri][static_cast<std::size_t>(i)], tau);
+            for (Index r = 0; r < n; ++r) {
+                const Row &row = rows[static_cast<std::size_t>(r)];
+                m(r, i) = x[row.run][row.k];
+            }
         }
-        return lagged.emplace(tau, std::move(m)).first->second;
+        return lagged.emplace(key, std::move(m)).first->second;
     };
     std::map<std::pair<int, double>, VectorXd> laggedDrive;
     auto driveFeature = [&](int power, double tau) -> const VectorXd & {
@@ -210,59 +309,76 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
         auto it = laggedDrive.find(key);
         if (it != laggedDrive.end())
             return it->second;
-        std::vector<double> g(N);
-        for (std::size_t k = 0; k < N; ++k) {
-            const double v = driveHeld[k] / driveScale;
-            g[k] = power == 2 ? v * v : v;
+        std::vector<std::vector<double>> x(R);
+        for (std::size_t ri = 0; ri < R; ++ri) {
+            std::vector<double> g(driveHeld[ri].size());
+            for (std::size_t k = 0; k < g.size(); ++k) {
+                const double v = driveHeld[ri][k] / driveScale;
+                g[k] = power == 2 ? v * v : v;
+            }
+            x[ri] = DataDrivenPredictor::lagSeries(runs[ri].table->t, g, tau);
         }
-        const std::vector<double> x = DataDrivenPredictor::lagSeries(table.t, g, tau);
         VectorXd out(n);
-        for (Index r = 0; r < n; ++r)
-            out(r) = x[rows[static_cast<std::size_t>(r)]];
+        for (Index r = 0; r < n; ++r) {
+            const Row &row = rows[static_cast<std::size_t>(r)];
+            out(r) = x[row.run][row.k];
+        }
         return laggedDrive.emplace(key, std::move(out)).first->second;
     };
 
     LinearLagFit fit;
     fit.trainingRows = rows.size();
-    // Principal components of the z-scored temperatures over the training rows.
-    MatrixXd W; // components x inputs
+    fit.runs = R;
     std::vector<Structure> structures;
-    if (o.kind == "dynamic") {
-        const MatrixXd &Z0 = laggedZ(0.0);
-        Eigen::JacobiSVD<MatrixXd> svd(Z0, Eigen::ComputeThinV);
-        W = svd.matrixV().transpose();
-        const VectorXd s2 = svd.singularValues().array().square();
-        double cum = 0.0;
-        for (Index k = 0; k < s2.size(); ++k) {
-            cum += s2(k);
-            fit.componentVariance.push_back(cum / s2.sum());
+    auto checkBank = [&](const std::vector<double> &bank) {
+        if (bank.empty())
+            throw std::invalid_argument(o.kind + ": a temperature lag bank is empty");
+        for (double tau : bank)
+            if (!(tau >= 0))
+                throw std::invalid_argument(o.kind + ": lag time constants must be >= 0");
+    };
+    for (std::size_t ci = 0; ci < o.references.size(); ++ci) {
+        if (o.kind == "dynamic") {
+            // Principal components of the z-scored temperatures over the training rows.
+            const MatrixXd &Z0 = laggedZ(ci, 0.0);
+            Eigen::JacobiSVD<MatrixXd> svd(Z0, Eigen::ComputeThinV);
+            prepared[ci].W = svd.matrixV().transpose();
+            const VectorXd s2 = svd.singularValues().array().square();
+            double cum = 0.0;
+            for (Index k = 0; k < s2.size(); ++k) {
+                cum += s2(k);
+                prepared[ci].componentVariance.push_back(cum / s2.sum());
+            }
+            std::set<int> comps;
+            for (int m : o.components)
+                if (m >= 1)
+                    comps.insert(std::min<int>(m, static_cast<int>(nT)));
+            if (comps.empty())
+                throw std::invalid_argument("dynamic: no principal-component count >= 1 given");
+            std::vector<std::vector<double>> driveSets = hasDrive ? o.driveLags : std::vector<std::vector<double>>{{}};
+            if (o.temperatureLags.empty() || driveSets.empty())
+                throw std::invalid_argument("dynamic: empty lag-bank candidate list");
+            for (int m : comps)
+                for (const std::vector<double> &tl : o.temperatureLags)
+                    for (const std::vector<double> &dl : driveSets) {
+                        checkBank(tl);
+                        structures.push_back({m, tl, dl, ci});
+                    }
+            // The drive alone (no temperatures): seed 001's virtual sensor as a lag bank (once).
+            if (hasDrive && ci == 0)
+                for (const std::vector<double> &dl : o.driveLags)
+                    if (!dl.empty())
+                        structures.push_back({0, {}, dl, ci});
+        } else if (o.kind == "lagridge") {
+            if (o.ridgeLags.empty())
+                throw std::invalid_argument("lagridge: empty lag-bank candidate list");
+            for (const std::vector<double> &bank : o.ridgeLags) {
+                checkBank(bank);
+                structures.push_back({0, bank, {}, ci});
+            }
+        } else {
+            structures.push_back({0, {0.0}, {}, ci});
         }
-        std::set<int> comps;
-        for (int m : o.components)
-            if (m >= 1)
-                comps.insert(std::min<int>(m, static_cast<int>(nT)));
-        if (comps.empty())
-            throw std::invalid_argument("dynamic: no principal-component count >= 1 given");
-        std::vector<std::vector<double>> driveSets = drive ? o.driveLags : std::vector<std::vector<double>>{{}};
-        if (o.temperatureLags.empty() || driveSets.empty())
-            throw std::invalid_argument("dynamic: empty lag-bank candidate list");
-        for (int m : comps)
-            for (const std::vector<double> &tl : o.temperatureLags)
-                for (const std::vector<double> &dl : driveSets) {
-                    if (tl.empty())
-                        throw std::invalid_argument("dynamic: a temperature lag bank is empty");
-                    for (double tau : tl)
-                        if (!(tau >= 0))
-                            throw std::invalid_argument("dynamic: lag time constants must be >= 0");
-                    structures.push_back({m, tl, dl});
-                }
-        // The drive alone (no temperatures): seed 001's virtual sensor as a lag bank.
-        if (drive)
-            for (const std::vector<double> &dl : o.driveLags)
-                if (!dl.empty())
-                    structures.push_back({0, {}, dl});
-    } else {
-        structures.push_back({});
     }
     const std::vector<double> lambdas = o.kind == "mlr" ? std::vector<double>{0.0} : o.lambdas;
     if (lambdas.empty())
@@ -274,12 +390,12 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
     auto design = [&](const Structure &s) {
         std::vector<VectorXd> cols;
         for (double tau : s.temperatureLags) {
-            const MatrixXd &L = laggedZ(tau);
+            const MatrixXd &L = laggedZ(s.reference, tau);
             if (s.components == 0) {
                 for (Index i = 0; i < nT; ++i)
                     cols.push_back(L.col(i));
             } else {
-                const MatrixXd P = L * W.topRows(s.components).transpose();
+                const MatrixXd P = L * prepared[s.reference].W.topRows(s.components).transpose();
                 for (Index k = 0; k < P.cols(); ++k)
                     cols.push_back(P.col(k));
             }
@@ -303,10 +419,33 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
 
     std::vector<double> times(rows.size());
     for (std::size_t r = 0; r < rows.size(); ++r)
-        times[r] = table.t[rows[r]];
-    fit.folds = o.folds;
-    fit.gap_s = o.gap_s >= 0 ? o.gap_s : TimeBlockedFolds::defaultGap(times, o.folds);
-    const std::vector<TimeBlockedFold> folds = TimeBlockedFolds::make(times, o.folds, fit.gap_s);
+        times[r] = runs[rows[r].run].table->t[rows[r].k];
+    fit.gap_s = R > 1 ? 0.0 : (o.gap_s >= 0 ? o.gap_s : TimeBlockedFolds::defaultGap(times, o.folds));
+    const std::vector<TimeBlockedFold> folds =
+        LinearLagFitter::folds(rowCounts, times, o.folds, fit.gap_s, o.maxRunFolds, fit.foldRule);
+    fit.folds = static_cast<int>(folds.size());
+
+    // The training mean on the same folds.
+    {
+        std::vector<double> prefix(rows.size() + 1, 0.0);
+        for (std::size_t r = 0; r < rows.size(); ++r)
+            prefix[r + 1] = prefix[r] + y(static_cast<Index>(r));
+        double sse = 0.0, count = 0.0;
+        for (const TimeBlockedFold &f : folds) {
+            const double trainN = static_cast<double>(rows.size() - (f.excludeEnd - f.excludeBegin));
+            const double mean = trainN > 0 ? (prefix.back() - (prefix[f.excludeEnd] - prefix[f.excludeBegin])) / trainN : 0.0;
+            double foldSse = 0.0;
+            for (std::size_t r = f.begin; r < f.end; ++r)
+                foldSse += (y(static_cast<Index>(r)) - mean) * (y(static_cast<Index>(r)) - mean);
+            fit.mean.foldRmse.push_back(std::sqrt(foldSse / static_cast<double>(f.end - f.begin)));
+            sse += foldSse;
+            count += static_cast<double>(f.end - f.begin);
+        }
+        fit.mean.cvRmse = std::sqrt(sse / count);
+        fit.mean.temperatureLags_s.clear();
+        fit.mean.features = 0;
+        fit.trainingMean = prefix.back() / static_cast<double>(rows.size());
+    }
 
     CvCandidate best;
     best.cvRmse = std::numeric_limits<double>::infinity();
@@ -326,6 +465,7 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
             c.components = s.components;
             c.temperatureLags_s = s.temperatureLags;
             c.driveLags_s = s.driveLags;
+            c.reference = o.references[s.reference];
             c.lambda = lambda;
             c.features = static_cast<std::size_t>(X.cols());
             double sse = 0.0, count = 0.0;
@@ -359,6 +499,9 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
     if (!std::isfinite(best.cvRmse))
         throw std::invalid_argument(o.kind + ": no candidate gave a finite cross-validation error");
     fit.chosen = best;
+    const Prepared &chosenInputs = prepared[bestStructure.reference];
+    fit.componentVariance = chosenInputs.componentVariance;
+    const MatrixXd &W = chosenInputs.W;
 
     // Final fit on every training sample.
     const MatrixXd X = design(bestStructure);
@@ -380,21 +523,26 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
     // Expand into per-channel terms: rows of M map feature coefficients to term coefficients.
     DataDrivenModel &model = fit.model;
     model.kind = o.kind;
+    const SignalColumn &target = *targets.front();
     model.target = {target.id, target.unit, target.kind};
     const std::size_t nTl = bestStructure.temperatureLags.size();
-    if (nTl > 0)
-        for (const SignalColumn *c : inputs)
+    const bool rise = o.references[bestStructure.reference].kind == "start";
+    if (nTl > 0) {
+        model.reference = o.references[bestStructure.reference];
+        for (const SignalColumn *c : inputs.front())
             model.inputs.push_back({c->id, c->unit, c->kind});
-    if (drive && !bestStructure.driveLags.empty())
-        model.inputs.push_back({drive->id, drive->unit, drive->kind});
-    model.samplePeriod_s = SignalTable::medianInterval(times);
+    }
+    if (hasDrive && !bestStructure.driveLags.empty())
+        model.inputs.push_back({drives.front()->id, drives.front()->unit, drives.front()->kind});
+    model.samplePeriod_s = SignalTable::medianInterval(std::vector<double>(times.begin(), times.begin() + static_cast<std::ptrdiff_t>(rowCounts.front())));
     const Index p = X.cols();
     std::vector<VectorXd> mapRows;
     for (Index i = 0; i < (nTl > 0 ? nT : 0); ++i) {
         ModelTerm term;
         term.input = static_cast<int>(i);
-        term.offset = offset[static_cast<std::size_t>(i)];
-        term.scale = scale[static_cast<std::size_t>(i)];
+        term.rise = rise;
+        term.offset = chosenInputs.offset[static_cast<std::size_t>(i)];
+        term.scale = chosenInputs.scale[static_cast<std::size_t>(i)];
         term.lags_s = bestStructure.temperatureLags;
         for (std::size_t l = 0; l < nTl; ++l) {
             VectorXd row = VectorXd::Zero(p);
@@ -442,15 +590,24 @@ LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptio
     model.interceptStandardError =
         std::sqrt(sigma2 * fit.seInflation * fit.seInflation / static_cast<double>(n) + sol.mu.dot(covC * sol.mu));
 
-    // Training metrics through the predictor (the same code a controller runs).
-    std::vector<std::vector<double>> columns;
-    for (const ModelChannel &c : model.inputs)
-        columns.push_back(table.column(c.id).v);
-    const std::vector<double> predicted = DataDrivenPredictor::run(model, table.t, columns);
-    std::vector<char> mask(N, 0);
-    for (std::size_t r : rows)
-        mask[r] = 1;
-    fit.training = ErrorMetrics::compute(target.v, predicted, &mask);
+    // Training metrics through the predictor (the same code a controller runs), run by run.
+    std::vector<double> measured, predicted;
+    measured.reserve(rows.size());
+    predicted.reserve(rows.size());
+    std::size_t r0 = 0;
+    for (std::size_t ri = 0; ri < R; ++ri) {
+        const SignalTable &table = *runs[ri].table;
+        std::vector<std::vector<double>> columns;
+        for (const ModelChannel &c : model.inputs)
+            columns.push_back(table.column(c.id).v);
+        const std::vector<double> pr = DataDrivenPredictor::run(model, table.t, columns);
+        for (std::size_t r = r0; r < r0 + rowCounts[ri]; ++r) {
+            measured.push_back(targets[ri]->v[rows[r].k]);
+            predicted.push_back(pr[rows[r].k]);
+        }
+        r0 += rowCounts[ri];
+    }
+    fit.training = ErrorMetrics::compute(measured, predicted);
     if (progress)
         progress(1.0);
     return fit;

@@ -1,9 +1,11 @@
 #pragma once
-// Fits the linear-lag data-driven models on a SignalTable:
+// Fits the linear-lag data-driven models on one or several runs (SignalTables, each a
+// session or a cycle of one that starts its own lag states and temperature reference):
 //  - mlr: ordinary least squares on the given temperature channels (seed 003 eq. 5, with an
 //    intercept);
-//  - ridge: ridge regression on the given channels, the penalty from time-blocked
-//    cross-validation;
+//  - ridge: ridge regression on the given channels, the penalty from cross-validation;
+//  - lagridge: ridge regression on every given channel through a bank of first-order lags
+//    (time constants of tens of minutes), bank and penalty from cross-validation;
 //  - dynamic: DriftLab's own model. The temperatures, centred and scaled by their standard
 //    deviation but at least scaleFloor (0.5 K), are reduced to their first m principal
 //    components (over the training samples), which pass through a bank of
@@ -15,6 +17,11 @@
 //    cross-validation on the training samples only. Since lags and the projection are linear,
 //    the result is stored as per-channel lag coefficients (DataDrivenModel terms).
 //
+// Cross-validation: with one run, time-blocked folds (TimeBlockedFolds); with two or more,
+// whole runs are left out (leave-one-run-out up to maxRunFolds runs, else maxRunFolds groups of
+// consecutive runs). The temperature reference (TemperatureReference: absolute or rises from
+// each run's start) is one more hyperparameter chosen by the same folds among `references`.
+//
 // Ridge works on features standardised over the fitting samples with the penalty
 // lambda * n * |beta|^2. Standard errors: the ridge sandwich sigma^2 A^-1 X'X A^-1 with
 // sigma^2 from the residuals (n - effective degrees of freedom), inflated by
@@ -23,6 +30,7 @@
 #include "DataDrivenModel.h"
 #include "ErrorMetrics.h"
 #include "SignalTable.h"
+#include "TimeBlockedFolds.h"
 
 #include <functional>
 #include <string>
@@ -30,16 +38,27 @@
 
 namespace driftlab {
 
+// One run of training data: a table and the rows of it to fit (empty: all).
+struct LinearLagRun {
+    const SignalTable *table = nullptr;
+    std::vector<char> rows;
+};
+
 struct LinearLagOptions {
-    std::string kind = "dynamic";      // mlr | ridge | dynamic
+    std::string kind = "dynamic";      // mlr | ridge | lagridge | dynamic
     std::string target;
     std::vector<std::string> inputs;   // temperature channels
     std::string drive;                 // dynamic only: spindle speed or feed channel (empty: none)
-    std::vector<char> trainRows;       // grid rows to fit (empty: all)
+    std::vector<char> trainRows;       // grid rows to fit (empty: all); single-table fit() only
     std::vector<double> lambdas{1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3, 1.0, 3.0};
     std::vector<std::vector<double>> temperatureLags{{0, 3600}, {0, 1800, 7200}, {0, 900, 3600, 14400}};
     std::vector<std::vector<double>> driveLags{{}, {1800, 7200}, {900, 3600, 14400}, {600, 1800, 5400, 16200}};
     std::vector<int> components{2, 3, 4, 5, 6, 8};
+    // lagridge: candidate lag banks of every temperature channel.
+    std::vector<std::vector<double>> ridgeLags{{0}, {0, 900}, {0, 1800}, {0, 3600}, {0, 900, 3600}, {0, 1800, 7200}};
+    // Candidate temperature references; more than one: chosen by cross-validation.
+    std::vector<TemperatureReference> references{TemperatureReference{}};
+    int maxRunFolds = 10;
     int folds = 4;
     double gap_s = -1.0;               // < 0: TimeBlockedFolds::defaultGap
     // Inputs are scaled by max(standard deviation, floor) (K for temperatures): a channel that
@@ -49,7 +68,8 @@ struct LinearLagOptions {
 };
 
 struct CvCandidate {
-    int components = 0;                // 0: the channels themselves (mlr, ridge)
+    int components = 0;                // 0: the channels themselves (mlr, ridge, lagridge)
+    TemperatureReference reference;
     std::vector<double> temperatureLags_s{0.0};
     std::vector<double> driveLags_s;
     double lambda = 0.0;
@@ -66,6 +86,11 @@ struct LinearLagFit {
     std::size_t trainingRows = 0;
     int folds = 0;
     double gap_s = 0.0;
+    std::string foldRule;              // "time-blocked" or "leave-runs-out"
+    std::size_t runs = 0;
+    // The training mean (intercept only) scored on the same folds: a plain reference.
+    CvCandidate mean;
+    double trainingMean = 0.0;
     double residualLag1 = 0.0;
     double seInflation = 1.0;
     double effectiveDof = 0.0;
@@ -78,6 +103,14 @@ public:
     // "cancelled" when progress(fraction) returns false.
     static LinearLagFit fit(const SignalTable &table, const LinearLagOptions &options,
                             const std::function<bool(double)> &progress = {});
+    // Several runs; options.trainRows is ignored (each run carries its rows). Errors about a
+    // run name it as "run N" (0-based).
+    static LinearLagFit fit(const std::vector<LinearLagRun> &runs, const LinearLagOptions &options,
+                            const std::function<bool(double)> &progress = {});
+    // The folds over the stacked training rows of runs with rowCounts rows each (times: the
+    // rows' times, used with one run only). Sets rule to the fold rule's name.
+    static std::vector<TimeBlockedFold> folds(const std::vector<std::size_t> &rowCounts, const std::vector<double> &times,
+                                              int timeFolds, double gap_s, int maxRunFolds, std::string &rule);
 };
 
 } // namespace driftlab

@@ -31,6 +31,65 @@ std::vector<char> SignalTable::rowsIn(double from_s, double to_s) const
     return rows;
 }
 
+SignalTable SignalTable::concatenate(const std::vector<const SignalTable *> &runs,
+                                     const std::vector<std::vector<char>> &rows, double pause_s,
+                                     const std::vector<std::string> &zeroInPause, const std::vector<std::string> &rises,
+                                     std::vector<char> *rowsOut)
+{
+    SignalTable out;
+    if (runs.empty())
+        return out;
+    for (const SignalColumn &c : runs.front()->columns) {
+        SignalColumn col = c;
+        col.v.clear();
+        out.columns.push_back(col);
+    }
+    if (rowsOut)
+        rowsOut->clear();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    double shift = 0.0;
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+        const SignalTable &run = *runs[r];
+        if (run.t.empty())
+            continue;
+        if (!out.t.empty()) { // pause row
+            out.t.push_back(out.t.back() + pause_s);
+            for (SignalColumn &c : out.columns)
+                c.v.push_back(std::find(zeroInPause.begin(), zeroInPause.end(), c.id) != zeroInPause.end() ? 0.0 : nan);
+            if (rowsOut)
+                rowsOut->push_back(0);
+            shift = out.t.back() + std::min(1.0, 0.01 * pause_s) - run.t.front();
+        } else {
+            shift = 0.0;
+        }
+        for (double x : run.t)
+            out.t.push_back(x + shift);
+        for (SignalColumn &c : out.columns) {
+            const int i = run.find(c.id);
+            if (i < 0) {
+                c.v.insert(c.v.end(), run.t.size(), nan);
+                continue;
+            }
+            const std::vector<double> &v = run.columns[static_cast<std::size_t>(i)].v;
+            double first = 0.0;
+            if (std::find(rises.begin(), rises.end(), c.id) != rises.end())
+                for (double x : v)
+                    if (std::isfinite(x)) {
+                        first = x;
+                        break;
+                    }
+            for (double x : v)
+                c.v.push_back(x - first);
+        }
+        if (rowsOut) {
+            const bool all = r >= rows.size() || rows[r].empty();
+            for (std::size_t k = 0; k < run.t.size(); ++k)
+                rowsOut->push_back(all ? 1 : rows[r][k]);
+        }
+    }
+    return out;
+}
+
 double SignalTable::medianStep() const
 {
     return medianInterval(t);

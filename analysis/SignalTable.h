@@ -33,6 +33,18 @@ struct SignalTable {
     std::vector<char> rowsIn(double from_s, double to_s) const;
     double medianStep() const;
 
+    // Runs one after another on one grid (sensitive points and the exp model on several runs):
+    // each run's times are shifted to start pause_s after the previous run's end, with one
+    // pause row between runs where the columns named in zeroInPause are 0 and all others NaN
+    // (a first-order state driven by them decays to rest). Columns are the first run's; a
+    // column another run lacks is NaN there. Columns named in `rises` become rises from each
+    // run's first finite value. rows[r] (empty: all) marks run r's rows to keep marked in
+    // *rowsOut (pause rows unmarked).
+    static SignalTable concatenate(const std::vector<const SignalTable *> &runs,
+                                   const std::vector<std::vector<char>> &rows, double pause_s,
+                                   const std::vector<std::string> &zeroInPause, const std::vector<std::string> &rises,
+                                   std::vector<char> *rowsOut);
+
     static std::vector<double> resample(const TimeSeries &s, const std::vector<double> &grid, double maxGap_s);
     static double medianInterval(const std::vector<double> &t);
 };

@@ -16,9 +16,14 @@ namespace {
 
 QJsonObject channel(const ModelChannel &c)
 {
-    return QJsonObject{{QStringLiteral("channel"), QString::fromStdString(c.id)},
-                       {QStringLiteral("unit"), QString::fromStdString(c.unit)},
-                       {QStringLiteral("kind"), QString::fromStdString(c.kind)}};
+    QJsonObject o{{QStringLiteral("channel"), QString::fromStdString(c.id)},
+                  {QStringLiteral("unit"), QString::fromStdString(c.unit)},
+                  {QStringLiteral("kind"), QString::fromStdString(c.kind)}};
+    if (std::isfinite(c.trainingMin) && std::isfinite(c.trainingMax)) {
+        o.insert(QStringLiteral("training_min"), c.trainingMin);
+        o.insert(QStringLiteral("training_max"), c.trainingMax);
+    }
+    return o;
 }
 
 // Reads fields with messages naming source and path.
@@ -102,29 +107,38 @@ QJsonObject DataDrivenModelJson::toJson(const DataDrivenModel &m)
     for (const ModelChannel &c : m.inputs)
         inputs.append(channel(c));
     QJsonObject o{{QStringLiteral("format"), QStringLiteral("driftlab-model")},
-                  {QStringLiteral("version"), kVersion},
+                  {QStringLiteral("version"), m.usesRises() ? kVersion : kOldestVersion},
                   {QStringLiteral("model"), QString::fromStdString(m.kind)},
                   {QStringLiteral("target"), channel(m.target)},
                   {QStringLiteral("inputs"), inputs},
                   {QStringLiteral("sample_period_s"), m.samplePeriod_s}};
     if (m.linearLag()) {
         QJsonArray terms;
-        for (const ModelTerm &t : m.terms)
-            terms.append(QJsonObject{{QStringLiteral("input"), t.input},
+        for (const ModelTerm &t : m.terms) {
+            QJsonObject term{{QStringLiteral("input"), t.input},
                                      {QStringLiteral("channel"), QString::fromStdString(m.inputs[static_cast<std::size_t>(t.input)].id)},
                                      {QStringLiteral("power"), t.power},
                                      {QStringLiteral("offset"), t.offset},
                                      {QStringLiteral("scale"), t.scale},
                                      {QStringLiteral("lags_s"), DataDrivenModelJson::numbers(t.lags_s)},
                                      {QStringLiteral("coefficients"), DataDrivenModelJson::numbers(t.coefficients)},
-                                     {QStringLiteral("standard_errors"), DataDrivenModelJson::numbers(t.standardErrors)}});
+                                     {QStringLiteral("standard_errors"), DataDrivenModelJson::numbers(t.standardErrors)}};
+            if (t.rise)
+                term.insert(QStringLiteral("rise"), true);
+            terms.append(term);
+        }
+        if (m.usesRises())
+            o.insert(QStringLiteral("reference"), QJsonObject{{QStringLiteral("kind"), QString::fromStdString(m.reference.kind)},
+                                                              {QStringLiteral("window_s"), m.reference.window_s}});
         o.insert(QStringLiteral("linear"), QJsonObject{{QStringLiteral("intercept"), m.intercept},
                                                        {QStringLiteral("intercept_standard_error"), m.interceptStandardError},
                                                        {QStringLiteral("terms"), terms}});
         o.insert(QStringLiteral("evaluation"),
                  QStringLiteral("y = intercept + sum over terms and lags of coefficient * x; feature f = ((u - offset) / scale)^power "
                                 "of input u; x = f for a lag of 0 s, else x += (1 - exp(-dt / tau)) (f - x) each sample with the "
-                                "actual step dt; x starts at f of the first sample (equilibrium)"));
+                                "actual step dt; x starts at f of the first sample (equilibrium); a term with rise: true reads u - r, "
+                                "r = the input at the run's start (reference.kind start; with window_s > 0 the running mean of the "
+                                "samples after a positive step within window_s of the start), captured by the evaluator"));
     } else if (m.kind == "exp") {
         const ExponentialLaw &e = m.exponential;
         QJsonObject law{{QStringLiteral("drive"), e.drive},
@@ -169,15 +183,25 @@ DataDrivenModel DataDrivenModelJson::fromJson(const QJsonObject &o, const QStrin
     if (r.string(o, QString(), QStringLiteral("format")) != QLatin1String("driftlab-model"))
         r.fail(QStringLiteral("format"), QStringLiteral("expected \"driftlab-model\""));
     const double version = r.number(o, QString(), QStringLiteral("version"));
-    if (version != kVersion)
-        r.fail(QStringLiteral("version"),
-               QStringLiteral("version %1 is not readable by this DriftLab (reads %2)").arg(version).arg(kVersion));
+    if (version != kVersion && version != kOldestVersion)
+        r.fail(QStringLiteral("version"), QStringLiteral("version %1 is not readable by this DriftLab (reads %2 and %3)")
+                                              .arg(version)
+                                              .arg(kOldestVersion)
+                                              .arg(kVersion));
     DataDrivenModel m;
     m.kind = r.string(o, QString(), QStringLiteral("model")).toStdString();
     auto readChannel = [&](const QJsonObject &c, const QString &path) {
-        return ModelChannel{r.string(c, path, QStringLiteral("channel")).toStdString(),
-                            c.value(QStringLiteral("unit")).toString().toStdString(),
-                            c.value(QStringLiteral("kind")).toString().toStdString()};
+        ModelChannel m;
+        m.id = r.string(c, path, QStringLiteral("channel")).toStdString();
+        m.unit = c.value(QStringLiteral("unit")).toString().toStdString();
+        m.kind = c.value(QStringLiteral("kind")).toString().toStdString();
+        if (c.contains(QStringLiteral("training_min")) || c.contains(QStringLiteral("training_max"))) {
+            m.trainingMin = r.number(c, path, QStringLiteral("training_min"));
+            m.trainingMax = r.number(c, path, QStringLiteral("training_max"));
+            if (m.trainingMax < m.trainingMin)
+                r.fail(path + QStringLiteral(".training_max"), QStringLiteral("below training_min"));
+        }
+        return m;
     };
     m.target = readChannel(r.object(o, QString(), QStringLiteral("target")), QStringLiteral("target"));
     const QJsonArray inputs = r.array(o, QString(), QStringLiteral("inputs"));
@@ -190,6 +214,15 @@ DataDrivenModel DataDrivenModelJson::fromJson(const QJsonObject &o, const QStrin
     m.samplePeriod_s = r.optionalNumber(o, QString(), QStringLiteral("sample_period_s"), 0.0);
     const int n = static_cast<int>(m.inputs.size());
     if (m.linearLag()) {
+        if (o.contains(QStringLiteral("reference"))) {
+            const QJsonObject ref = r.object(o, QString(), QStringLiteral("reference"));
+            m.reference.kind = r.string(ref, QStringLiteral("reference"), QStringLiteral("kind")).toStdString();
+            if (m.reference.kind != "absolute" && m.reference.kind != "start")
+                r.fail(QStringLiteral("reference.kind"), QStringLiteral("expected \"absolute\" or \"start\""));
+            m.reference.window_s = r.optionalNumber(ref, QStringLiteral("reference"), QStringLiteral("window_s"), 0.0);
+            if (m.reference.window_s < 0)
+                r.fail(QStringLiteral("reference.window_s"), QStringLiteral("expected a number >= 0"));
+        }
         const QJsonObject lin = r.object(o, QString(), QStringLiteral("linear"));
         m.intercept = r.number(lin, QStringLiteral("linear"), QStringLiteral("intercept"));
         m.interceptStandardError = r.optionalNumber(lin, QStringLiteral("linear"), QStringLiteral("intercept_standard_error"), 0.0);
@@ -216,6 +249,13 @@ DataDrivenModel DataDrivenModelJson::fromJson(const QJsonObject &o, const QStrin
             term.coefficients = r.numberArray(t, path, QStringLiteral("coefficients"), false);
             if (term.lags_s.empty() || term.coefficients.size() != term.lags_s.size())
                 r.fail(path + QStringLiteral(".coefficients"), QStringLiteral("expected one coefficient per lag"));
+            if (t.contains(QStringLiteral("rise"))) {
+                if (!t.value(QStringLiteral("rise")).isBool())
+                    r.fail(path + QStringLiteral(".rise"), QStringLiteral("expected true or false"));
+                if (version < 2)
+                    r.fail(path + QStringLiteral(".rise"), QStringLiteral("needs version 2"));
+                term.rise = t.value(QStringLiteral("rise")).toBool();
+            }
             if (t.contains(QStringLiteral("standard_errors")))
                 term.standardErrors = r.numberArray(t, path, QStringLiteral("standard_errors"), true);
             m.terms.push_back(term);
@@ -261,7 +301,7 @@ DataDrivenModel DataDrivenModelJson::fromJson(const QJsonObject &o, const QStrin
             r.fail(path + QStringLiteral(".p_ref_mm"), QStringLiteral("must differ from p0_mm"));
     } else {
         r.fail(QStringLiteral("model"),
-               QStringLiteral("unknown model '%1' (known: mlr, ridge, dynamic, exp, synthetic)").arg(QString::fromStdString(m.kind)));
+               QStringLiteral("unknown model '%1' (known: mean, mlr, ridge, lagridge, dynamic, exp, synthetic)").arg(QString::fromStdString(m.kind)));
     }
     try {
         DataDrivenPredictor check(m);

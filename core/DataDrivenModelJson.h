@@ -1,5 +1,5 @@
 #pragma once
-// "driftlab-model" JSON, version 1 (docs/datadriven.md): the model a controller evaluates
+// "driftlab-model" JSON, versions 1 and 2 (docs/datadriven.md): the model a controller evaluates
 // (format, version, model, target, inputs, linear | exponential | synthetic, evaluation) plus
 // whatever documentation blocks the fit adds (training, hyperparameters, uncertainties,
 // metrics, selection), which reading keeps but does not need.
@@ -21,7 +21,10 @@ namespace driftlab {
 
 class DataDrivenModelJson {
 public:
-    static constexpr int kVersion = 1;
+    // Version 2 adds the temperature reference (`reference`, terms' `rise`); a model without
+    // rises is written as version 1, readable by older DriftLab. Both versions are read.
+    static constexpr int kVersion = 2;
+    static constexpr int kOldestVersion = 1;
     static QJsonObject toJson(const DataDrivenModel &model);
     static DataDrivenModel fromJson(const QJsonObject &object, const QString &source);
     static DataDrivenModel parse(const QByteArray &bytes, const QString &source, QJsonObject *document = nullptr);

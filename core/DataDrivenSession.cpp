@@ -27,14 +27,35 @@ QStringList DataDrivenSession::temperatureChannels() const
     return out;
 }
 
+QString DataDrivenSession::kindOf(const QString &id) const
+{
+    for (const ChannelInfo &c : m_channels)
+        if (c.key == id)
+            return c.kind;
+    return QString();
+}
+
+bool DataDrivenSession::isDrive(const QString &id) const
+{
+    for (const ChannelInfo &c : m_channels)
+        if (c.key == id) {
+            if (c.kind == QLatin1String("temperature") || c.kind == QLatin1String("displacement") ||
+                c.kind == QLatin1String("position"))
+                return false;
+            return c.kind == QLatin1String("feed") || c.kind == QLatin1String("speed") ||
+                   c.role == QLatin1String("spindle") || c.role == QLatin1String("feed_rate");
+        }
+    return false;
+}
+
 QString DataDrivenSession::driveChannel() const
 {
     for (const char *role : {"spindle", "feed_rate"})
         for (const ChannelInfo &c : m_channels)
-            if (c.role == QLatin1String(role))
+            if (c.role == QLatin1String(role) && isDrive(c.key))
                 return c.key;
     for (const ChannelInfo &c : m_channels)
-        if (c.kind == QLatin1String("feed"))
+        if ((c.kind == QLatin1String("feed") || c.kind == QLatin1String("speed")) && isDrive(c.key))
             return c.key;
     return QString();
 }

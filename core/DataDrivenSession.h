@@ -27,8 +27,14 @@ public:
     const QVector<ChannelInfo> &channels() const { return m_channels; }
     bool hasChannel(const QString &id) const;
     QStringList temperatureChannels() const;
-    // The channel with role spindle or feed_rate, else the first of kind feed; empty if none.
+    // The channel with role spindle or feed_rate, else the first of kind feed or speed; never a
+    // temperature (isDrive); empty if none.
     QString driveChannel() const;
+    // A drive is a channel of kind feed or speed, or with role spindle or feed_rate, that is not
+    // a temperature (nor a displacement or position).
+    bool isDrive(const QString &id) const;
+    // The channel's kind (temperature, displacement, ...); empty when absent.
+    QString kindOf(const QString &id) const;
     // Temperature channels on the screw (role screw or screw_surface, or location screw), for seed 002's
     // characteristic temperature.
     QStringList screwTemperatureChannels() const;

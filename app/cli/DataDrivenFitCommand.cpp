@@ -18,13 +18,17 @@ namespace driftlab {
 QString DataDrivenFitCommand::summary() const
 {
     return QStringLiteral(
-        "Fit a data-driven thermal-error model of one displacement channel (--target) on a session or a time\n"
-        "range of it and validate it on another session (--holdout) or range (--holdout-range). Models: mlr\n"
-        "(seed 003 eq. 5 on sensitive points, --points auto by default), ridge (all temperatures, penalty by\n"
-        "time-blocked CV), exp (seed 001 warm-up/cool-down from the drive channel), synthetic (seed 002 eq. 26;\n"
-        "--target interferometer for laser runs), dynamic (lagged temperatures and drive, structure by\n"
-        "time-blocked CV). Writes the model as driftlab-model JSON to --out (docs/datadriven.md) and stores it\n"
-        "with the session. Metrics: MSE, RMSE, MAE, max |e|, fitting degree.");
+        "Fit a data-driven thermal-error model of one displacement channel (--target) on one or several\n"
+        "sessions (runs; SESSION may be ids, A-B ranges or comma lists) or a time range of them, and validate it\n"
+        "on held-out sessions (--holdout, repeatable) or a range (--holdout-range), per session and pooled.\n"
+        "Models: mean (the training mean), mlr (seed 003 eq. 5 on sensitive points, --points auto by default),\n"
+        "ridge (all temperatures), lagridge (all temperatures through a bank of first-order lags), exp (seed\n"
+        "001 warm-up/cool-down from the drive channel), synthetic (seed 002 eq. 26; --target interferometer for\n"
+        "laser runs), dynamic (lagged temperature components and drive), auto (every applicable family, chosen\n"
+        "by CV with the one-standard-error rule; the comparison table is printed and stored). Hyperparameters\n"
+        "and the temperature reference by cross-validation: time-blocked with one session, whole sessions left\n"
+        "out with several. Writes driftlab-model JSON to --out (docs/datadriven.md) and stores it with the\n"
+        "first training session. Metrics: MSE, RMSE, MAE, max |e|, fitting degree.");
 }
 
 bool DataDrivenFitCommand::handles(const QStringList &args)
@@ -36,7 +40,7 @@ bool DataDrivenFitCommand::handles(const QStringList &args)
         else if (args[i].startsWith(QLatin1String("--model=")))
             value = args[i].mid(8);
         if (!value.isEmpty())
-            return DataDrivenFit::models().contains(value);
+            return DataDrivenFit::allModels().contains(value);
     }
     return false;
 }
@@ -52,6 +56,27 @@ qint64 DataDrivenFitCommand::sessionArg(const SessionStore &store, const QString
         if (s.id == id)
             return id;
     throw UsageError(QStringLiteral("%1: %2 has no session %3").arg(command, store.path()).arg(id));
+}
+
+QList<qint64> DataDrivenFitCommand::sessionArgs(const SessionStore &store, const QStringList &texts, const QString &what,
+                                               const QString &command)
+{
+    QList<qint64> out;
+    for (const QString &text : texts)
+        for (const QString &part : text.split(QLatin1Char(','), Qt::SkipEmptyParts)) {
+            const int dash = part.indexOf(QLatin1Char('-'), 1);
+            if (dash < 0) {
+                out << sessionArg(store, part, what, command);
+                continue;
+            }
+            bool a = false, b = false;
+            const qint64 from = part.left(dash).toLongLong(&a), to = part.mid(dash + 1).toLongLong(&b);
+            if (!a || !b || to < from || to - from > 10000)
+                throw UsageError(QStringLiteral("%1: %2 must be session ids or ranges A-B, got '%3'").arg(command, what, part));
+            for (qint64 id = from; id <= to; ++id)
+                out << sessionArg(store, QString::number(id), what, command);
+        }
+    return out;
 }
 
 void DataDrivenFitCommand::parseKRange(const QString &text, int &kMin, int &kMax, const QString &command)
@@ -71,7 +96,8 @@ int DataDrivenFitCommand::run(const QStringList &args)
     const QString cmd = QStringLiteral("fit");
     QCommandLineParser p;
     const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
-    const QCommandLineOption model(QStringLiteral("model"), QStringLiteral("mlr, ridge, exp, synthetic or dynamic."),
+    const QCommandLineOption model(QStringLiteral("model"),
+                                   QStringLiteral("auto, mean, mlr, ridge, lagridge, exp, synthetic or dynamic."),
                                    QStringLiteral("name"));
     const QCommandLineOption target(QStringLiteral("target"),
                                     QStringLiteral("Displacement channel to model ('interferometer': laser runs, synthetic only)."),
@@ -87,8 +113,14 @@ int DataDrivenFitCommand::run(const QStringList &args)
                                    QStringLiteral("channel"));
     const QCommandLineOption train(QStringLiteral("train-range"), QStringLiteral("Fit on hours H:H of the session."),
                                    QStringLiteral("H:H"));
-    const QCommandLineOption holdout(QStringLiteral("holdout"), QStringLiteral("Validate on this session."),
+    const QCommandLineOption holdout(QStringLiteral("holdout"),
+                                     QStringLiteral("Validate on this session (repeatable; ids, A-B ranges, comma lists)."),
                                      QStringLiteral("id"));
+    const QCommandLineOption reference(QStringLiteral("reference"),
+                                       QStringLiteral("Temperature reference of each run: auto (by CV; start with one "
+                                                      "session), absolute, start, or start:MIN (mean of the first MIN "
+                                                      "minutes)."),
+                                       QStringLiteral("ref"), QStringLiteral("auto"));
     const QCommandLineOption holdoutRange(QStringLiteral("holdout-range"),
                                           QStringLiteral("Validate on hours H:H of the same session."), QStringLiteral("H:H"));
     const QCommandLineOption kRange(QStringLiteral("k-range"), QStringLiteral("K range of --points auto (default 2:8)."),
@@ -101,12 +133,13 @@ int DataDrivenFitCommand::run(const QStringList &args)
     const QCommandLineOption out(QStringLiteral("out"), QStringLiteral("MODEL.json to write."), QStringLiteral("file"));
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
                                   QStringLiteral("file"));
-    p.addOptions({db, model, target, points, drive, train, holdout, holdoutRange, kRange, folds, floor, out, json});
-    p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id to fit."));
+    p.addOptions({db, model, target, points, drive, reference, train, holdout, holdoutRange, kRange, folds, floor, out, json});
+    p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Training session ids (A-B ranges and comma lists allowed)."),
+                            QStringLiteral("SESSION..."));
     if (!parse(p, args))
         return 0;
-    if (p.positionalArguments().size() != 1)
-        throw UsageError(QStringLiteral("fit: give exactly one SESSION id for --model %1").arg(p.value(model)));
+    if (p.positionalArguments().isEmpty())
+        throw UsageError(QStringLiteral("fit: give at least one SESSION id for --model %1").arg(p.value(model)));
     if (!p.isSet(target))
         throw UsageError(QStringLiteral("fit: --target CHANNEL is required for --model %1").arg(p.value(model)));
     if (!p.isSet(out))
@@ -133,15 +166,16 @@ int DataDrivenFitCommand::run(const QStringList &args)
             throw UsageError(QStringLiteral("fit: --points must be 'auto' or channel ids separated by commas"));
     }
     q.drive = p.value(drive);
+    q.reference = p.value(reference);
+    CliSupport::checkOutput(p.value(out), QStringLiteral("--out"), false);
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
-    q.session = sessionArg(store, p.positionalArguments().first(), QStringLiteral("SESSION"), cmd);
-    if (p.isSet(holdout))
-        q.holdoutSession = sessionArg(store, p.value(holdout), QStringLiteral("--holdout"), cmd);
-    if (q.holdoutSession == q.session)
-        throw UsageError(QStringLiteral("fit: --holdout %1 is the training session; held-out data must be a session the "
-                                        "model was not fitted to (or use --holdout-range)")
-                             .arg(q.holdoutSession));
+    q.sessions = sessionArgs(store, p.positionalArguments(), QStringLiteral("SESSION"), cmd);
+    q.session = q.sessions.front();
+    if (p.isSet(holdout)) {
+        q.holdoutSessions = sessionArgs(store, p.values(holdout), QStringLiteral("--holdout"), cmd);
+        q.holdoutSession = q.holdoutSessions.front();
+    }
     DataDrivenFitResult r;
     try {
         if (p.isSet(train))
@@ -160,10 +194,17 @@ int DataDrivenFitCommand::run(const QStringList &args)
     }
     QJsonObject doc = r.document;
     doc.insert(QStringLiteral("database"), path);
+    for (const ValidationSeries &v : r.holdoutSessions)
+        for (int i = 0; i < v.extrapolated.size(); ++i)
+            CliSupport::progress(QStringLiteral("warning: extrapolation: held-out session %1: %2 leaves the training range "
+                                                "(+- margin) on %3 % of the samples")
+                                     .arg(v.session)
+                                     .arg(v.extrapolated[i])
+                                     .arg(100.0 * v.extrapolatedFraction[static_cast<std::size_t>(i)], 0, 'f', 1));
     DataDrivenModelJson::write(doc, p.value(out));
 
     FittedModel fm;
-    fm.model = QStringLiteral("driftlab-model/%1").arg(q.model);
+    fm.model = QStringLiteral("driftlab-model/%1").arg(QString::fromStdString(r.model.kind));
     fm.parameters = DataDrivenModelJson::toJson(r.model);
     fm.uncertainties = doc.value(QStringLiteral("uncertainties")).toObject();
     fm.provenance = QJsonObject{{QStringLiteral("training"), doc.value(QStringLiteral("training"))},
@@ -190,8 +231,27 @@ int DataDrivenFitCommand::run(const QStringList &args)
                                                           .arg(m.n)
               << '\n';
         };
-        o << q.model << " model of " << q.target << " fitted on session " << q.session << " in "
+        QStringList ids;
+        for (qint64 id : q.sessions)
+            ids << QString::number(id);
+        o << QString::fromStdString(r.model.kind) << (q.model == QLatin1String("auto") ? " model (auto)" : " model") << " of "
+          << q.target << " fitted on session" << (ids.size() > 1 ? "s " : " ") << ids.join(QStringLiteral(", ")) << " in "
           << QString::number(r.wallTime_s, 'f', 2) << " s -> " << p.value(out) << '\n';
+        if (!r.comparison.empty()) {
+            o << "  family      CV RMSE  CV SE   params  reference   held-out RMSE\n";
+            for (const FamilyComparison &c : r.comparison) {
+                o << (c.chosen ? "* " : "  ") << c.model.leftJustified(10)
+                  << (std::isfinite(c.cvRmse) ? QString::number(c.cvRmse, 'f', 3) : QStringLiteral("-")).rightJustified(8)
+                  << (std::isfinite(c.cvStandardError) ? QString::number(c.cvStandardError, 'f', 3) : QStringLiteral("-")).rightJustified(7)
+                  << QString::number(c.parameters).rightJustified(8) << "  " << c.reference.leftJustified(10)
+                  << (c.holdout ? QString::number(c.holdout->rmse, 'f', 3) : QStringLiteral("-")).rightJustified(10);
+                if (!c.error.isEmpty())
+                    o << "  (not fitted: " << c.error << ')';
+                o << '\n';
+            }
+            o << "  chosen by CV, one-standard-error rule (fewest parameters within one CV standard error of the lowest);"
+                 " held-out never used to choose\n";
+        }
         if (r.selection) {
             QStringList chosen;
             for (const std::string &c : r.selection->chosen)
@@ -202,13 +262,23 @@ int DataDrivenFitCommand::run(const QStringList &args)
         for (const ModelChannel &c : r.model.inputs)
             in << QString::fromStdString(c.id);
         o << "  inputs: " << in.join(QStringLiteral(", ")) << '\n';
-        line(QStringLiteral("training:"), r.training.metrics);
+        if (r.model.usesRises())
+            o << "  temperature reference: " << QString::fromStdString(r.model.reference.label()) << " (inputs as rises)\n";
+        for (const ValidationSeries &v : r.trainingSessions)
+            if (r.trainingSessions.size() > 1)
+                line(QStringLiteral("training session %1:").arg(v.session), v.metrics);
+        line(r.trainingSessions.size() > 1 ? QStringLiteral("training (pooled):") : QStringLiteral("training:"), r.training.metrics);
         if (std::isfinite(r.cvRmse))
-            o << "  " << QStringLiteral("time-blocked CV:").leftJustified(34) << QStringLiteral("RMSE %1").arg(r.cvRmse, 0, 'f', 3) << '\n';
-        if (r.holdout)
-            line(p.isSet(holdout) ? QStringLiteral("held-out session %1:").arg(r.holdout->session)
-                                  : QStringLiteral("held-out (hours %1):").arg(p.value(holdoutRange)),
-                 r.holdout->metrics);
+            o << "  " << QStringLiteral("CV (%1):").arg(r.foldRule).leftJustified(34) << QStringLiteral("RMSE %1").arg(r.cvRmse, 0, 'f', 3)
+              << '\n';
+        if (r.holdout) {
+            for (const ValidationSeries &v : r.holdoutSessions)
+                line(p.isSet(holdout) ? QStringLiteral("held-out session %1:").arg(v.session)
+                                      : QStringLiteral("held-out (hours %1):").arg(p.value(holdoutRange)),
+                     v.metrics);
+            if (r.holdoutSessions.size() > 1)
+                line(QStringLiteral("held-out (pooled):"), r.holdout->metrics);
+        }
     }
     return 0;
 }

@@ -7,6 +7,7 @@
 #include "SessionStore.h"
 
 #include <QCommandLineParser>
+#include <QJsonArray>
 #include <QTextStream>
 
 #include <stdexcept>
@@ -39,29 +40,40 @@ int SelectPointsCommand::run(const QStringList &args)
     const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
                                   QStringLiteral("file"));
     p.addOptions({db, target, kRange, channels, range, json});
-    p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
+    p.addPositionalArgument(QStringLiteral("SESSION"),
+                            QStringLiteral("Session ids (A-B ranges and comma lists allowed); several: their samples one "
+                                           "after another, temperatures as rises from each session's start."),
+                            QStringLiteral("SESSION..."));
     if (!parse(p, args))
         return 0;
-    if (p.positionalArguments().size() != 1)
-        throw UsageError(QStringLiteral("%1: give exactly one SESSION id").arg(cmd));
+    if (p.positionalArguments().isEmpty())
+        throw UsageError(QStringLiteral("%1: give at least one SESSION id").arg(cmd));
     if (!p.isSet(target))
         throw UsageError(QStringLiteral("%1: --target CHANNEL is required").arg(cmd));
     int kMin = 2, kMax = 8;
     DataDrivenFitCommand::parseKRange(p.value(kRange), kMin, kMax, cmd);
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
-    const qint64 session = DataDrivenFitCommand::sessionArg(store, p.positionalArguments().first(), QStringLiteral("SESSION"), cmd);
+    const QList<qint64> sessions = DataDrivenFitCommand::sessionArgs(store, p.positionalArguments(), QStringLiteral("SESSION"), cmd);
+    const qint64 session = sessions.front();
+    for (int i = 0; i < sessions.size(); ++i)
+        if (sessions.indexOf(sessions[i]) != i)
+            throw UsageError(QStringLiteral("%1: session %2 is given twice").arg(cmd).arg(sessions[i]));
     SelectionResult r;
     try {
         const HourRange hours = p.isSet(range) ? HourRange::parse(p.value(range), QStringLiteral("--range")) : HourRange();
         CliSupport::progress(QStringLiteral("selecting sensitive points of session %1 for %2...").arg(session).arg(p.value(target)));
-        r = DataDrivenFit(store).selectPoints(session, p.value(target), hours, kMin, kMax,
+        r = DataDrivenFit(store).selectPoints(sessions, p.value(target), hours, kMin, kMax,
                                               p.value(channels).split(QLatin1Char(','), Qt::SkipEmptyParts));
     } catch (const std::invalid_argument &e) {
         throw UsageError(QStringLiteral("%1: %2").arg(cmd, QString::fromUtf8(e.what())));
     }
     QJsonObject result = DataDrivenFit::selectionJson(r);
     result.insert(QStringLiteral("session"), session);
+    QJsonArray ids;
+    for (qint64 id : sessions)
+        ids.append(id);
+    result.insert(QStringLiteral("sessions"), ids);
     store.addAnalysisResult(session, AnalysisPlots::selectionResultKind(), result);
     if (p.isSet(json))
         CliSupport::writeJson(QJsonDocument(result), p.value(json));

@@ -15,9 +15,11 @@ namespace driftlab {
 
 QString ValidateCommand::summary() const
 {
-    return QStringLiteral("Predict a data-driven model (MODEL.json written by 'fit --model mlr|ridge|exp|synthetic|dynamic')\n"
-                          "over a session and compare with its measured target: MSE, RMSE, MAE, max |e| and the fitting\n"
-                          "degree of seed 003 Table 6.");
+    return QStringLiteral("Predict a data-driven model (MODEL.json written by 'fit --model ...') over one or several\n"
+                          "sessions (ids, A-B ranges, comma lists) and compare with the measured target, per session and\n"
+                          "pooled: MSE, RMSE, MAE, max |e| and the fitting degree of seed 003 Table 6. The model captures\n"
+                          "each session's temperature reference itself. Inputs outside the model's training range by more\n"
+                          "than the margin are flagged (extrapolation). --json uses the layout of fit's metrics.holdout.");
 }
 
 int ValidateCommand::run(const QStringList &args)
@@ -31,11 +33,12 @@ int ValidateCommand::run(const QStringList &args)
                                   QStringLiteral("file"));
     p.addOptions({db, range, json});
     p.addPositionalArgument(QStringLiteral("MODEL.json"), QStringLiteral("Model file."));
-    p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
+    p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session ids (A-B ranges and comma lists allowed)."),
+                            QStringLiteral("SESSION..."));
     if (!parse(p, args))
         return 0;
-    if (p.positionalArguments().size() != 2)
-        throw UsageError(QStringLiteral("%1: give MODEL.json and one SESSION id").arg(cmd));
+    if (p.positionalArguments().size() < 2)
+        throw UsageError(QStringLiteral("%1: give MODEL.json and at least one SESSION id").arg(cmd));
     DataDrivenModel model;
     QJsonObject document;
     try {
@@ -45,32 +48,48 @@ int ValidateCommand::run(const QStringList &args)
     }
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
-    const qint64 session = DataDrivenFitCommand::sessionArg(store, p.positionalArguments().at(1), QStringLiteral("SESSION"), cmd);
-    ValidationSeries v;
+    const QList<qint64> sessions =
+        DataDrivenFitCommand::sessionArgs(store, p.positionalArguments().mid(1), QStringLiteral("SESSION"), cmd);
+    ValidationSet v;
     try {
         const HourRange hours = p.isSet(range) ? HourRange::parse(p.value(range), QStringLiteral("--range")) : HourRange();
-        v = DataDrivenFit(store).validate(model, session, hours);
+        v = DataDrivenFit(store).validate(model, sessions, hours);
     } catch (const std::invalid_argument &e) {
         throw UsageError(QStringLiteral("%1: %2").arg(cmd, QString::fromUtf8(e.what())));
     }
-    QJsonObject result = DataDrivenFit::validationJson(v);
-    result.insert(QStringLiteral("model"), QString::fromStdString(model.kind));
-    result.insert(QStringLiteral("model_file"), p.positionalArguments().at(0));
-    result.insert(QStringLiteral("target"), QString::fromStdString(model.target.id));
+    for (const ValidationSeries &s : v.sessions)
+        for (int i = 0; i < s.extrapolated.size(); ++i)
+            CliSupport::progress(QStringLiteral("warning: extrapolation: session %1: %2 leaves the training range (+- margin) "
+                                                "on %3 % of the samples")
+                                     .arg(s.session)
+                                     .arg(s.extrapolated[i])
+                                     .arg(100.0 * s.extrapolatedFraction[static_cast<std::size_t>(i)], 0, 'f', 1));
+    // The layout of fit --json: metrics.holdout is the validation set.
+    QJsonObject result{{QStringLiteral("model"), QString::fromStdString(model.kind)},
+                       {QStringLiteral("model_file"), p.positionalArguments().at(0)},
+                       {QStringLiteral("target"), QString::fromStdString(model.target.id)},
+                       {QStringLiteral("reference"), model.usesRises() ? QString::fromStdString(model.reference.label())
+                                                                       : QStringLiteral("absolute")},
+                       {QStringLiteral("metrics"), QJsonObject{{QStringLiteral("holdout"), DataDrivenFit::validationSetJson(v)}}}};
     if (p.isSet(json))
         CliSupport::writeJson(QJsonDocument(result), p.value(json));
     if (!p.isSet(json) || p.value(json) != QLatin1String("-")) {
-        const ErrorMetrics &m = v.metrics;
-        QTextStream(stdout) << QStringLiteral("%1 model of %2 on session %3: RMSE %4 um  MAE %5 um  max|e| %6 um  MSE %7 um^2  "
-                                              "fitting degree %8 %  (%9 samples)\n")
-                                   .arg(QString::fromStdString(model.kind), QString::fromStdString(model.target.id))
-                                   .arg(session)
-                                   .arg(m.rmse, 0, 'f', 3)
-                                   .arg(m.mae, 0, 'f', 3)
-                                   .arg(m.maxAbs, 0, 'f', 2)
-                                   .arg(m.mse, 0, 'f', 3)
-                                   .arg(m.fittingDegree_pct, 0, 'f', 1)
-                                   .arg(m.n);
+        QTextStream o(stdout);
+        auto line = [&](const QString &where, const ErrorMetrics &m) {
+            o << QStringLiteral("%1 model of %2 %3: RMSE %4 um  MAE %5 um  max|e| %6 um  MSE %7 um^2  "
+                                "fitting degree %8 %  (%9 samples)\n")
+                     .arg(QString::fromStdString(model.kind), QString::fromStdString(model.target.id), where)
+                     .arg(m.rmse, 0, 'f', 3)
+                     .arg(m.mae, 0, 'f', 3)
+                     .arg(m.maxAbs, 0, 'f', 2)
+                     .arg(m.mse, 0, 'f', 3)
+                     .arg(m.fittingDegree_pct, 0, 'f', 1)
+                     .arg(m.n);
+        };
+        for (const ValidationSeries &s : v.sessions)
+            line(QStringLiteral("on session %1").arg(s.session), s.metrics);
+        if (v.sessions.size() > 1)
+            line(QStringLiteral("pooled over %1 sessions").arg(v.sessions.size()), v.pooled.metrics);
     }
     return 0;
 }

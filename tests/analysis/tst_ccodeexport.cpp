@@ -149,6 +149,14 @@ std::vector<DataDrivenModel> dataDrivenModels()
     mlr.kind = "mlr";
     mlr.terms = {ModelTerm{0, 1, 25.0, 1.0, {0}, {2.0}, {}}, ModelTerm{1, 2, 21.0, 1.0, {0}, {-0.3}, {}}};
     models.push_back(mlr);
+    // Rises from the run's reference (the mean of the first 10 min), captured at start-up.
+    DataDrivenModel rise = dyn;
+    rise.kind = "lagridge";
+    rise.reference = {"start", 600.0};
+    rise.terms = {ModelTerm{0, 1, 1.5, 0.8, {0, 1800}, {2.0, 1.5}, {}}, ModelTerm{1, 1, 0.5, 1.0, {0}, {-0.7}, {}}};
+    for (ModelTerm &t : rise.terms)
+        t.rise = true;
+    models.push_back(rise);
     return models;
 }
 

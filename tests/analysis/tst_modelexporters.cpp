@@ -450,6 +450,14 @@ void TestModelExporters::refusals()
         refused(warm, t, "warm-up");
     for (const char *t : {"linuxcnc", "twincat", "m80", "csv", "json"})
         refused(mlr(true), t, "2 inputs");
+    // Rises from the run's start (issue 32): a table assumes absolute temperatures.
+    ExportableModel rises = mlr(false);
+    rises.dataDriven.reference = {"start", 0.0};
+    for (ModelTerm &t : rises.dataDriven.terms)
+        t.rise = true;
+    for (const char *t : {"840d", "fanuc", "heidenhain", "csv"})
+        refused(rises, t, "rises from each run's start");
+    QCOMPARE(exporter(reg, "c").exportModel(rises, ExportOptions{}).files.size(), std::size_t(2));
     ExportOptions o;
     o.axis = "U";
     QVERIFY_EXCEPTION_THROWN(exporter(reg, "m80").exportModel(synthetic(), o), ExportRefused);

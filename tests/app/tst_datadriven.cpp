@@ -4,6 +4,9 @@
 // reads back to the same held-out numbers; bad input exits 2 naming what is wrong and writes
 // nothing; on FL_THERMAL (real data, ../shared/extdata; skipped without it) the seed-003
 // pipeline gives the reference ~10 um on ch3 and the dynamic model at most 4 um held-out.
+// Several sessions: fit on three rig sessions (CV leaves whole sessions out), validate on a
+// held-out session at another ambient and feed, per session and pooled, in one JSON layout;
+// `auto` chooses by the stated one-standard-error rule, checked again from its own table.
 
 #include <QDir>
 #include <QFile>
@@ -26,6 +29,8 @@ private slots:
     void fitAndValidateAgree();
     void syntheticOnInterferometerRuns();
     void plotsSelectionHeadless();
+    void multiSessionFitAndValidate();
+    void autoChoosesByTheStatedRule();
     void badInputExitsTwo();
     void flThermalHeldOut();
 
@@ -99,6 +104,22 @@ void TestDataDriven::initTestCase()
     QCOMPARE(run({QStringLiteral("record"), QStringLiteral("--rig"), QStringLiteral("seed002-instruments"),
                   QStringLiteral("--duration"), QStringLiteral("3:00:00"), QStringLiteral("--out"), m_db}),
              0);
+    // Sessions 4 and 5: the same rig 4 K warmer, running at 9000 mm/min (seed 000's Table-2 shape).
+    QJsonObject warm = rig;
+    QJsonObject thermal = warm.value(QStringLiteral("thermal")).toObject();
+    thermal.insert(QStringLiteral("ambient"), QJsonObject{{QStringLiteral("mean_C"), 24.0}});
+    warm.insert(QStringLiteral("thermal"), thermal);
+    warm.insert(QStringLiteral("programme"),
+                QJsonObject{{QStringLiteral("preset"), QStringLiteral("seed000-table2")}, {QStringLiteral("feed_mm_min"), 9000.0}});
+    const QString warmFile = m_dir.filePath(QStringLiteral("groups-warm.json"));
+    QFile w(warmFile);
+    QVERIFY(w.open(QIODevice::WriteOnly));
+    w.write(QJsonDocument(warm).toJson());
+    w.close();
+    for (const char *seed : {"3", "4"})
+        QCOMPARE(run({QStringLiteral("record"), QStringLiteral("--rig"), warmFile, QStringLiteral("--seed"), QLatin1String(seed),
+                      QStringLiteral("--duration"), QStringLiteral("2:00:00"), QStringLiteral("--out"), m_db}),
+                 0);
 }
 
 void TestDataDriven::selectionPicksOneChannelPerGroup()
@@ -143,8 +164,11 @@ void TestDataDriven::fitAndValidateAgree()
         const double heldOut = fit.value(QStringLiteral("metrics")).toObject().value(QStringLiteral("holdout")).toObject()
                                    .value(QStringLiteral("rmse_um")).toDouble();
         QVERIFY(heldOut > 0);
-        const QJsonObject v = json({QStringLiteral("validate"), file, QStringLiteral("2"), QStringLiteral("--db"), m_db});
+        // validate --json has fit's layout: metrics.holdout.
+        const QJsonObject v = json({QStringLiteral("validate"), file, QStringLiteral("2"), QStringLiteral("--db"), m_db})
+                                  .value(QStringLiteral("metrics")).toObject().value(QStringLiteral("holdout")).toObject();
         QVERIFY2(std::fabs(v.value(QStringLiteral("rmse_um")).toDouble() - heldOut) < 1e-9 * heldOut, model);
+        QCOMPARE(v.value(QStringLiteral("sessions")).toArray().first().toObject().value(QStringLiteral("session")).toInt(), 2);
         QCOMPARE(v.value(QStringLiteral("samples")).toInt(),
                  fit.value(QStringLiteral("metrics")).toObject().value(QStringLiteral("holdout")).toObject().value(QStringLiteral("samples")).toInt());
         if (QLatin1String(model) == QLatin1String("mlr"))
@@ -175,7 +199,8 @@ void TestDataDriven::syntheticOnInterferometerRuns()
     QVERIFY(training.value(QStringLiteral("samples")).toInt() >= 24);
     QVERIFY(training.value(QStringLiteral("fitting_degree_pct")).toDouble() > 80);
     const QJsonObject v = json({QStringLiteral("validate"), file, QStringLiteral("3"), QStringLiteral("--db"), m_db,
-                                QStringLiteral("--range"), QStringLiteral("2:")});
+                                QStringLiteral("--range"), QStringLiteral("2:")})
+                              .value(QStringLiteral("metrics")).toObject().value(QStringLiteral("holdout")).toObject();
     QCOMPARE(v.value(QStringLiteral("rmse_um")).toDouble(),
              fit.value(QStringLiteral("metrics")).toObject().value(QStringLiteral("holdout")).toObject().value(QStringLiteral("rmse_um")).toDouble());
 }
@@ -200,6 +225,106 @@ void TestDataDriven::plotsSelectionHeadless()
                  nullptr, &err),
              2);
     QVERIFY(err.contains("select-points"));
+}
+
+void TestDataDriven::multiSessionFitAndValidate()
+{
+    const QString file = m_dir.filePath(QStringLiteral("multi.json"));
+    const QJsonObject fit = json({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("2"), QStringLiteral("4"),
+                                  QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("lagridge"),
+                                  QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--holdout"), QStringLiteral("5"),
+                                  QStringLiteral("--out"), file});
+    QVERIFY(!fit.isEmpty());
+    const QJsonObject hyper = fit.value(QStringLiteral("hyperparameters")).toObject();
+    QCOMPARE(hyper.value(QStringLiteral("fold_rule")).toString(), QStringLiteral("leave-runs-out"));
+    QCOMPARE(hyper.value(QStringLiteral("folds")).toInt(), 3);
+    QCOMPARE(fit.value(QStringLiteral("training")).toObject().value(QStringLiteral("sessions")).toArray().size(), 3);
+    const QJsonObject metrics = fit.value(QStringLiteral("metrics")).toObject();
+    const QJsonObject training = metrics.value(QStringLiteral("training")).toObject();
+    const QJsonArray perSession = training.value(QStringLiteral("sessions")).toArray();
+    QCOMPARE(perSession.size(), 3);
+    int sum = 0;
+    for (const QJsonValue &s : perSession)
+        sum += s.toObject().value(QStringLiteral("samples")).toInt();
+    QCOMPARE(training.value(QStringLiteral("samples")).toInt(), sum);
+    const QJsonObject holdout = metrics.value(QStringLiteral("holdout")).toObject();
+    QCOMPARE(holdout.value(QStringLiteral("sessions")).toArray().first().toObject().value(QStringLiteral("session")).toInt(), 5);
+    // validate reads the model back to the same numbers: held out, and pooled over the training sessions.
+    const QJsonObject v5 = json({QStringLiteral("validate"), file, QStringLiteral("5"), QStringLiteral("--db"), m_db})
+                               .value(QStringLiteral("metrics")).toObject().value(QStringLiteral("holdout")).toObject();
+    const double h = holdout.value(QStringLiteral("rmse_um")).toDouble();
+    QVERIFY2(std::fabs(v5.value(QStringLiteral("rmse_um")).toDouble() - h) < 1e-9 * h, qPrintable(QString::number(h)));
+    const QJsonObject vt = json({QStringLiteral("validate"), file, QStringLiteral("1,2"), QStringLiteral("4"), QStringLiteral("--db"), m_db})
+                               .value(QStringLiteral("metrics")).toObject().value(QStringLiteral("holdout")).toObject();
+    QCOMPARE(vt.value(QStringLiteral("sessions")).toArray().size(), 3);
+    QCOMPARE(vt.value(QStringLiteral("samples")).toInt(), sum);
+    const double tr = training.value(QStringLiteral("rmse_um")).toDouble();
+    QVERIFY2(std::fabs(vt.value(QStringLiteral("rmse_um")).toDouble() - tr) < 1e-9 * tr, qPrintable(QString::number(tr)));
+    qInfo("lagridge on sessions 1, 2, 4 (%s): CV %.3f um, held-out session 5 %.3f um",
+          qPrintable(hyper.value(QStringLiteral("reference")).toString()),
+          metrics.value(QStringLiteral("cross_validation_rmse_um")).toDouble(), h);
+    // Several sessions for the sensitive points too.
+    const QJsonObject sel = json({QStringLiteral("select-points"), QStringLiteral("1"), QStringLiteral("2"), QStringLiteral("--db"), m_db,
+                                  QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--k-range"), QStringLiteral("2:6")});
+    QCOMPARE(sel.value(QStringLiteral("sessions")).toArray().size(), 2);
+    QVERIFY(!sel.value(QStringLiteral("chosen")).toArray().isEmpty());
+}
+
+void TestDataDriven::autoChoosesByTheStatedRule()
+{
+    const QString file = m_dir.filePath(QStringLiteral("auto.json"));
+    const QJsonObject fit = json({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("2"), QStringLiteral("4"),
+                                  QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("auto"),
+                                  QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--holdout"), QStringLiteral("5"),
+                                  QStringLiteral("--out"), file});
+    QVERIFY(!fit.isEmpty());
+    const QJsonObject sel = fit.value(QStringLiteral("model_selection")).toObject();
+    const QJsonArray families = sel.value(QStringLiteral("families")).toArray();
+    QStringList names;
+    for (const QJsonValue &f : families)
+        names << f.toObject().value(QStringLiteral("model")).toString();
+    QCOMPARE(names, (QStringList{QStringLiteral("mean"), QStringLiteral("mlr"), QStringLiteral("ridge"), QStringLiteral("lagridge"),
+                                 QStringLiteral("dynamic"), QStringLiteral("exp")}));
+    // The rule, again from the table: the lowest CV and its standard error set the threshold;
+    // the chosen family is within it and no family within it has fewer parameters.
+    double lowest = INFINITY, se = 0.0;
+    for (const QJsonValue &f : families) {
+        const QJsonObject o = f.toObject();
+        if (o.value(QStringLiteral("cross_validation_rmse_um")).isDouble() &&
+            o.value(QStringLiteral("cross_validation_rmse_um")).toDouble() < lowest) {
+            lowest = o.value(QStringLiteral("cross_validation_rmse_um")).toDouble();
+            se = o.value(QStringLiteral("cv_standard_error_um")).toDouble();
+        }
+        QVERIFY2(o.contains(QStringLiteral("holdout")) || o.contains(QStringLiteral("error")), qPrintable(o.value(QStringLiteral("model")).toString()));
+    }
+    QString chosen;
+    int chosenParameters = 0;
+    for (const QJsonValue &f : families)
+        if (f.toObject().value(QStringLiteral("chosen")).toBool()) {
+            QVERIFY(chosen.isEmpty());
+            chosen = f.toObject().value(QStringLiteral("model")).toString();
+            chosenParameters = f.toObject().value(QStringLiteral("parameters")).toInt();
+            QVERIFY(f.toObject().value(QStringLiteral("cross_validation_rmse_um")).toDouble() <= lowest + se + 1e-12);
+        }
+    for (const QJsonValue &f : families) {
+        const QJsonObject o = f.toObject();
+        if (o.value(QStringLiteral("cross_validation_rmse_um")).isDouble() &&
+            o.value(QStringLiteral("cross_validation_rmse_um")).toDouble() <= lowest + se)
+            QVERIFY2(o.value(QStringLiteral("parameters")).toInt() >= chosenParameters, qPrintable(o.value(QStringLiteral("model")).toString()));
+    }
+    QCOMPARE(sel.value(QStringLiteral("chosen")).toString(), chosen);
+    QCOMPARE(fit.value(QStringLiteral("model")).toString(), chosen);
+    QFile f(file);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    QVERIFY(QJsonDocument::fromJson(f.readAll()).object().contains(QStringLiteral("model_selection")));
+    QStringList table;
+    for (const QJsonValue &v : families) {
+        const QJsonObject o = v.toObject();
+        table << QStringLiteral("%1 CV %2 held-out %3").arg(o.value(QStringLiteral("model")).toString())
+                     .arg(o.value(QStringLiteral("cross_validation_rmse_um")).toDouble(), 0, 'f', 3)
+                     .arg(o.value(QStringLiteral("holdout")).toObject().value(QStringLiteral("rmse_um")).toDouble(), 0, 'f', 3);
+    }
+    qInfo("auto on sessions 1, 2, 4 -> %s; %s", qPrintable(chosen), qPrintable(table.join(QStringLiteral("; "))));
 }
 
 void TestDataDriven::badInputExitsTwo()
@@ -241,6 +366,27 @@ void TestDataDriven::badInputExitsTwo()
     expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("mlr"),
              QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--holdout"), QStringLiteral("1"), QStringLiteral("--out"), out},
             "training session");
+    // A data-driven target must be a displacement; a drive must be a drive (issue 32).
+    expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("mlr"),
+             QStringLiteral("--target"), QStringLiteral("A1"), QStringLiteral("--out"), out},
+            "channel 'A1' of session 1 is a temperature channel, not a displacement");
+    expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("exp"),
+             QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--drive"), QStringLiteral("M1"), QStringLiteral("--out"), out},
+            "channel 'M1' of session 1 is not a drive");
+    expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"),
+             QStringLiteral("ridge"), QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--out"), out},
+            "session 1 is given twice");
+    expect2({QStringLiteral("fit"), QStringLiteral("1-2"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("ridge"),
+             QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--holdout"), QStringLiteral("2"), QStringLiteral("--out"), out},
+            "session 2 is a training session");
+    expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("2"), QStringLiteral("--db"), m_db, QStringLiteral("--model"),
+             QStringLiteral("ridge"), QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--reference"), QStringLiteral("warm"),
+             QStringLiteral("--out"), out},
+            "--reference");
+    expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("2"), QStringLiteral("--db"), m_db, QStringLiteral("--model"),
+             QStringLiteral("ridge"), QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--holdout"), QStringLiteral("3"),
+             QStringLiteral("--out"), out},
+            "session 3 has no channel");
     QVERIFY(!QFile::exists(out)); // nothing half-written
     // A model file of a newer format version, and a model whose input the session lacks.
     QFile m(m_dir.filePath(QStringLiteral("ridge.json")));
@@ -248,7 +394,7 @@ void TestDataDriven::badInputExitsTwo()
     QJsonObject doc = QJsonDocument::fromJson(m.readAll()).object();
     m.close();
     QJsonObject newer = doc;
-    newer.insert(QStringLiteral("version"), 2);
+    newer.insert(QStringLiteral("version"), 3);
     const QString newerFile = m_dir.filePath(QStringLiteral("newer.json"));
     QFile n(newerFile);
     QVERIFY(n.open(QIODevice::WriteOnly));

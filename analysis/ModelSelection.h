@@ -1,0 +1,37 @@
+#pragma once
+// Chooses among fitted model families by cross-validation with the one-standard-error rule:
+// the lowest CV RMSE is the benchmark; its standard error over the folds,
+// SE = sd(fold RMSE) / sqrt(folds), is the CV noise; every family whose CV RMSE is within one
+// SE of the lowest is as good as the CV can tell, and among those the one with the fewest
+// fitted parameters is chosen (ties: the lower CV RMSE). Held-out results never enter.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace driftlab {
+
+struct FamilyScore {
+    std::string family;
+    double cvRmse = 0.0;
+    std::vector<double> foldRmse;
+    int parameters = 0; // fitted coefficients (features + intercept; nonlinear parameters)
+    bool fitted = true; // false: the family could not be fitted (left out)
+};
+
+struct SelectionRuling {
+    std::size_t chosen = 0;  // index into the scores
+    std::size_t lowest = 0;  // the family with the lowest CV RMSE
+    double standardError = 0.0;
+    double threshold = 0.0;  // lowest CV RMSE + standardError
+    static const char *rule();
+};
+
+class ModelSelection {
+public:
+    // Throws std::invalid_argument when no family was fitted.
+    static SelectionRuling oneStandardError(const std::vector<FamilyScore> &scores);
+    static double standardError(const std::vector<double> &foldRmse);
+};
+
+} // namespace driftlab
