@@ -1,6 +1,9 @@
 #include "DataDrivenFitCommand.h"
 
+#include "CliOptions.h"
 #include "CliSupport.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "DataDrivenFit.h"
 #include "DataDrivenModelJson.h"
 #include "SessionStore.h"
@@ -44,14 +47,7 @@ bool DataDrivenFitCommand::handles(const QStringList &args)
 qint64 DataDrivenFitCommand::sessionArg(const SessionStore &store, const QString &text, const QString &what,
                                         const QString &command)
 {
-    bool ok = false;
-    const qint64 id = text.toLongLong(&ok);
-    if (!ok)
-        throw UsageError(QStringLiteral("%1: %2 must be a session id, got '%3'").arg(command, what, text));
-    for (const SessionInfo &s : store.sessions())
-        if (s.id == id)
-            return id;
-    throw UsageError(QStringLiteral("%1: %2 has no session %3").arg(command, store.path()).arg(id));
+    return SessionArgument::one(store, text, what, command);
 }
 
 void DataDrivenFitCommand::parseKRange(const QString &text, int &kMin, int &kMax, const QString &command)
@@ -70,7 +66,7 @@ int DataDrivenFitCommand::run(const QStringList &args)
 {
     const QString cmd = QStringLiteral("fit");
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption model(QStringLiteral("model"), QStringLiteral("mlr, ridge, exp, synthetic or dynamic."),
                                    QStringLiteral("name"));
     const QCommandLineOption target(QStringLiteral("target"),
@@ -98,10 +94,10 @@ int DataDrivenFitCommand::run(const QStringList &args)
     const QCommandLineOption floor(QStringLiteral("scale-floor"),
                                    QStringLiteral("dynamic: scale inputs by max(standard deviation, FLOOR) (default 0.5 K)."),
                                    QStringLiteral("K"), QStringLiteral("0.5"));
-    const QCommandLineOption out(QStringLiteral("out"), QStringLiteral("MODEL.json to write."), QStringLiteral("file"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({db, model, target, points, drive, train, holdout, holdoutRange, kRange, folds, floor, out, json});
+    const QCommandLineOption out = CliOptions::out(QStringLiteral("MODEL.json to write."));
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({db, model, target, points, drive, train, holdout, holdoutRange, kRange, folds, floor, out, json, force});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id to fit."));
     if (!parse(p, args))
         return 0;
@@ -133,6 +129,9 @@ int DataDrivenFitCommand::run(const QStringList &args)
             throw UsageError(QStringLiteral("fit: --points must be 'auto' or channel ids separated by commas"));
     }
     q.drive = p.value(drive);
+    OutputTarget(p.value(out), QStringLiteral("--out")).check(p.isSet(force));
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
     q.session = sessionArg(store, p.positionalArguments().first(), QStringLiteral("SESSION"), cmd);

@@ -17,7 +17,7 @@ public:
 
     // True when args hold --model NAME (or --model=NAME) with a data-driven model name.
     static bool handles(const QStringList &args);
-    // A session id argument that exists in the store; UsageError naming `what` otherwise.
+    // A session argument (id or UUID) that exists in the store; SessionArgument::one.
     static qint64 sessionArg(const SessionStore &store, const QString &text, const QString &what, const QString &command);
     // "K:K" for --k-range; UsageError otherwise.
     static void parseKRange(const QString &text, int &kMin, int &kMax, const QString &command);

@@ -1,6 +1,8 @@
 #include "ImportCsvCommand.h"
 
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
 #include "CsvError.h"
 #include "CsvImporter.h"
 #include "SessionStore.h"
@@ -27,17 +29,16 @@ int ImportCsvCommand::run(const QStringList &args)
     QCommandLineParser p;
     const QCommandLineOption map(QStringLiteral("map"), QStringLiteral("Column map (JSON, \"format\": \"driftlab-csv-map\")."),
                                  QStringLiteral("file"));
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database (default: driftlab.sqlite in the user's data directory)."),
-                                QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption name(QStringLiteral("name"), QStringLiteral("Session name (default: the map's session.name, else the file name)."),
                                   QStringLiteral("text"));
     const QCommandLineOption started(QStringLiteral("started"),
                                      QStringLiteral("Session start, ISO 8601, for a time column in s/ms/min/h (default: the map's "
                                                     "session.started, else the file's modification time)."),
                                      QStringLiteral("iso"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({map, db, name, started, json});
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({map, db, name, started, json, force});
     p.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("CSV file."));
     if (!parse(p, args))
         return 0;
@@ -48,6 +49,8 @@ int ImportCsvCommand::run(const QStringList &args)
     const QString file = p.positionalArguments().first();
     if (!QFileInfo(file).isFile())
         throw UsageError(QStringLiteral("import-csv: %1: no such file").arg(file));
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     CsvImportResult r;
     QString path;
     QElapsedTimer timer;

@@ -4,11 +4,18 @@
 #include "CliSupport.h"
 
 #include <QDir>
+#include <QFile>
 #include <QFileInfo>
 #include <QSaveFile>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
+
+#ifdef Q_OS_UNIX
+#include <unistd.h>
+#endif
 
 namespace driftlab {
 
@@ -24,9 +31,10 @@ OutputTarget OutputTarget::json(const QString &path)
     return t;
 }
 
-OutputTarget &OutputTarget::formats(const QStringList &extensions)
+OutputTarget &OutputTarget::formats(const QStringList &extensions, const QStringList &named)
 {
     m_formats = extensions;
+    m_named = named.isEmpty() ? extensions : named;
     return *this;
 }
 
@@ -65,14 +73,16 @@ const OutputTarget &OutputTarget::check(bool force) const
         throw UsageError(QStringLiteral("%1 %2: folder %3 does not exist (create it first)").arg(m_option, m_path, folder));
     if (!folderInfo.isDir())
         throw UsageError(QStringLiteral("%1 %2: %3 is not a folder").arg(m_option, m_path, folder));
-    if (!folderInfo.isWritable())
-        throw UsageError(QStringLiteral("%1 %2: folder %3 is not writable").arg(m_option, m_path, folder));
+    if (!writable(folder))
+        throw UsageError(QStringLiteral("%1 %2: folder %3 is not writable (%4)").arg(m_option, m_path, folder, m_why));
     if (!m_formats.isEmpty() && format().isEmpty()) {
         QStringList dotted;
-        for (const QString &f : m_formats)
+        for (const QString &f : m_named)
             dotted << QLatin1Char('.') + f;
-        throw UsageError(QStringLiteral("%1 %2: unknown format (the name must end in %3)")
-                             .arg(m_option, m_path, dotted.join(QStringLiteral(", "))));
+        const QString last = dotted.takeLast();
+        throw UsageError(QStringLiteral("%1 %2: unknown format (use a %3 file)")
+                             .arg(m_option, m_path,
+                                  dotted.isEmpty() ? last : dotted.join(QStringLiteral(", ")) + QStringLiteral(" or ") + last));
     }
     if (info.exists() || info.isSymLink()) {
         if (!m_replaceable)
@@ -83,10 +93,24 @@ const OutputTarget &OutputTarget::check(bool force) const
             throw UsageError(QStringLiteral("%1 %2 is a folder, not a file (--force replaces files only)").arg(m_option, m_path));
         if (m_kind == Kind::Folder && !info.isDir())
             throw UsageError(QStringLiteral("%1 %2 is a file, not a folder").arg(m_option, m_path));
-        if (m_kind == Kind::File && !info.isWritable())
-            throw UsageError(QStringLiteral("%1 %2 exists and is not writable").arg(m_option, m_path));
+        if (m_kind == Kind::File && !writable(m_path))
+            throw UsageError(QStringLiteral("%1 %2 exists and is not writable (%3)").arg(m_option, m_path, m_why));
     }
     return *this;
+}
+
+bool OutputTarget::writable(const QString &path) const
+{
+#ifdef Q_OS_UNIX
+    // access() says why: "Read-only file system" for read-only media (root included).
+    if (::access(QFile::encodeName(path).constData(), W_OK) == 0)
+        return true;
+    m_why = QString::fromLocal8Bit(std::strerror(errno));
+    return false;
+#else
+    m_why = QStringLiteral("permission denied");
+    return QFileInfo(path).isWritable();
+#endif
 }
 
 QString OutputTarget::sizeText(qint64 bytes)

@@ -28,8 +28,8 @@ public:
     // The --json FILE of a command: a file, or "-" for standard output.
     static OutputTarget json(const QString &path);
     // The extensions the command can write ("png", "tar.gz"), compared without case. Empty
-    // (the default): any name.
-    OutputTarget &formats(const QStringList &extensions);
+    // (the default): any name. `named` lists them in messages (default: all of them).
+    OutputTarget &formats(const QStringList &extensions, const QStringList &named = QStringList());
     // "-" (standard output) is accepted as the path.
     OutputTarget &stdoutAllowed(bool allowed = true);
 
@@ -54,9 +54,11 @@ public:
     static QString sizeText(qint64 bytes);
 
 private:
+    bool writable(const QString &path) const; // sets m_why when not
     QString m_path, m_option;
+    mutable QString m_why;
     Kind m_kind;
-    QStringList m_formats;
+    QStringList m_formats, m_named;
     bool m_stdoutAllowed = false;
     bool m_replaceable = true;
 };

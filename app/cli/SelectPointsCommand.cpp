@@ -2,6 +2,9 @@
 
 #include "AnalysisPlots.h"
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "DataDrivenFit.h"
 #include "DataDrivenFitCommand.h"
 #include "SessionStore.h"
@@ -27,7 +30,7 @@ int SelectPointsCommand::run(const QStringList &args)
 {
     const QString cmd = name();
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption target(QStringLiteral("target"), QStringLiteral("Displacement channel."), QStringLiteral("channel"));
     const QCommandLineOption kRange(QStringLiteral("k-range"), QStringLiteral("Range of K (default 2:8)."), QStringLiteral("K:K"),
                                     QStringLiteral("2:8"));
@@ -36,9 +39,9 @@ int SelectPointsCommand::run(const QStringList &args)
                                       QStringLiteral("ids"));
     const QCommandLineOption range(QStringLiteral("range"), QStringLiteral("Use hours H:H of the session."),
                                    QStringLiteral("H:H"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({db, target, kRange, channels, range, json});
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({db, target, kRange, channels, range, json, force});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
     if (!parse(p, args))
         return 0;
@@ -48,9 +51,12 @@ int SelectPointsCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("%1: --target CHANNEL is required").arg(cmd));
     int kMin = 2, kMax = 8;
     DataDrivenFitCommand::parseKRange(p.value(kRange), kMin, kMax, cmd);
+    SessionArgument::checkForm(p.positionalArguments().first(), QStringLiteral("SESSION"), cmd);
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
-    const qint64 session = DataDrivenFitCommand::sessionArg(store, p.positionalArguments().first(), QStringLiteral("SESSION"), cmd);
+    const qint64 session = SessionArgument::one(store, p.positionalArguments().first(), QStringLiteral("SESSION"), cmd);
     SelectionResult r;
     try {
         const HourRange hours = p.isSet(range) ? HourRange::parse(p.value(range), QStringLiteral("--range")) : HourRange();

@@ -72,8 +72,8 @@ QVector<qint64> SessionArgument::many(const SessionStore &store, const QStringLi
                 ids.push_back(id);
         }
         if (ids.size() == before)
-            throw UsageError(QStringLiteral("%1: %2 '%3': %4 has no such session ('driftlab-cli list --db %4' shows them)")
-                                 .arg(command, what, text, store.path()));
+            throw UsageError(QStringLiteral("%1: %2: %3 has no session %4 ('driftlab-cli list --db %3' shows them)")
+                                 .arg(command, what, store.path(), text));
     }
     return ids;
 }

@@ -1,6 +1,9 @@
 #include "ValidateCommand.h"
 
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "DataDrivenFit.h"
 #include "DataDrivenFitCommand.h"
 #include "DataDrivenModelJson.h"
@@ -24,18 +27,21 @@ int ValidateCommand::run(const QStringList &args)
 {
     const QString cmd = name();
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption range(QStringLiteral("range"), QStringLiteral("Score hours H:H of the session only."),
                                    QStringLiteral("H:H"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({db, range, json});
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({db, range, json, force});
     p.addPositionalArgument(QStringLiteral("MODEL.json"), QStringLiteral("Model file."));
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
     if (!parse(p, args))
         return 0;
     if (p.positionalArguments().size() != 2)
         throw UsageError(QStringLiteral("%1: give MODEL.json and one SESSION id").arg(cmd));
+    SessionArgument::checkForm(p.positionalArguments().at(1), QStringLiteral("SESSION"), cmd);
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     DataDrivenModel model;
     QJsonObject document;
     try {
@@ -45,7 +51,7 @@ int ValidateCommand::run(const QStringList &args)
     }
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
-    const qint64 session = DataDrivenFitCommand::sessionArg(store, p.positionalArguments().at(1), QStringLiteral("SESSION"), cmd);
+    const qint64 session = SessionArgument::one(store, p.positionalArguments().at(1), QStringLiteral("SESSION"), cmd);
     ValidationSeries v;
     try {
         const HourRange hours = p.isSet(range) ? HourRange::parse(p.value(range), QStringLiteral("--range")) : HourRange();

@@ -5,6 +5,8 @@
 // nothing; on FL_THERMAL (real data, ../shared/extdata; skipped without it) the seed-003
 // pipeline gives the reference ~10 um on ch3 and the dynamic model at most 4 um held-out.
 
+#include "../support/CliRunner.h"
+
 #include <QDir>
 #include <QFile>
 #include <QJsonArray>
@@ -38,16 +40,12 @@ private:
 
 int TestDataDriven::run(const QStringList &args, QByteArray *out, QByteArray *err)
 {
-    QProcess p;
-    p.start(QStringLiteral(DRIFTLAB_CLI), args);
-    if (!p.waitForFinished(600000))
-        return -1;
+    const clirunner::Result r = clirunner::run(args, QString(), 600000);
     if (out)
-        *out = p.readAllStandardOutput();
-    const QByteArray e = p.readAllStandardError();
+        *out = r.out;
     if (err)
-        *err = e;
-    return p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
+        *err = r.err;
+    return r.code;
 }
 
 QJsonObject TestDataDriven::json(const QStringList &args)
