@@ -3,6 +3,7 @@
 #include "CliSupport.h"
 #include "CliOptions.h"
 #include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "SessionStore.h"
 #include "SessionTransferRun.h"
 
@@ -42,6 +43,7 @@ int PushCommand::run(const QStringList &args)
     if (p.isSet(json))
         OutputTarget::json(p.value(json)).check(p.isSet(force));
     SessionStore local(path);
+    SessionArgument::many(local, p.positionalArguments(), QStringLiteral("SESSION"), name()); // before connecting
     SessionStore central(p.value(to));
     const QJsonArray results = SessionTransferRun::run(QStringLiteral("push"), local, p.positionalArguments(), central);
     if (p.isSet(json))
