@@ -10,6 +10,7 @@
 
 #include <QCommandLineParser>
 #include <QElapsedTimer>
+#include <QFileInfo>
 #include <QJsonObject>
 #include <QTextStream>
 
@@ -40,6 +41,8 @@ int ImportCommand::run(const QStringList &args)
     if (p.positionalArguments().size() != 1)
         throw UsageError(QStringLiteral("import: expected one BUNDLE argument, got %1").arg(p.positionalArguments().size()));
     const QString bundle = p.positionalArguments().first();
+    if (!QFileInfo::exists(bundle)) // named once (the archive's own message named it three times)
+        throw UsageError(QStringLiteral("import: %1: no such bundle directory or zip (nothing imported)").arg(bundle));
     if (p.isSet(json))
         OutputTarget::json(p.value(json)).check(p.isSet(force));
     const QString path = CliSupport::databasePath(p.value(db), QString(), false);

@@ -65,6 +65,7 @@ private slots:
     void exportWritesWhatTheNameSays();
     void largeExportAnnouncedAndBounded();
     void oneSessionArgumentParser();
+    void missingBundleNamedOnce();
     void runnerKeepsTheUserFoldersPrivate();
 
 private:
@@ -465,6 +466,17 @@ void TestCliRules::oneSessionArgumentParser()
                                          QStringLiteral("postgresql://nobody@127.0.0.1:1/none")});
     QCOMPARE(empty.code, 2);
     QVERIFY2(empty.err.contains("push: SESSION: " + m_db.toUtf8() + " has no session 5:9"), empty.err.constData());
+}
+
+void TestCliRules::missingBundleNamedOnce()
+{
+    const QString bundle = path(QStringLiteral("nowhere.bundle"));
+    const QString db = path(QStringLiteral("never.sqlite"));
+    const clirunner::Result r = run({QStringLiteral("import"), bundle, QStringLiteral("--db"), db});
+    QCOMPARE(r.code, 2);
+    QCOMPARE(r.err.count("nowhere.bundle"), 1);
+    QVERIFY2(r.err.contains("no such bundle directory or zip"), r.err.constData());
+    QVERIFY(!QFileInfo::exists(db)); // refused before the database is made
 }
 
 void TestCliRules::runnerKeepsTheUserFoldersPrivate()
