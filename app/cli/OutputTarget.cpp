@@ -73,8 +73,6 @@ const OutputTarget &OutputTarget::check(bool force) const
         throw UsageError(QStringLiteral("%1 %2: folder %3 does not exist (create it first)").arg(m_option, m_path, folder));
     if (!folderInfo.isDir())
         throw UsageError(QStringLiteral("%1 %2: %3 is not a folder").arg(m_option, m_path, folder));
-    if (!writable(folder))
-        throw UsageError(QStringLiteral("%1 %2: folder %3 is not writable (%4)").arg(m_option, m_path, folder, m_why));
     if (!m_formats.isEmpty() && format().isEmpty()) {
         QStringList dotted;
         for (const QString &f : m_named)
@@ -96,6 +94,8 @@ const OutputTarget &OutputTarget::check(bool force) const
         if (m_kind == Kind::File && !writable(m_path))
             throw UsageError(QStringLiteral("%1 %2 exists and is not writable (%3)").arg(m_option, m_path, m_why));
     }
+    if (!writable(folder))
+        throw UsageError(QStringLiteral("%1 %2: folder %3 is not writable (%4)").arg(m_option, m_path, folder, m_why));
     return *this;
 }
 
