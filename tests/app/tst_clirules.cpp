@@ -105,10 +105,11 @@ void TestCliRules::initTestCase()
     QVERIFY(!m_uuid.isEmpty());
     m_rtlDb = path(QStringLiteral("rtl.sqlite"));
     QVERIFY(QFile::copy(m_db, m_rtlDb));
-    // A data-driven model (fast to fit) for export-model, validate and compensate.
+    // A one-input data-driven model (fast to fit; a CSV table holds it) for export-model,
+    // validate and compensate.
     m_ddModel = path(QStringLiteral("mlr.json"));
     r = run({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("mlr"),
-             QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--out"), m_ddModel});
+             QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--points"), QStringLiteral("T_nut"), QStringLiteral("--out"), m_ddModel});
     QVERIFY2(r.code == 0, r.err.constData());
     // simulate reads a seed-000 model; its checks come before it runs, so any readable one does.
     m_model = path(QStringLiteral("fdm.json"));
