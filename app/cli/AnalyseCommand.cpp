@@ -1,6 +1,9 @@
 #include "AnalyseCommand.h"
 
+#include "CliOptions.h"
 #include "CliSupport.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "SessionAnalysis.h"
 #include "SessionStore.h"
 
@@ -25,16 +28,16 @@ QString AnalyseCommand::summary() const
 int AnalyseCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption session(QStringLiteral("session"), QStringLiteral("Session id (default: the newest)."),
                                      QStringLiteral("id"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
     const QCommandLineOption parameters(QStringLiteral("parameters"),
                                         QStringLiteral("Model parameters: auto (the session's last fdm-seed000 fit, else "
                                                        "default), fitted (fail without a fit) or default."),
                                         QStringLiteral("source"), QStringLiteral("auto"));
-    p.addOptions({db, session, json, parameters});
+    p.addOptions({db, session, json, force, parameters});
     if (!parse(p, args))
         return 0;
     const QString source = p.value(parameters);
@@ -42,23 +45,18 @@ int AnalyseCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("analyse: --parameters must be auto, fitted or default, got '%1'").arg(source));
     if (!p.positionalArguments().isEmpty())
         throw UsageError(QStringLiteral("analyse: unexpected argument '%1'").arg(p.positionalArguments().first()));
+    if (p.isSet(session))
+        SessionArgument::checkForm(p.value(session), QStringLiteral("--session"), name());
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
     const QVector<SessionInfo> sessions = store.sessions();
     if (sessions.isEmpty())
         throw UsageError(QStringLiteral("analyse: %1 holds no session").arg(path));
     qint64 id = sessions.back().id;
-    if (p.isSet(session)) {
-        bool ok = false;
-        id = p.value(session).toLongLong(&ok);
-        if (!ok)
-            throw UsageError(QStringLiteral("analyse: --session must be a session id, got '%1'").arg(p.value(session)));
-        bool found = false;
-        for (const SessionInfo &s : sessions)
-            found = found || s.id == id;
-        if (!found)
-            throw UsageError(QStringLiteral("analyse: %1 has no session %2").arg(path).arg(id));
-    }
+    if (p.isSet(session))
+        id = SessionArgument::one(store, p.value(session), QStringLiteral("--session"), name());
     SessionAnalysis analysis(store, id);
     FdmParameters used = analysis.defaultParameters();
     QString usedText = QStringLiteral("the default parameters (seed-000 Table 3, X axis; P_f %1 mm), not fitted to this "

@@ -1,13 +1,23 @@
 #include "BatchCommand.h"
 
 #include "BatchJob.h"
+#include "CliOptions.h"
 #include "CliSupport.h"
+#include "DiagnoseCommand.h"
+#include "ExportModelCommand.h"
+#include "FitCommand.h"
+#include "ImportCommand.h"
+#include "OutputTarget.h"
+#include "PlotCommand.h"
+#include "ReportCommand.h"
+#include "SelectPointsCommand.h"
 
 #include <QCommandLineParser>
 #include <QCoreApplication>
 #include <QDir>
 #include <QElapsedTimer>
 #include <QFile>
+#include <QFileInfo>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QProcess>
@@ -15,6 +25,7 @@
 #include <QThread>
 
 #include <atomic>
+#include <memory>
 #include <mutex>
 #include <thread>
 
@@ -107,6 +118,7 @@ public:
             }
             if (step.name != QLatin1String("export-model")) // reads only its MODEL.json
                 args << QStringLiteral("--db") << r.database;
+            args << QStringLiteral("--force"); // the batch owns the files of its output folder
             execute(args, dir, s);
             if (step.name == QLatin1String("import") && s.status == QLatin1String("ok")) {
                 QFile f(dir.filePath(QStringLiteral("import.json")));
@@ -177,6 +189,44 @@ private:
     std::mutex &m_progressMutex;
 };
 
+// Every step's options are checked by its own command's parser before the first step runs, so
+// that a misspelt option is found before any import (exit 2 naming the job file and step).
+void checkStepOptions(const QString &jobFile, const BatchJob &job)
+{
+    for (int i = 0; i < job.steps.size(); ++i) {
+        const BatchStep &step = job.steps[i];
+        std::unique_ptr<CliCommand> command;
+        if (step.name == QLatin1String("import"))
+            command = std::make_unique<ImportCommand>();
+        else if (step.name == QLatin1String("select-points"))
+            command = std::make_unique<SelectPointsCommand>();
+        else if (step.name == QLatin1String("fit"))
+            command = std::make_unique<FitCommand>();
+        else if (step.name == QLatin1String("diagnose"))
+            command = std::make_unique<DiagnoseCommand>();
+        else if (step.name == QLatin1String("export-model"))
+            command = std::make_unique<ExportModelCommand>();
+        else if (step.name == QLatin1String("plot"))
+            command = std::make_unique<PlotCommand>();
+        else if (step.name == QLatin1String("report"))
+            command = std::make_unique<ReportCommand>();
+        else
+            continue;
+        QStringList options;
+        for (int k = 0; k + 1 < step.options.size(); k += 2)
+            if (step.options[k] != QLatin1String("%format"))
+                options << step.options[k] << step.options[k + 1];
+        CliCommand::setOptionsCheckOnly(true);
+        try {
+            command->run(options);
+        } catch (const UsageError &e) {
+            CliCommand::setOptionsCheckOnly(false);
+            throw UsageError(QStringLiteral("batch: %1: steps[%2]: %3").arg(jobFile).arg(i).arg(QString::fromStdString(e.what())));
+        }
+        CliCommand::setOptionsCheckOnly(false);
+    }
+}
+
 QJsonObject summaryJson(const BatchJob &job, const QVector<InputResult> &results, int jobs, double wall_s, int &failed)
 {
     QJsonArray inputs;
@@ -227,15 +277,16 @@ int BatchCommand::run(const QStringList &args)
     QCommandLineParser p;
     const QCommandLineOption jobsOption(QStringLiteral("jobs"), QStringLiteral("Recordings at a time (default: the job's 'jobs', else the cores)."),
                                         QStringLiteral("n"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Also write the summary JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({jobsOption, json});
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({jobsOption, json, force});
     p.addPositionalArgument(QStringLiteral("JOB.json"), QStringLiteral("The job file."));
     if (!parse(p, args))
         return 0;
     if (p.positionalArguments().size() != 1)
         throw UsageError(QStringLiteral("batch: give exactly one job file"));
     const BatchJob job = BatchJob::read(p.positionalArguments().first());
+    checkStepOptions(p.positionalArguments().first(), job);
     int jobs = job.jobs > 0 ? job.jobs : std::max(1, QThread::idealThreadCount());
     if (p.isSet(jobsOption)) {
         bool ok = false;
@@ -244,6 +295,15 @@ int BatchCommand::run(const QStringList &args)
             throw UsageError(QStringLiteral("batch: --jobs must be a whole number >= 1, got '%1'").arg(p.value(jobsOption)));
     }
     jobs = std::min(jobs, static_cast<int>(job.inputs.size()));
+    // The output folder is the batch's: created in an existing folder, or an earlier batch's
+    // folder (its summary.json) replaced only with --force.
+    const QString summaryPath = QDir(job.output).filePath(QStringLiteral("summary.json"));
+    if (QFileInfo(job.output).isDir())
+        OutputTarget(summaryPath, QStringLiteral("output")).check(p.isSet(force));
+    else
+        OutputTarget(job.output, QStringLiteral("output"), OutputTarget::Kind::Folder).check(p.isSet(force));
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     if (!QDir().mkpath(job.output))
         throw std::runtime_error(QStringLiteral("batch: cannot create the output folder %1").arg(job.output).toStdString());
     CliSupport::progress(QStringLiteral("batch: %1 recording(s) x %2 step(s), %3 at a time, into %4")

@@ -5,6 +5,13 @@
 
 namespace driftlab {
 
+bool CliCommand::s_optionsCheckOnly = false;
+
+void CliCommand::setOptionsCheckOnly(bool only)
+{
+    s_optionsCheckOnly = only;
+}
+
 bool CliCommand::parse(QCommandLineParser &parser, const QStringList &args) const
 {
     parser.setApplicationDescription(summary());
@@ -15,6 +22,8 @@ bool CliCommand::parse(QCommandLineParser &parser, const QStringList &args) cons
     full += args;
     if (!parser.parse(full))
         throw UsageError(QStringLiteral("%1: %2 (see 'driftlab-cli %1 --help')").arg(name(), parser.errorText()));
+    if (s_optionsCheckOnly)
+        return false;
     if (parser.isSet(help)) {
         // Qt's first line names the executable path; name the command instead.
         QString text = parser.helpText();

@@ -24,10 +24,18 @@ public:
     // args excludes the program and command names.
     virtual int run(const QStringList &args) = 0;
 
+    // While set, parse() checks the options (unknown ones throw UsageError) and then returns
+    // false as for --help, so run() returns before any work: the batch checks every step's
+    // options this way before the first step runs. Not thread-safe: set it around a check.
+    static void setOptionsCheckOnly(bool only);
+
 protected:
     // Parses args with the options already added to parser, handling --help (prints
     // and returns false) and unknown options (throws UsageError).
     bool parse(QCommandLineParser &parser, const QStringList &args) const;
+
+private:
+    static bool s_optionsCheckOnly;
 };
 
 } // namespace driftlab

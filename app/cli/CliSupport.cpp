@@ -3,14 +3,15 @@
 #include "SessionStore.h"
 
 #include "CliCommand.h"
+#include "OutputTarget.h"
 
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
-#include <QSaveFile>
 #include <QStandardPaths>
 #include <QTextStream>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -40,26 +41,34 @@ QString CliSupport::databasePath(const QString &option, const QString &fallback,
 
 void CliSupport::checkOutput(const QString &path, const QString &option, bool mustNotExist)
 {
-    if (path == QLatin1String("-"))
-        return;
-    const QFileInfo info(path);
-    if (!QFileInfo(info.absolutePath()).isDir())
-        throw UsageError(QStringLiteral("%1 %2: folder %3 does not exist").arg(option, path, info.absolutePath()));
-    if (mustNotExist && info.exists())
-        throw UsageError(QStringLiteral("%1 %2 already exists (choose a new name)").arg(option, path));
+    // Existing outputs may be replaced only where the caller has decided so (--force).
+    OutputTarget target(path, option);
+    target.stdoutAllowed();
+    if (mustNotExist)
+        target.neverReplaced();
+    target.check(true);
 }
 
 void CliSupport::writeJson(const QJsonDocument &doc, const QString &target)
 {
-    const QByteArray bytes = doc.toJson(QJsonDocument::Indented);
-    if (target == QLatin1String("-")) {
-        std::fwrite(bytes.constData(), 1, static_cast<size_t>(bytes.size()), stdout);
-        std::fflush(stdout);
-        return;
+    OutputTarget::writeFile(target, doc.toJson(QJsonDocument::Indented));
+}
+
+double CliSupport::sessionEnd_s(const SessionStore &store, qint64 sessionId)
+{
+    double end = -INFINITY;
+    for (const ChannelInfo &c : store.channels(sessionId)) {
+        const DecimatedSeries d = store.decimated(c.id, -1e300, 1e300, 1);
+        if (!d.tLast.isEmpty())
+            end = std::max(end, d.tLast.back());
     }
-    QSaveFile file(target); // atomic: never a half-written result
-    if (!file.open(QIODevice::WriteOnly) || file.write(bytes) != bytes.size() || !file.commit())
-        throw std::runtime_error(QStringLiteral("cannot write JSON to %1: %2").arg(target, file.errorString()).toStdString());
+    return end;
+}
+
+QString CliSupport::clockText(double seconds)
+{
+    const qint64 s = static_cast<qint64>(std::floor(std::max(0.0, seconds)));
+    return QStringLiteral("%1:%2:%3").arg(s / 3600).arg(s / 60 % 60, 2, 10, QLatin1Char('0')).arg(s % 60, 2, 10, QLatin1Char('0'));
 }
 
 void CliSupport::progress(const QString &line)

@@ -9,6 +9,8 @@ class QCommandLineOption;
 
 namespace driftlab {
 
+class SessionStore;
+
 class CliSupport {
 public:
     // driftlab.sqlite in the user's data directory (created if needed).
@@ -17,11 +19,17 @@ public:
     // With mustExist, a missing file is a UsageError naming it. Without, the file may be
     // new but a named file's folder must exist (only the default data folder is created).
     static QString databasePath(const QString &option, const QString &fallback, bool mustExist);
-    // Checks an output (`option`: "--export", "DIR", ...) before any work starts: its folder must exist and,
-    // with mustNotExist, the path itself must not (else UsageError). "-" (stdout) passes.
+    // Checks an output (`option`: "--export", "DIR", ...) before any work starts by the rule of
+    // OutputTarget: its folder must exist and, with mustNotExist (pass !--force), the path itself
+    // must not (else UsageError). "-" (stdout) passes.
     static void checkOutput(const QString &path, const QString &option, bool mustNotExist);
     // Writes JSON to a file or, for "-", to standard output. Throws std::runtime_error.
     static void writeJson(const QJsonDocument &doc, const QString &target);
+    // Session time of the last stored sample of any channel (read from the coarsest sample
+    // mipmap, not the samples), -infinity for a session without samples.
+    static double sessionEnd_s(const SessionStore &store, qint64 sessionId);
+    // "2:48:00" for 10080 s: a session time for messages.
+    static QString clockText(double seconds);
     // Writes a progress line to standard error.
     static void progress(const QString &line);
     // Parses "SECONDS" or "H:MM:SS" (also "MM:SS"; minutes and seconds after the first field

@@ -1,6 +1,9 @@
 #include "CompensateCommand.h"
 
+#include "CliOptions.h"
 #include "CliSupport.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "CompensationLoop.h"
 #include "ExportableModelJson.h"
 #include "JsonFields.h"
@@ -64,7 +67,7 @@ int CompensateCommand::run(const QStringList &args)
                                     QStringLiteral("preset|file"), QStringLiteral("m80"));
     const QCommandLineOption axis(QStringLiteral("axis"), QStringLiteral("Map axis that gets the model's offset (default X)."),
                                   QStringLiteral("X"), QStringLiteral("X"));
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Database of the recording."), QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption session(QStringLiteral("session"), QStringLiteral("Session to follow (being recorded, or finished)."),
                                      QStringLiteral("id"));
     const QCommandLineOption enable(QStringLiteral("enable"), QStringLiteral("Write to the controller (default: compute only)."));
@@ -81,9 +84,9 @@ int CompensateCommand::run(const QStringList &args)
     const QCommandLineOption position(QStringLiteral("position-channel"),
                                       QStringLiteral("Axis position channel for the synthetic model (default X)."), QStringLiteral("id"),
                                       QStringLiteral("X"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({modbus, mapOpt, axis, db, session, enable, duration, rate, maxOffset, maxRate, timeout, position, json});
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({modbus, mapOpt, axis, db, session, enable, duration, rate, maxOffset, maxRate, timeout, position, json, force});
     p.addPositionalArgument(QStringLiteral("MODEL.json"), QStringLiteral("Fitted model (data-driven or fdm-seed000)."));
     if (!parse(p, args))
         return 0;
@@ -113,13 +116,11 @@ int CompensateCommand::run(const QStringList &args)
     const double seconds = p.isSet(duration) ? CliSupport::parseDuration(p.value(duration), QStringLiteral("--duration")) : 0.0;
     if (!p.isSet(session))
         throw UsageError(QStringLiteral("compensate: --session ID is required (the session being recorded)"));
-    bool ok = false;
-    const qint64 sessionId = p.value(session).toLongLong(&ok);
-    if (!ok || sessionId <= 0)
-        throw UsageError(QStringLiteral("compensate: --session must be a session id, got '%1'").arg(p.value(session)));
+    SessionArgument::checkForm(p.value(session), QStringLiteral("--session"), name());
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     if (p.isSet(json))
-        CliSupport::checkOutput(p.value(json), QStringLiteral("--json"), false);
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    const qint64 sessionId = SessionArgument::one(SessionStore(path), p.value(session), QStringLiteral("--session"), name());
     const QString modelPath = p.positionalArguments().front();
     std::unique_ptr<SessionOffsetSource> source;
     try {

@@ -1,6 +1,9 @@
 #include "DataDrivenFitCommand.h"
 
+#include "CliOptions.h"
 #include "CliSupport.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "DataDrivenFit.h"
 #include "DataDrivenModelJson.h"
 #include "SessionStore.h"
@@ -19,7 +22,7 @@ QString DataDrivenFitCommand::summary() const
 {
     return QStringLiteral(
         "Fit a data-driven thermal-error model of one displacement channel (--target) on one or several\n"
-        "sessions (runs; SESSION may be ids, A-B ranges or comma lists) or a time range of them, and validate it\n"
+        "sessions (runs; SESSION may be ids, UUIDs, A:B ranges or comma lists) or a time range of them, and validate it\n"
         "on held-out sessions (--holdout, repeatable) or a range (--holdout-range), per session and pooled.\n"
         "Models: mean (the training mean), mlr (seed 003 eq. 5 on sensitive points, --points auto by default),\n"
         "ridge (all temperatures), lagridge (all temperatures through a bank of first-order lags), exp (seed\n"
@@ -48,35 +51,18 @@ bool DataDrivenFitCommand::handles(const QStringList &args)
 qint64 DataDrivenFitCommand::sessionArg(const SessionStore &store, const QString &text, const QString &what,
                                         const QString &command)
 {
-    bool ok = false;
-    const qint64 id = text.toLongLong(&ok);
-    if (!ok)
-        throw UsageError(QStringLiteral("%1: %2 must be a session id, got '%3'").arg(command, what, text));
-    for (const SessionInfo &s : store.sessions())
-        if (s.id == id)
-            return id;
-    throw UsageError(QStringLiteral("%1: %2 has no session %3").arg(command, store.path()).arg(id));
+    return SessionArgument::one(store, text, what, command);
 }
 
 QList<qint64> DataDrivenFitCommand::sessionArgs(const SessionStore &store, const QStringList &texts, const QString &what,
                                                const QString &command)
 {
-    QList<qint64> out;
+    // Comma lists are split here; every item goes through the one session parser (id, UUID, A:B).
+    QStringList items;
     for (const QString &text : texts)
-        for (const QString &part : text.split(QLatin1Char(','), Qt::SkipEmptyParts)) {
-            const int dash = part.indexOf(QLatin1Char('-'), 1);
-            if (dash < 0) {
-                out << sessionArg(store, part, what, command);
-                continue;
-            }
-            bool a = false, b = false;
-            const qint64 from = part.left(dash).toLongLong(&a), to = part.mid(dash + 1).toLongLong(&b);
-            if (!a || !b || to < from || to - from > 10000)
-                throw UsageError(QStringLiteral("%1: %2 must be session ids or ranges A-B, got '%3'").arg(command, what, part));
-            for (qint64 id = from; id <= to; ++id)
-                out << sessionArg(store, QString::number(id), what, command);
-        }
-    return out;
+        items << text.split(QLatin1Char(','), Qt::SkipEmptyParts);
+    const QVector<qint64> ids = SessionArgument::many(store, items, what, command);
+    return QList<qint64>(ids.begin(), ids.end());
 }
 
 void DataDrivenFitCommand::parseKRange(const QString &text, int &kMin, int &kMax, const QString &command)
@@ -95,7 +81,7 @@ int DataDrivenFitCommand::run(const QStringList &args)
 {
     const QString cmd = QStringLiteral("fit");
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption model(QStringLiteral("model"),
                                    QStringLiteral("auto, mean, mlr, ridge, lagridge, exp, synthetic or dynamic."),
                                    QStringLiteral("name"));
@@ -114,7 +100,7 @@ int DataDrivenFitCommand::run(const QStringList &args)
     const QCommandLineOption train(QStringLiteral("train-range"), QStringLiteral("Fit on hours H:H of the session."),
                                    QStringLiteral("H:H"));
     const QCommandLineOption holdout(QStringLiteral("holdout"),
-                                     QStringLiteral("Validate on this session (repeatable; ids, A-B ranges, comma lists)."),
+                                     QStringLiteral("Validate on this session (repeatable; ids, UUIDs, A:B ranges, comma lists)."),
                                      QStringLiteral("id"));
     const QCommandLineOption reference(QStringLiteral("reference"),
                                        QStringLiteral("Temperature reference of each run: auto (by CV; start with one "
@@ -130,11 +116,11 @@ int DataDrivenFitCommand::run(const QStringList &args)
     const QCommandLineOption floor(QStringLiteral("scale-floor"),
                                    QStringLiteral("dynamic: scale inputs by max(standard deviation, FLOOR) (default 0.5 K)."),
                                    QStringLiteral("K"), QStringLiteral("0.5"));
-    const QCommandLineOption out(QStringLiteral("out"), QStringLiteral("MODEL.json to write."), QStringLiteral("file"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({db, model, target, points, drive, reference, train, holdout, holdoutRange, kRange, folds, floor, out, json});
-    p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Training session ids (A-B ranges and comma lists allowed)."),
+    const QCommandLineOption out = CliOptions::out(QStringLiteral("MODEL.json to write."));
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({db, model, target, points, drive, reference, train, holdout, holdoutRange, kRange, folds, floor, out, json, force});
+    p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Training sessions (ids, UUIDs, A:B ranges, comma lists)."),
                             QStringLiteral("SESSION..."));
     if (!parse(p, args))
         return 0;
@@ -167,7 +153,9 @@ int DataDrivenFitCommand::run(const QStringList &args)
     }
     q.drive = p.value(drive);
     q.reference = p.value(reference);
-    CliSupport::checkOutput(p.value(out), QStringLiteral("--out"), false);
+    OutputTarget(p.value(out), QStringLiteral("--out")).check(p.isSet(force));
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
     q.sessions = sessionArgs(store, p.positionalArguments(), QStringLiteral("SESSION"), cmd);

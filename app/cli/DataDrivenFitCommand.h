@@ -20,9 +20,9 @@ public:
 
     // True when args hold --model NAME (or --model=NAME) with a data-driven model name.
     static bool handles(const QStringList &args);
-    // A session id argument that exists in the store; UsageError naming `what` otherwise.
+    // A session argument (id or UUID) that exists in the store; SessionArgument::one.
     static qint64 sessionArg(const SessionStore &store, const QString &text, const QString &what, const QString &command);
-    // Session ids from arguments that are ids, comma lists or ranges A-B (each must exist).
+    // Session ids from arguments that are ids, comma lists, UUIDs or ranges A:B (each must exist; SessionArgument).
     static QList<qint64> sessionArgs(const SessionStore &store, const QStringList &texts, const QString &what,
                                      const QString &command);
     // "K:K" for --k-range; UsageError otherwise.

@@ -1,7 +1,10 @@
 #include "DiagnoseCommand.h"
 
 #include "BundleTransfer.h"
+#include "CliOptions.h"
 #include "CliSupport.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "DuplicateSessionError.h"
 #include "DiagnosisEngine.h"
 #include "SessionAnalysis.h"
@@ -234,12 +237,12 @@ int DiagnoseCommand::run(const QStringList &args)
     const QCommandLineOption validate(QStringLiteral("validate"),
                                       QStringLiteral("Validation recording of the same machine: bundle dir, .zip or session id."),
                                       QStringLiteral("B"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the diagnosis JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
     const QCommandLineOption predictions(QStringLiteral("predictions"),
                                          QStringLiteral("Write B's interferometer predictions (baseline, corrected) as CSV."),
                                          QStringLiteral("csv"));
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database for session ids."), QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption effects(QStringLiteral("effects"),
                                      QStringLiteral("Comma-separated candidate codes to try (default: all)."),
                                      QStringLiteral("list"));
@@ -249,7 +252,7 @@ int DiagnoseCommand::run(const QStringList &args)
         QStringLiteral("fit-screw-temperatures"),
         QStringLiteral("Also fit the screw temperatures of A (infrared profile, surface PT100s; sigma 0.3 K). "
                        "Default: they are predicted and located, not fitted."));
-    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures});
+    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures, force});
     if (!parse(p, args))
         return 0;
     if (!p.isSet(train) || !p.isSet(validate))
@@ -260,6 +263,9 @@ int DiagnoseCommand::run(const QStringList &args)
     const double step = p.value(dt).toDouble(&ok);
     if (!ok || !(step > 0) || step > 600)
         throw UsageError(QStringLiteral("diagnose: --dt must be a time step in (0, 600] s, got '%1'").arg(p.value(dt)));
+    OutputTarget::json(p.value(json)).check(p.isSet(force));
+    if (p.isSet(predictions))
+        OutputTarget(p.value(predictions), QStringLiteral("--predictions")).check(p.isSet(force));
     DiagnosisOptions options;
     options.fitScrewTemperatures = p.isSet(fitTemperatures);
     if (p.isSet(effects)) {
@@ -293,16 +299,11 @@ int DiagnoseCommand::run(const QStringList &args)
             }
             return {tmpStore.get(), id};
         }
-        const qint64 id = arg.toLongLong(&ok);
-        if (!ok)
-            throw UsageError(QStringLiteral("diagnose: %1 '%2' is neither an existing bundle (directory or .zip) nor a session id")
-                                 .arg(QLatin1String(what), arg));
-        if (!userStore)
+        if (!userStore) {
+            SessionArgument::checkForm(arg, QLatin1String(what), name());
             userStore = std::make_unique<SessionStore>(CliSupport::databasePath(p.value(db), QString(), true));
-        for (const SessionInfo &s : userStore->sessions())
-            if (s.id == id)
-                return {userStore.get(), id};
-        throw UsageError(QStringLiteral("diagnose: %1: %2 has no session %3").arg(QLatin1String(what), userStore->path()).arg(id));
+        }
+        return {userStore.get(), SessionArgument::one(*userStore, arg, QLatin1String(what), name())};
     };
     const auto a = resolve(p.value(train), "--train");
     const auto b = resolve(p.value(validate), "--validate");
@@ -351,11 +352,8 @@ int DiagnoseCommand::run(const QStringList &args)
         userStore->addAnalysisResult(a.second, ReportBuilder::diagnosisResultKind(), stored);
     }
     if (p.isSet(predictions)) {
-        QFile f(p.value(predictions));
-        if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate | QIODevice::Text))
-            throw std::runtime_error("diagnose: cannot write --predictions '" + p.value(predictions).toStdString() +
-                                     "': " + f.errorString().toStdString());
-        QTextStream o(&f);
+        QString csv; // written whole through QSaveFile: never half-written
+        QTextStream o(&csv);
         o << "time_s,position_mm,baseline_um,corrected_um\n";
         for (const DiagnosisPrediction &q : report.predictions) {
             if (q.reference)
@@ -363,6 +361,8 @@ int DiagnoseCommand::run(const QStringList &args)
             o << QString::number(q.t_s, 'f', 3) << ',' << QString::number(q.position_mm, 'f', 3) << ','
               << QString::number(q.baseline_um, 'g', 9) << ',' << QString::number(q.corrected_um, 'g', 9) << '\n';
         }
+        o.flush();
+        OutputTarget::writeFile(p.value(predictions), csv.toUtf8());
     }
     CliSupport::progress(QStringLiteral("diagnosis: %1 (baseline held-out RMS %2 um, corrected %3 um) in %4 s")
                              .arg(QString::fromStdString(report.effect))

@@ -2,7 +2,10 @@
 
 #include "BundleError.h"
 #include "BundleTransfer.h"
+#include "CliOptions.h"
 #include "CliSupport.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "SessionStore.h"
 
 #include <QCommandLineParser>
@@ -14,38 +17,36 @@ namespace driftlab {
 
 QString ExportCommand::summary() const
 {
-    return QStringLiteral("Export a session as a recording bundle: OUT ending in .zip gives a zip, anything\n"
-                          "else (conventionally NAME.bundle) a directory. OUT must not exist.");
+    return QStringLiteral("Export a session as a recording bundle: OUT ending in .zip gives a zip, NAME.bundle or a\n"
+                          "name without extension a directory; other extensions are refused. OUT must not exist and\n"
+                          "its folder must.");
 }
 
 int ExportCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database (default: driftlab.sqlite in the user's data directory)."),
-                                QStringLiteral("file"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({db, json});
+    const QCommandLineOption db = CliOptions::db();
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({db, json, force});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id (see 'driftlab-cli list')."));
     p.addPositionalArgument(QStringLiteral("OUT"), QStringLiteral("Output NAME.bundle directory or NAME.zip."));
     if (!parse(p, args))
         return 0;
     if (p.positionalArguments().size() != 2)
         throw UsageError(QStringLiteral("export: expected SESSION and OUT, got %1 arguments").arg(p.positionalArguments().size()));
-    bool ok = false;
-    const qint64 id = p.positionalArguments().at(0).toLongLong(&ok);
-    if (!ok || id <= 0)
-        throw UsageError(QStringLiteral("export: SESSION must be a session id, got '%1'").arg(p.positionalArguments().at(0)));
+    SessionArgument::checkForm(p.positionalArguments().at(0), QStringLiteral("SESSION"), name());
     const QString out = p.positionalArguments().at(1);
-    if (QFileInfo::exists(out))
-        throw UsageError(QStringLiteral("export: %1 already exists; not overwriting").arg(out));
+    // A bundle is never replaced (not even with --force): the exported copy is a record.
+    OutputTarget target(out, QStringLiteral("OUT"), QFileInfo(out).suffix().isEmpty() ? OutputTarget::Kind::Folder : OutputTarget::Kind::File);
+    if (!QFileInfo(out).suffix().isEmpty())
+        target.formats({QStringLiteral("zip"), QStringLiteral("bundle")});
+    target.neverReplaced().check(false);
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
-    bool found = false;
-    for (const SessionInfo &s : store.sessions())
-        found = found || s.id == id;
-    if (!found)
-        throw UsageError(QStringLiteral("export: no session %1 in %2").arg(id).arg(path));
+    const qint64 id = SessionArgument::one(store, p.positionalArguments().at(0), QStringLiteral("SESSION"), name());
     CliSupport::progress(QStringLiteral("exporting session %1 of %2 to %3").arg(id).arg(path, out));
     BundleTransfer::exportBundle(store, id, out);
     if (p.isSet(json))

@@ -1,6 +1,8 @@
 #include "ExportModelCommand.h"
 
+#include "CliOptions.h"
 #include "CliSupport.h"
+#include "OutputTarget.h"
 #include "ExportableModelJson.h"
 #include "ModelExportWriter.h"
 #include "ModelExporterRegistry.h"
@@ -57,8 +59,9 @@ int ExportModelCommand::run(const QStringList &args)
     QCommandLineParser p;
     const QString targets = QString::fromStdString(registry.names());
     const QCommandLineOption target(QStringLiteral("target"), QStringLiteral("Format: %1.").arg(targets), QStringLiteral("name"));
-    const QCommandLineOption out(QStringLiteral("out"), QStringLiteral("Folder to write into (created if missing)."),
-                                 QStringLiteral("dir"));
+    const QCommandLineOption out = CliOptions::out(
+        QStringLiteral("Folder to write into: created if missing (its parent must exist), an existing one only with --force."),
+        QStringLiteral("dir"));
     const QCommandLineOption axis(QStringLiteral("axis"), QStringLiteral("Axis letter (default X)."), QStringLiteral("X"),
                                   QStringLiteral("X"));
     const QCommandLineOption base(QStringLiteral("name"), QStringLiteral("Base name of the files (default driftlab_comp)."),
@@ -76,10 +79,10 @@ int ExportModelCommand::run(const QStringList &args)
     const QCommandLineOption first(QStringLiteral("first-variable"),
                                    QStringLiteral("First controller variable of the inputs (840d R, fanuc #, heidenhain W)."),
                                    QStringLiteral("n"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
     const QCommandLineOption list(QStringLiteral("list-targets"), QStringLiteral("List the targets and their sources."));
-    p.addOptions({target, out, axis, base, positions, temperatures, temperature, first, json, list});
+    p.addOptions({target, out, axis, base, positions, temperatures, temperature, first, json, force, list});
     p.addPositionalArgument(QStringLiteral("MODEL.json"), QStringLiteral("Fitted model."));
     if (!parse(p, args))
         return 0;
@@ -99,8 +102,9 @@ int ExportModelCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("export-model: --target: unknown target '%1' (known: %2)").arg(p.value(target), targets));
     if (!p.isSet(out))
         throw UsageError(QStringLiteral("export-model: --out DIR is required"));
+    OutputTarget(p.value(out), QStringLiteral("--out"), OutputTarget::Kind::Folder).check(p.isSet(force));
     if (p.isSet(json))
-        CliSupport::checkOutput(p.value(json), QStringLiteral("--json"), false);
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
 
     ExportOptions options;
     options.axis = p.value(axis).toUpper().toStdString();
@@ -131,8 +135,13 @@ int ExportModelCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("export-model: %1 refused: %2").arg(modelPath, QString::fromUtf8(e.what())));
     }
 
-    // Everything is in memory: only now touch the file system.
+    // Everything is in memory: say how much it is (refused above the bound without --force),
+    // and only now touch the file system.
     const QString dir = p.value(out);
+    qint64 bytes = 0;
+    for (const ExportFile &f : result.files)
+        bytes += static_cast<qint64>(f.content.size());
+    OutputTarget(dir, QStringLiteral("--out"), OutputTarget::Kind::Folder).announceSize(bytes, p.isSet(force));
     QStringList paths;
     try {
         paths = ModelExportWriter::write(result, dir);

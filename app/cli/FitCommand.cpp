@@ -1,6 +1,9 @@
 #include "FitCommand.h"
 
+#include "CliOptions.h"
 #include "CliSupport.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "ParameterPlausibility.h"
 #include "DataDrivenFitCommand.h"
 #include "SessionAnalysis.h"
@@ -19,18 +22,6 @@
 namespace driftlab {
 
 namespace {
-
-qint64 sessionIdArg(const SessionStore &store, const QString &text, const QString &what)
-{
-    bool ok = false;
-    const qint64 id = text.toLongLong(&ok);
-    if (!ok)
-        throw UsageError(QStringLiteral("fit: %1 must be a session id, got '%2'").arg(what, text));
-    for (const SessionInfo &s : store.sessions())
-        if (s.id == id)
-            return id;
-    throw UsageError(QStringLiteral("fit: %1 has no session %2").arg(store.path()).arg(id));
-}
 
 QJsonObject statsJson(const FitStatistics &s)
 {
@@ -141,11 +132,11 @@ int FitCommand::run(const QStringList &args)
     if (DataDrivenFitCommand::handles(args))
         return DataDrivenFitCommand().run(args);
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption model(QStringLiteral("model"), QStringLiteral("Model to fit: fdm (seed-000 screw model)."),
                                    QStringLiteral("name"), QStringLiteral("fdm"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write MODEL.json to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
     const QCommandLineOption holdout(QStringLiteral("holdout"),
                                      QStringLiteral("Session predicted with the fitted model (validation), not fitted."),
                                      QStringLiteral("id"));
@@ -153,7 +144,7 @@ int FitCommand::run(const QStringList &args)
                                    QStringLiteral("Hold P_f at the machine block's fixed_end_position_mm."));
     const QCommandLineOption dt(QStringLiteral("dt"), QStringLiteral("Implicit time step of the fit, s (default 20)."),
                                 QStringLiteral("seconds"), QStringLiteral("20"));
-    p.addOptions({db, model, json, holdout, fixPf, dt});
+    p.addOptions({db, model, json, force, holdout, fixPf, dt});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session ids to fit."), QStringLiteral("SESSION..."));
     if (!parse(p, args))
         return 0;
@@ -166,17 +157,20 @@ int FitCommand::run(const QStringList &args)
     if (!ok || !(step > 0) || step > 600)
         throw UsageError(QStringLiteral("fit: --dt must be a time step in (0, 600] s, got '%1'").arg(p.value(dt)));
 
+    for (const QString &a : p.positionalArguments())
+        SessionArgument::checkForm(a, QStringLiteral("SESSION"), name(), true);
+    if (p.isSet(holdout))
+        SessionArgument::checkForm(p.value(holdout), QStringLiteral("--holdout"), name());
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
-    std::vector<qint64> ids;
-    for (const QString &a : p.positionalArguments())
-        ids.push_back(sessionIdArg(store, a, QStringLiteral("SESSION")));
-    const qint64 holdoutId = p.isSet(holdout) ? sessionIdArg(store, p.value(holdout), QStringLiteral("--holdout")) : -1;
+    const QVector<qint64> given = SessionArgument::many(store, p.positionalArguments(), QStringLiteral("SESSION"), name());
+    const std::vector<qint64> ids(given.begin(), given.end());
+    const qint64 holdoutId = p.isSet(holdout) ? SessionArgument::one(store, p.value(holdout), QStringLiteral("--holdout"), name()) : -1;
     if (std::find(ids.begin(), ids.end(), holdoutId) != ids.end())
         throw UsageError(QStringLiteral("fit: --holdout %1 is also a fitted session: a held-out session must not be fitted")
                              .arg(holdoutId));
-    if (p.isSet(json))
-        CliSupport::checkOutput(p.value(json), QStringLiteral("--json"), false);
 
     std::vector<ScrewRecording> recs;
     bool anyInterferometer = false;

@@ -3,11 +3,14 @@
 #include "BundleError.h"
 #include "BundleTransfer.h"
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
 #include "DuplicateSessionError.h"
 #include "SessionStore.h"
 
 #include <QCommandLineParser>
 #include <QElapsedTimer>
+#include <QFileInfo>
 #include <QJsonObject>
 #include <QTextStream>
 
@@ -25,20 +28,23 @@ QString ImportCommand::summary() const
 int ImportCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database (default: driftlab.sqlite in the user's data directory)."),
-                                QStringLiteral("file"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
     const QCommandLineOption allowDuplicate(QStringLiteral("allow-duplicate"),
                                             QStringLiteral("Import even if the database already holds this recording "
                                                            "(same session UUID or content); the copy gets a new UUID."));
-    p.addOptions({db, json, allowDuplicate});
+    p.addOptions({db, json, force, allowDuplicate});
     p.addPositionalArgument(QStringLiteral("BUNDLE"), QStringLiteral("Bundle directory or .zip."));
     if (!parse(p, args))
         return 0;
     if (p.positionalArguments().size() != 1)
         throw UsageError(QStringLiteral("import: expected one BUNDLE argument, got %1").arg(p.positionalArguments().size()));
     const QString bundle = p.positionalArguments().first();
+    if (!QFileInfo::exists(bundle)) // named once (the archive's own message named it three times)
+        throw UsageError(QStringLiteral("import: %1: no such bundle directory or zip (nothing imported)").arg(bundle));
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     const QString path = CliSupport::databasePath(p.value(db), QString(), false);
     SessionStore store(path);
     CliSupport::progress(QStringLiteral("importing %1 into %2").arg(bundle, path));

@@ -1,6 +1,8 @@
 #include "ImportCsvCommand.h"
 
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
 #include "CsvError.h"
 #include "CsvImporter.h"
 #include "SessionStore.h"
@@ -28,8 +30,7 @@ int ImportCsvCommand::run(const QStringList &args)
     QCommandLineParser p;
     const QCommandLineOption map(QStringLiteral("map"), QStringLiteral("Column map (JSON, \"format\": \"driftlab-csv-map\")."),
                                  QStringLiteral("file"));
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database (default: driftlab.sqlite in the user's data directory)."),
-                                QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption name(QStringLiteral("name"),
                                   QStringLiteral("Session name (default: the map's session.name, else the file name; \" run VALUE\" is "
                                                  "added per run, \" (FILE)\" with several files)."),
@@ -39,9 +40,9 @@ int ImportCsvCommand::run(const QStringList &args)
                                                     "default: the map's session.started or session.started_from_file_name, else the "
                                                     "file's modification time, with a warning)."),
                                      QStringLiteral("iso"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({map, db, name, started, json});
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({map, db, name, started, json, force});
     p.addPositionalArgument(QStringLiteral("FILE"),
                             QStringLiteral("CSV file(s): one session each (one per run with the map's run column), all in one "
                                            "transaction."),
@@ -62,6 +63,8 @@ int ImportCsvCommand::run(const QStringList &args)
     if (p.isSet(started) && !QDateTime::fromString(p.value(started), Qt::ISODateWithMs).isValid())
         throw UsageError(QStringLiteral("import-csv: --started '%1' is not an ISO 8601 date-time (e.g. 2025-03-01T08:00:00Z)")
                              .arg(p.value(started)));
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     CsvImportResult r;
     QString path;
     QElapsedTimer timer;

@@ -1,6 +1,9 @@
 #include "ImportRtlCommand.h"
 
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "InterferometerImport.h"
 #include "SessionStore.h"
 #include "StorageError.h"
@@ -10,6 +13,8 @@
 #include <QFile>
 #include <QJsonObject>
 #include <QTextStream>
+
+#include <cmath>
 
 namespace driftlab {
 
@@ -43,8 +48,7 @@ QString ImportRtlCommand::summary() const
 int ImportRtlCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database (default: driftlab.sqlite in the user's data directory)."),
-                                QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption time(QStringLiteral("time"), QStringLiteral("Start of the first run (TIME)."), QStringLiteral("time"));
     const QCommandLineOption runTimes(QStringLiteral("run-times"), QStringLiteral("Start of every run, comma-separated (TIME,TIME,...)."),
                                       QStringLiteral("times"));
@@ -52,8 +56,9 @@ int ImportRtlCommand::run(const QStringList &args)
     const QCommandLineOption direction(QStringLiteral("direction"),
                                        QStringLiteral("auto (from the file's Flags), uni, or bi (odd runs forward, even runs back)."),
                                        QStringLiteral("mode"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."), QStringLiteral("file"));
-    p.addOptions({db, time, runTimes, dwell, direction, json});
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({db, time, runTimes, dwell, direction, json, force});
     p.addPositionalArgument(QStringLiteral("FILE"), QStringLiteral("The .rtl file."));
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
     if (!parse(p, args))
@@ -62,9 +67,7 @@ int ImportRtlCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("import-rtl: expected FILE and SESSION, got %1 argument(s)").arg(p.positionalArguments().size()));
     const QString file = p.positionalArguments().at(0);
     bool ok = false;
-    const qint64 session = p.positionalArguments().at(1).toLongLong(&ok);
-    if (!ok || session <= 0)
-        throw UsageError(QStringLiteral("import-rtl: SESSION must be a session id, got '%1'").arg(p.positionalArguments().at(1)));
+    SessionArgument::checkForm(p.positionalArguments().at(1), QStringLiteral("SESSION"), name());
     if (p.isSet(time) && p.isSet(runTimes))
         throw UsageError(QStringLiteral("import-rtl: give --time or --run-times, not both"));
     InterferometerImport::Options options;
@@ -81,6 +84,8 @@ int ImportRtlCommand::run(const QStringList &args)
     else if (p.isSet(direction) && mode != QLatin1String("auto"))
         throw UsageError(QStringLiteral("import-rtl: --direction must be auto, uni or bi, got '%1'").arg(mode));
 
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     QFile f(file);
     if (!f.open(QIODevice::ReadOnly))
         throw UsageError(QStringLiteral("import-rtl: %1: cannot open: %2").arg(file, f.errorString()));
@@ -92,12 +97,8 @@ int ImportRtlCommand::run(const QStringList &args)
     }
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
-    SessionInfo info;
-    try {
-        info = store.session(session);
-    } catch (const StorageError &) {
-        throw UsageError(QStringLiteral("import-rtl: %1: no session %2").arg(path).arg(session));
-    }
+    const qint64 session = SessionArgument::one(store, p.positionalArguments().at(1), QStringLiteral("SESSION"), name());
+    const SessionInfo info = store.session(session);
     if (p.isSet(time))
         options.start_s = sessionTime(p.value(time), info, QStringLiteral("--time"));
     if (p.isSet(runTimes))
@@ -105,6 +106,21 @@ int ImportRtlCommand::run(const QStringList &args)
             options.runStart_s.push_back(sessionTime(t.trimmed(), info, QStringLiteral("--run-times")));
     InterferometerImport::Result r;
     try {
+        // A run that starts after the session's last sample cannot be placed on its clock.
+        QString source;
+        const double end = CliSupport::sessionEnd_s(store, session);
+        const QVector<double> starts = InterferometerImport::runStarts(rtl, info, options, &source);
+        for (int i = 0; i < starts.size(); ++i)
+            if (std::isfinite(end) && starts[i] > end)
+                throw UsageError(QStringLiteral("import-rtl: run %1 would start at %2 (%3 s, times from %4), after the end of "
+                                                "session %5 at %6 (%7 s); nothing imported")
+                                     .arg(i + 1)
+                                     .arg(CliSupport::clockText(starts[i]))
+                                     .arg(starts[i], 0, 'f', 0)
+                                     .arg(source)
+                                     .arg(session)
+                                     .arg(CliSupport::clockText(end))
+                                     .arg(end, 0, 'f', 0));
         r = InterferometerImport::import(store, session, rtl, options);
     } catch (const std::invalid_argument &e) {
         throw UsageError(QStringLiteral("import-rtl: %1 (nothing imported)").arg(QString::fromUtf8(e.what())));

@@ -1,6 +1,8 @@
 #include "InfoCommand.h"
 
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
 #include "SessionStore.h"
 
 #include <QCommandLineParser>
@@ -18,16 +20,17 @@ QString InfoCommand::summary() const
 int InfoCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database (or give it as the argument)."),
-                                QStringLiteral("file"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({db, json});
+    const QCommandLineOption db = CliOptions::db();
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({db, json, force});
     p.addPositionalArgument(QStringLiteral("DB"), QStringLiteral("Session database."), QStringLiteral("[DB]"));
     if (!parse(p, args))
         return 0;
     if (p.positionalArguments().size() > 1)
         throw UsageError(QStringLiteral("info: takes at most one database, got %1 arguments").arg(p.positionalArguments().size()));
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     const QString path = CliSupport::databasePath(p.value(db), p.positionalArguments().value(0), true);
     SessionStore store(path);
 

@@ -1,6 +1,9 @@
 #include "Iso230Command.h"
 
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "Iso230Report.h"
 #include "SessionStore.h"
 
@@ -22,9 +25,9 @@ QString Iso230Command::summary() const
 int Iso230Command::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
     const QCommandLineOption temperature(QStringLiteral("temperature"),
                                          QStringLiteral("Channel id to regress the drift on (um/K), e.g. the nut or bearing PT100."),
                                          QStringLiteral("channel"));
@@ -35,16 +38,14 @@ int Iso230Command::run(const QStringList &args)
     const QCommandLineOption tolerance(QStringLiteral("target-tolerance"),
                                        QStringLiteral("Positions closer than this (mm) are one target (default 0.05)."),
                                        QStringLiteral("mm"), QStringLiteral("0.05"));
-    p.addOptions({db, json, temperature, perTest, tolerance});
+    p.addOptions({db, json, force, temperature, perTest, tolerance});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
     if (!parse(p, args))
         return 0;
     if (p.positionalArguments().size() != 1)
         throw UsageError(QStringLiteral("iso230: give exactly one session id"));
     bool ok = false;
-    const qint64 session = p.positionalArguments().first().toLongLong(&ok);
-    if (!ok)
-        throw UsageError(QStringLiteral("iso230: '%1' is not a session id").arg(p.positionalArguments().first()));
+    SessionArgument::checkForm(p.positionalArguments().first(), QStringLiteral("SESSION"), name());
     Iso230Options options;
     options.temperatureChannel = p.value(temperature);
     options.runsPerTest = p.value(perTest).toInt(&ok);
@@ -53,13 +54,11 @@ int Iso230Command::run(const QStringList &args)
     options.targetTolerance_mm = p.value(tolerance).toDouble(&ok);
     if (!ok || !(options.targetTolerance_mm > 0))
         throw UsageError(QStringLiteral("iso230: --target-tolerance must be a positive number of mm, got '%1'").arg(p.value(tolerance)));
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     const SessionStore store(path);
-    bool found = false;
-    for (const SessionInfo &s : store.sessions())
-        found = found || s.id == session;
-    if (!found)
-        throw UsageError(QStringLiteral("iso230: %1 has no session %2").arg(path).arg(session));
+    const qint64 session = SessionArgument::one(store, p.positionalArguments().first(), QStringLiteral("SESSION"), name());
     CliSupport::progress(QStringLiteral("evaluating the interferometer runs of session %1").arg(session));
     try {
         const Iso230Report report(store, session, options);

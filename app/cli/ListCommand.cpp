@@ -1,6 +1,8 @@
 #include "ListCommand.h"
 
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
 #include "SessionStore.h"
 
 #include <QCommandLineParser>
@@ -18,15 +20,16 @@ QString ListCommand::summary() const
 int ListCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database (default: driftlab.sqlite in the user's data directory)."),
-                                QStringLiteral("file"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the list as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({db, json});
+    const QCommandLineOption db = CliOptions::db();
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({db, json, force});
     if (!parse(p, args))
         return 0;
     if (!p.positionalArguments().isEmpty())
         throw UsageError(QStringLiteral("list: unexpected argument '%1' (use --db DB)").arg(p.positionalArguments().first()));
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
     QJsonArray list;

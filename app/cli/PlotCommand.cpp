@@ -2,6 +2,9 @@
 
 #include "AnalysisPlots.h"
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "InfraredPanel.h"
 #include "PlotExporter.h"
 #include "ReviewWorkspace.h"
@@ -12,6 +15,8 @@
 
 #include <qwt_interval.h>
 #include <qwt_plot.h>
+
+#include <cmath>
 
 namespace driftlab {
 
@@ -28,11 +33,11 @@ QString PlotCommand::summary() const
 int PlotCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption view(QStringLiteral("view"), QStringLiteral("View to render (default timeseries)."),
                                   QStringLiteral("name"), QStringLiteral("timeseries"));
-    const QCommandLineOption out(QStringLiteral("out"), QStringLiteral("Output file: .png, .svg or .pdf."),
-                                 QStringLiteral("file"));
+    const QCommandLineOption out = CliOptions::out(QStringLiteral("Output file: .png, .svg or .pdf."));
+    const QCommandLineOption force = CliOptions::force();
     const QCommandLineOption width(QStringLiteral("width-mm"), QStringLiteral("Width in mm (default 240)."),
                                    QStringLiteral("mm"), QStringLiteral("240"));
     const QCommandLineOption height(QStringLiteral("height-mm"), QStringLiteral("Height in mm (default 150)."),
@@ -49,21 +54,18 @@ int PlotCommand::run(const QStringList &args)
                                     QStringLiteral("mm"));
     const QCommandLineOption frame(QStringLiteral("frame"), QStringLiteral("ir-profile: infrared frame number (1 = first)."),
                                    QStringLiteral("n"));
-    p.addOptions({db, view, out, width, height, dpi, channels, from, to, target, frame});
+    p.addOptions({db, view, out, force, width, height, dpi, channels, from, to, target, frame});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
     if (!parse(p, args))
         return 0;
     if (p.positionalArguments().size() != 1)
         throw UsageError(QStringLiteral("plot: give exactly one session id"));
     bool ok = false;
-    const qint64 session = p.positionalArguments().first().toLongLong(&ok);
-    if (!ok)
-        throw UsageError(QStringLiteral("plot: '%1' is not a session id").arg(p.positionalArguments().first()));
+    SessionArgument::checkForm(p.positionalArguments().first(), QStringLiteral("SESSION"), name());
     if (!p.isSet(out))
         throw UsageError(QStringLiteral("plot: --out FILE is required"));
     const QString file = p.value(out);
-    if (!PlotExporter::supportedSuffix(file))
-        throw UsageError(QStringLiteral("plot: --out %1: use a .png, .svg or .pdf file").arg(file));
+    OutputTarget(file, QStringLiteral("--out")).formats({QStringLiteral("png"), QStringLiteral("svg"), QStringLiteral("pdf")}).check(p.isSet(force));
     const QString name = p.value(view);
     const bool selectionView = AnalysisPlots::selectionViews().contains(name);
     if (!selectionView && !ReviewWorkspace::viewNames().contains(name))
@@ -97,11 +99,15 @@ int PlotCommand::run(const QStringList &args)
 
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
-    bool found = false;
-    for (const SessionInfo &s : store.sessions())
-        found = found || s.id == session;
-    if (!found)
-        throw UsageError(QStringLiteral("plot: %1 has no session %2").arg(path).arg(session));
+    const qint64 session = SessionArgument::one(store, p.positionalArguments().first(), QStringLiteral("SESSION"), QStringLiteral("plot"));
+    const double end = CliSupport::sessionEnd_s(store, session);
+    if (t0 >= 0 && std::isfinite(end) && t0 >= end)
+        throw UsageError(QStringLiteral("plot: --from %1 (%2 s) is at or after the end of session %3 at %4 (%5 s): nothing to draw")
+                             .arg(p.value(from))
+                             .arg(t0, 0, 'f', 0)
+                             .arg(session)
+                             .arg(CliSupport::clockText(end))
+                             .arg(end, 0, 'f', 0));
     if (selectionView) { // the latest select-points result stored with the session
         std::unique_ptr<QwtPlot> plot;
         try {

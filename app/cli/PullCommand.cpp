@@ -1,6 +1,8 @@
 #include "PullCommand.h"
 
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
 #include "SessionStore.h"
 #include "SessionTransferRun.h"
 
@@ -21,13 +23,12 @@ QString PullCommand::summary() const
 int PullCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Local session database to copy into (default: driftlab.sqlite in the user's data directory)."),
-                                QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption from(QStringLiteral("from"), QStringLiteral("Central store, postgresql://[USER@]HOST[:PORT]/DATABASE."),
                                   QStringLiteral("url"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({db, from, json});
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({db, from, json, force});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session ids or UUIDs of the central store."), QStringLiteral("SESSION..."));
     if (!parse(p, args))
         return 0;
@@ -37,7 +38,7 @@ int PullCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("pull: --from must be a central store, postgresql://[USER@]HOST[:PORT]/DATABASE"));
     const QString path = CliSupport::databasePath(p.value(db), QString(), false);
     if (p.isSet(json))
-        CliSupport::checkOutput(p.value(json), QStringLiteral("--json"), false);
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     SessionStore central(p.value(from));
     SessionStore local(path);
     const QJsonArray results = SessionTransferRun::run(QStringLiteral("pull"), central, p.positionalArguments(), local);

@@ -1,6 +1,9 @@
 #include "PushCommand.h"
 
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "SessionStore.h"
 #include "SessionTransferRun.h"
 
@@ -23,13 +26,12 @@ QString PushCommand::summary() const
 int PushCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Local session database (default: driftlab.sqlite in the user's data directory)."),
-                                QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption to(QStringLiteral("to"), QStringLiteral("Central store, postgresql://[USER@]HOST[:PORT]/DATABASE."),
                                 QStringLiteral("url"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({db, to, json});
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({db, to, json, force});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session ids or UUIDs to push."), QStringLiteral("SESSION..."));
     if (!parse(p, args))
         return 0;
@@ -39,8 +41,9 @@ int PushCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("push: --to must be a central store, postgresql://[USER@]HOST[:PORT]/DATABASE"));
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     if (p.isSet(json))
-        CliSupport::checkOutput(p.value(json), QStringLiteral("--json"), false);
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     SessionStore local(path);
+    SessionArgument::many(local, p.positionalArguments(), QStringLiteral("SESSION"), name()); // before connecting
     SessionStore central(p.value(to));
     const QJsonArray results = SessionTransferRun::run(QStringLiteral("push"), local, p.positionalArguments(), central);
     if (p.isSet(json))

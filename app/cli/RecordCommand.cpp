@@ -5,6 +5,8 @@
 #include "AcquisitionEngine.h"
 #include "BundleTransfer.h"
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
 #include "RealDevices.h"
 #include "RigConfigLoader.h"
 #include "RigRecorder.h"
@@ -12,6 +14,7 @@
 #include "RigDeviceSet.h"
 
 #include <QCommandLineParser>
+#include <QFileInfo>
 #include <QElapsedTimer>
 #include <QJsonArray>
 #include <QJsonObject>
@@ -73,12 +76,12 @@ int RecordCommand::run(const QStringList &args)
     const QCommandLineOption name(QStringLiteral("name"), QStringLiteral("Session name."), QStringLiteral("text"));
     const QCommandLineOption exportOpt(QStringLiteral("export"), QStringLiteral("Also export the session as a bundle (dir or .zip)."),
                                        QStringLiteral("bundle"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
     const QCommandLineOption pushTo(QStringLiteral("push-to"),
                                     QStringLiteral("After the recording, push the session to a central store (postgresql://...)."),
                                     QStringLiteral("url"));
-    p.addOptions({sim, rig, listRigs, duration, speed, out, feed, seed, name, exportOpt, pushTo, json});
+    p.addOptions({sim, rig, listRigs, duration, speed, out, feed, seed, name, exportOpt, pushTo, json, force});
     if (!parse(p, args))
         return 0;
     if (!p.positionalArguments().isEmpty())
@@ -103,10 +106,16 @@ int RecordCommand::run(const QStringList &args)
 
     // Every output is checked before the recording starts.
     const QString path = CliSupport::databasePath(p.value(out), QString(), false);
-    if (p.isSet(exportOpt))
-        CliSupport::checkOutput(p.value(exportOpt), QStringLiteral("--export"), true);
+    if (p.isSet(exportOpt)) { // a bundle: .zip, .bundle or a folder name; never replaced
+        const QString bundle = p.value(exportOpt);
+        OutputTarget target(bundle, QStringLiteral("--export"),
+                            QFileInfo(bundle).suffix().isEmpty() ? OutputTarget::Kind::Folder : OutputTarget::Kind::File);
+        if (!QFileInfo(bundle).suffix().isEmpty())
+            target.formats({QStringLiteral("zip"), QStringLiteral("bundle")});
+        target.neverReplaced().check(false);
+    }
     if (p.isSet(json))
-        CliSupport::checkOutput(p.value(json), QStringLiteral("--json"), false);
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     if (p.isSet(pushTo) && !SessionStore::isCentral(p.value(pushTo)))
         throw UsageError(QStringLiteral("record: --push-to must be a central store, postgresql://[USER@]HOST[:PORT]/DATABASE"));
 

@@ -1,6 +1,9 @@
 #include "ReportCommand.h"
 
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "ReportBuilder.h"
 #include "ReportTemplate.h"
 #include "ReportWriter.h"
@@ -23,26 +26,22 @@ QString ReportCommand::summary() const
 int ReportCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
-    const QCommandLineOption out(QStringLiteral("out"), QStringLiteral("Output file: .pdf or .html."), QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
+    const QCommandLineOption out = CliOptions::out(QStringLiteral("Output file: .pdf or .html."));
+    const QCommandLineOption force = CliOptions::force();
     const QCommandLineOption look(QStringLiteral("template"), QStringLiteral("Template folder (default: the built-in one)."),
                                   QStringLiteral("dir"));
-    p.addOptions({db, out, look});
+    p.addOptions({db, out, force, look});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
     if (!parse(p, args))
         return 0;
     if (p.positionalArguments().size() != 1)
         throw UsageError(QStringLiteral("report: give exactly one session id"));
-    bool ok = false;
-    const qint64 session = p.positionalArguments().first().toLongLong(&ok);
-    if (!ok)
-        throw UsageError(QStringLiteral("report: '%1' is not a session id").arg(p.positionalArguments().first()));
+    SessionArgument::checkForm(p.positionalArguments().first(), QStringLiteral("SESSION"), name());
     if (!p.isSet(out))
         throw UsageError(QStringLiteral("report: --out FILE.pdf|FILE.html is required"));
     const QString file = p.value(out);
-    if (!ReportWriter::supportedSuffix(file))
-        throw UsageError(QStringLiteral("report: --out %1: use a .pdf or .html file").arg(file));
-    CliSupport::checkOutput(file, QStringLiteral("--out"), false);
+    OutputTarget(file, QStringLiteral("--out")).formats({QStringLiteral("pdf"), QStringLiteral("html"), QStringLiteral("htm")}, {QStringLiteral("pdf"), QStringLiteral("html")}).check(p.isSet(force));
     ReportTemplate tmpl;
     try {
         tmpl = ReportTemplate::load(p.value(look));
@@ -51,11 +50,7 @@ int ReportCommand::run(const QStringList &args)
     }
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
-    bool found = false;
-    for (const SessionInfo &s : store.sessions())
-        found = found || s.id == session;
-    if (!found)
-        throw UsageError(QStringLiteral("report: %1 has no session %2").arg(path).arg(session));
+    const qint64 session = SessionArgument::one(store, p.positionalArguments().first(), QStringLiteral("SESSION"), name());
     QElapsedTimer timer;
     timer.start();
     const ReportDocument doc = ReportBuilder(store, session, tmpl).build([](const QString &stage) {

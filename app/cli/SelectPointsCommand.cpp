@@ -2,6 +2,9 @@
 
 #include "AnalysisPlots.h"
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "DataDrivenFit.h"
 #include "DataDrivenFitCommand.h"
 #include "SessionStore.h"
@@ -28,7 +31,7 @@ int SelectPointsCommand::run(const QStringList &args)
 {
     const QString cmd = name();
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption target(QStringLiteral("target"), QStringLiteral("Displacement channel."), QStringLiteral("channel"));
     const QCommandLineOption kRange(QStringLiteral("k-range"), QStringLiteral("Range of K (default 2:8)."), QStringLiteral("K:K"),
                                     QStringLiteral("2:8"));
@@ -37,11 +40,11 @@ int SelectPointsCommand::run(const QStringList &args)
                                       QStringLiteral("ids"));
     const QCommandLineOption range(QStringLiteral("range"), QStringLiteral("Use hours H:H of the session."),
                                    QStringLiteral("H:H"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({db, target, kRange, channels, range, json});
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({db, target, kRange, channels, range, json, force});
     p.addPositionalArgument(QStringLiteral("SESSION"),
-                            QStringLiteral("Session ids (A-B ranges and comma lists allowed); several: their samples one "
+                            QStringLiteral("Sessions (ids, UUIDs, A:B ranges, comma lists); several: their samples one "
                                            "after another, temperatures as rises from each session's start."),
                             QStringLiteral("SESSION..."));
     if (!parse(p, args))
@@ -52,6 +55,8 @@ int SelectPointsCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("%1: --target CHANNEL is required").arg(cmd));
     int kMin = 2, kMax = 8;
     DataDrivenFitCommand::parseKRange(p.value(kRange), kMin, kMax, cmd);
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
     const QList<qint64> sessions = DataDrivenFitCommand::sessionArgs(store, p.positionalArguments(), QStringLiteral("SESSION"), cmd);

@@ -2,6 +2,7 @@
 
 #include "CliCommand.h"
 #include "CliSupport.h"
+#include "SessionArgument.h"
 #include "SessionCopier.h"
 #include "SessionStore.h"
 #include "StorageError.h"
@@ -14,24 +15,7 @@ namespace driftlab {
 QJsonArray SessionTransferRun::run(const QString &verb, SessionStore &from, const QStringList &sessions, SessionStore &to)
 {
     // Every named session is checked before anything is copied.
-    QVector<qint64> ids;
-    for (const QString &s : sessions) {
-        bool ok = false;
-        qint64 id = s.toLongLong(&ok);
-        if (!ok || id <= 0) {
-            id = from.sessionByUuid(s.toLower());
-        } else {
-            try {
-                from.session(id);
-            } catch (const StorageError &) {
-                id = 0;
-            }
-        }
-        if (id <= 0)
-            throw UsageError(QStringLiteral("%1: %2 has no session '%3' (give an id or a UUID; 'list --db %2' shows them)")
-                                 .arg(verb, from.path(), s));
-        ids.push_back(id);
-    }
+    const QVector<qint64> ids = SessionArgument::many(from, sessions, QStringLiteral("SESSION"), verb);
     QJsonArray results;
     for (qint64 id : ids) {
         QElapsedTimer timer;

@@ -12,7 +12,7 @@ class SessionStore;
 
 class SessionTransferRun {
 public:
-    // `sessions`: ids or UUIDs of `from`. `verb` ("push", "pull") names the command in messages.
+    // `sessions`: ids, ranges A:B or UUIDs of `from` (SessionArgument). `verb` ("push", "pull") names the command in messages.
     // Throws UsageError for a session `from` does not hold, StorageError when a copy fails
     // (earlier sessions stay copied, each was its own transaction).
     static QJsonArray run(const QString &verb, SessionStore &from, const QStringList &sessions, SessionStore &to);

@@ -2,6 +2,9 @@
 
 #include "BearingHeatSource.h"
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "ExportableModelJson.h"
 #include "NutHeatSource.h"
 #include "ScrewResponseSimulator.h"
@@ -30,16 +33,15 @@ QString SimulateCommand::summary() const
 int SimulateCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption modelOpt(QStringLiteral("model"), QStringLiteral("MODEL.json written by 'fit --json'."),
                                       QStringLiteral("file"));
-    const QCommandLineOption json(QStringLiteral("json"),
-                                  QStringLiteral("Write predictions as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
     const QCommandLineOption interval(QStringLiteral("interval"),
                                       QStringLiteral("Elongation output interval, s (default 60)."),
                                       QStringLiteral("seconds"), QStringLiteral("60"));
-    p.addOptions({db, modelOpt, json, interval});
+    p.addOptions({db, modelOpt, json, force, interval});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
     if (!parse(p, args))
         return 0;
@@ -51,6 +53,9 @@ int SimulateCommand::run(const QStringList &args)
     const double every = p.value(interval).toDouble(&ok);
     if (!ok || !(every > 0))
         throw UsageError(QStringLiteral("simulate: --interval must be > 0 s, got '%1'").arg(p.value(interval)));
+    SessionArgument::checkForm(p.positionalArguments().front(), QStringLiteral("SESSION"), name());
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
 
     const QString modelPath = p.value(modelOpt);
     QFile file(modelPath);
@@ -84,14 +89,7 @@ int SimulateCommand::run(const QStringList &args)
 
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
-    const qint64 id = p.positionalArguments().front().toLongLong(&ok);
-    if (!ok)
-        throw UsageError(QStringLiteral("simulate: SESSION must be a session id, got '%1'").arg(p.positionalArguments().front()));
-    bool found = false;
-    for (const SessionInfo &s : store.sessions())
-        found = found || s.id == id;
-    if (!found)
-        throw UsageError(QStringLiteral("simulate: %1 has no session %2").arg(path).arg(id));
+    const qint64 id = SessionArgument::one(store, p.positionalArguments().front(), QStringLiteral("SESSION"), name());
 
     QString note;
     ScrewRecording rec = SessionAnalysis(store, id).recording(&note);

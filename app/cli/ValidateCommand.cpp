@@ -1,6 +1,9 @@
 #include "ValidateCommand.h"
 
 #include "CliSupport.h"
+#include "CliOptions.h"
+#include "OutputTarget.h"
+#include "SessionArgument.h"
 #include "DataDrivenFit.h"
 #include "DataDrivenFitCommand.h"
 #include "DataDrivenModelJson.h"
@@ -16,7 +19,7 @@ namespace driftlab {
 QString ValidateCommand::summary() const
 {
     return QStringLiteral("Predict a data-driven model (MODEL.json written by 'fit --model ...') over one or several\n"
-                          "sessions (ids, A-B ranges, comma lists) and compare with the measured target, per session and\n"
+                          "sessions (ids, UUIDs, A:B ranges, comma lists) and compare with the measured target, per session and\n"
                           "pooled: MSE, RMSE, MAE, max |e| and the fitting degree of seed 003 Table 6. The model captures\n"
                           "each session's temperature reference itself. Inputs outside the model's training range by more\n"
                           "than the margin are flagged (extrapolation). --json uses the layout of fit's metrics.holdout.");
@@ -26,19 +29,21 @@ int ValidateCommand::run(const QStringList &args)
 {
     const QString cmd = name();
     QCommandLineParser p;
-    const QCommandLineOption db(QStringLiteral("db"), QStringLiteral("Session database."), QStringLiteral("file"));
+    const QCommandLineOption db = CliOptions::db();
     const QCommandLineOption range(QStringLiteral("range"), QStringLiteral("Score hours H:H of the session only."),
                                    QStringLiteral("H:H"));
-    const QCommandLineOption json(QStringLiteral("json"), QStringLiteral("Write the result as JSON to FILE ('-' = stdout)."),
-                                  QStringLiteral("file"));
-    p.addOptions({db, range, json});
+    const QCommandLineOption json = CliOptions::json();
+    const QCommandLineOption force = CliOptions::force();
+    p.addOptions({db, range, json, force});
     p.addPositionalArgument(QStringLiteral("MODEL.json"), QStringLiteral("Model file."));
-    p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session ids (A-B ranges and comma lists allowed)."),
+    p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Sessions (ids, UUIDs, A:B ranges, comma lists)."),
                             QStringLiteral("SESSION..."));
     if (!parse(p, args))
         return 0;
     if (p.positionalArguments().size() < 2)
         throw UsageError(QStringLiteral("%1: give MODEL.json and at least one SESSION id").arg(cmd));
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
     DataDrivenModel model;
     QJsonObject document;
     try {

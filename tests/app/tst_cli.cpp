@@ -1,5 +1,7 @@
 // driftlab-cli as a user runs it: help, exit codes, record -> info -> analyse.
 
+#include "../support/CliRunner.h"
+
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -38,24 +40,14 @@ private slots:
 
 private:
     QString recordShort(const QString &db, const QString &bundle = QString());
-    struct Result {
-        int code = -1;
-        QByteArray out, err;
-    };
+    using Result = clirunner::Result;
     Result run(const QStringList &args);
     QTemporaryDir m_dir;
 };
 
 TestCli::Result TestCli::run(const QStringList &args)
 {
-    QProcess p;
-    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-    env.insert(QStringLiteral("XDG_DATA_HOME"), m_dir.filePath(QStringLiteral("data")));
-    p.setProcessEnvironment(env);
-    p.start(QStringLiteral(DRIFTLAB_CLI), args);
-    if (!p.waitForFinished(120000))
-        return {};
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(), p.readAllStandardError()};
+    return clirunner::run(args, m_dir.filePath(QStringLiteral("data")));
 }
 
 void TestCli::initTestCase()
@@ -363,15 +355,12 @@ void TestCli::guiExitCodesMatchCli()
                                     QStringList{QStringLiteral("--db"), db, QStringLiteral("--show-session"), QStringLiteral("99")},
                                     QStringList{QStringLiteral("--db"), db, QStringLiteral("--fit"), QStringLiteral("1:1")},
                                     QStringList{QStringLiteral("--db"), m_dir.filePath(QStringLiteral("none.sqlite"))}}) {
-        QProcess p;
-        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-        env.insert(QStringLiteral("QT_QPA_PLATFORM"), QStringLiteral("offscreen"));
-        env.insert(QStringLiteral("XDG_CONFIG_HOME"), m_dir.filePath(QStringLiteral("config")));
-        p.setProcessEnvironment(env);
-        p.start(QStringLiteral(DRIFTLAB_GUI), args + QStringList{QStringLiteral("--screenshot"), png});
-        QVERIFY(p.waitForFinished(60000));
-        QCOMPARE(p.exitCode(), 2);
-        QVERIFY(p.readAllStandardError().contains("driftlab: "));
+        QProcessEnvironment extra;
+        extra.insert(QStringLiteral("QT_QPA_PLATFORM"), QStringLiteral("offscreen"));
+        const Result gui = clirunner::runProgram(QStringLiteral(DRIFTLAB_GUI), args + QStringList{QStringLiteral("--screenshot"), png},
+                                                 m_dir.filePath(QStringLiteral("data")), 60000, extra);
+        QCOMPARE(gui.code, 2);
+        QVERIFY(gui.err.contains("driftlab: "));
         QVERIFY(!QFileInfo::exists(png));
     }
     QCOMPARE(run({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--holdout"), QStringLiteral("1"),
@@ -540,6 +529,13 @@ void TestCli::sigtermClosesTheSession()
                          QStringLiteral("--out"), db};
         if (threaded)
             args << QStringLiteral("--speed") << QStringLiteral("2000");
+        p.setProcessEnvironment(clirunner::environment(m_dir.filePath(QStringLiteral("data"))));
+        const auto killer = qScopeGuard([&] { // never left running when a check fails
+            if (p.state() != QProcess::NotRunning) {
+                p.kill();
+                p.waitForFinished(5000);
+            }
+        });
         p.start(QStringLiteral(DRIFTLAB_CLI), args);
         QVERIFY(p.waitForStarted());
         QTest::qWait(1500);

@@ -8,6 +8,8 @@
 // held-out session at another ambient and feed, per session and pooled, in one JSON layout;
 // `auto` chooses by the stated one-standard-error rule, checked again from its own table.
 
+#include "../support/CliRunner.h"
+
 #include <QDir>
 #include <QFile>
 #include <QJsonArray>
@@ -43,16 +45,12 @@ private:
 
 int TestDataDriven::run(const QStringList &args, QByteArray *out, QByteArray *err)
 {
-    QProcess p;
-    p.start(QStringLiteral(DRIFTLAB_CLI), args);
-    if (!p.waitForFinished(600000))
-        return -1;
+    const clirunner::Result r = clirunner::run(args, QString(), 600000);
     if (out)
-        *out = p.readAllStandardOutput();
-    const QByteArray e = p.readAllStandardError();
+        *out = r.out;
     if (err)
-        *err = e;
-    return p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
+        *err = r.err;
+    return r.code;
 }
 
 QJsonObject TestDataDriven::json(const QStringList &args)
@@ -376,7 +374,7 @@ void TestDataDriven::badInputExitsTwo()
     expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"),
              QStringLiteral("ridge"), QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--out"), out},
             "session 1 is given twice");
-    expect2({QStringLiteral("fit"), QStringLiteral("1-2"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("ridge"),
+    expect2({QStringLiteral("fit"), QStringLiteral("1:2"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("ridge"),
              QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--holdout"), QStringLiteral("2"), QStringLiteral("--out"), out},
             "session 2 is a training session");
     expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("2"), QStringLiteral("--db"), m_db, QStringLiteral("--model"),

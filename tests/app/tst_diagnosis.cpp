@@ -9,6 +9,8 @@
 // DRIFTLAB_DIAG_SEEDS=N runs N seeds per effect (scripts/diagnosis-sweep.sh) and writes the
 // confusion matrix to DRIFTLAB_DIAG_OUT (default: none written); CI runs one seed per effect.
 
+#include "../support/CliRunner.h"
+
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -74,10 +76,7 @@ private slots:
     void cleanupTestCase();
 
 private:
-    struct Result {
-        int code = -1;
-        QByteArray out, err;
-    };
+    using Result = clirunner::Result;
     Result run(const QStringList &args, int timeout_ms = 300000);
     QJsonObject rig(const QString &effect, unsigned seed, bool validation, std::mt19937 &rng) const;
     QTemporaryDir m_dir;
@@ -86,14 +85,7 @@ private:
 
 TestDiagnosis::Result TestDiagnosis::run(const QStringList &args, int timeout_ms)
 {
-    QProcess p;
-    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-    env.insert(QStringLiteral("XDG_DATA_HOME"), m_dir.filePath(QStringLiteral("data")));
-    p.setProcessEnvironment(env);
-    p.start(QStringLiteral(DRIFTLAB_CLI), args);
-    if (!p.waitForFinished(timeout_ms))
-        return {};
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(), p.readAllStandardError()};
+    return clirunner::run(args, m_dir.filePath(QStringLiteral("data")), timeout_ms);
 }
 
 void TestDiagnosis::initTestCase()

@@ -3,6 +3,8 @@
 // bundle (its own minimal writer, independent of storage/), imports it, exports it again,
 // checks every value survives, and renders a plot headless.
 
+#include "../support/CliRunner.h"
+
 #include <QDir>
 #include <QFile>
 #include <QJsonArray>
@@ -33,15 +35,12 @@ private:
 
 int TestExternalData::run(const QStringList &args, QByteArray *out)
 {
-    QProcess p;
-    p.start(QStringLiteral(DRIFTLAB_CLI), args);
-    if (!p.waitForFinished(300000))
-        return -1;
+    const clirunner::Result r = clirunner::run(args, QString(), 300000);
     if (out)
-        *out = p.readAllStandardOutput();
-    if (p.exitCode() != 0)
-        qWarning("%s", p.readAllStandardError().constData());
-    return p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
+        *out = r.out;
+    if (r.code != 0)
+        qWarning("%s", r.err.constData());
+    return r.code;
 }
 
 void TestExternalData::initTestCase()

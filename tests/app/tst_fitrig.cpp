@@ -10,6 +10,8 @@
 // own grid, implicit step, housings) with everything the seed-000 model leaves out switched
 // off and its sensors noise-free must be identified as the parameters it was given.
 
+#include "../support/CliRunner.h"
+
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -31,13 +33,10 @@ private:
 
 int TestFitRig::run(const QStringList &args, QByteArray *err)
 {
-    QProcess p;
-    p.start(QStringLiteral(DRIFTLAB_CLI), args);
-    if (!p.waitForFinished(300000))
-        return -1;
+    const clirunner::Result r = clirunner::run(args, QString(), 300000);
     if (err)
-        *err = p.readAllStandardError();
-    return p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
+        *err = r.err;
+    return r.code;
 }
 
 void TestFitRig::identifiesAndPredictsHeldOut()

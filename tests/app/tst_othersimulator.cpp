@@ -13,6 +13,8 @@
 // CSV predictions are matched to the simulator's own interferometer points. Two rows use
 // `--wide` (coarser grid, a housing body, drifting sensors and interferometer, other rates).
 
+#include "../support/CliRunner.h"
+
 #include <QDir>
 #include <QElapsedTimer>
 #include <QFile>
@@ -70,10 +72,7 @@ private slots:
     void diagnoseForeignRecordings();
 
 private:
-    struct Result {
-        int code = -1;
-        QByteArray out, err;
-    };
+    using Result = clirunner::Result;
     Result run(const QString &program, const QStringList &args, int timeout_ms);
     Result simulate(const QStringList &args) { return run(m_python, QStringList{m_script} + args, 120000); }
     QTemporaryDir m_dir;
@@ -82,17 +81,7 @@ private:
 
 TestOtherSimulator::Result TestOtherSimulator::run(const QString &program, const QStringList &args, int timeout_ms)
 {
-    QProcess p;
-    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-    env.insert(QStringLiteral("XDG_DATA_HOME"), m_dir.filePath(QStringLiteral("data"))); // never the user's database
-    p.setProcessEnvironment(env);
-    p.start(program, args);
-    if (!p.waitForFinished(timeout_ms)) {
-        p.kill();
-        p.waitForFinished();
-        return {};
-    }
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(), p.readAllStandardError()};
+    return clirunner::runProgram(program, args, m_dir.filePath(QStringLiteral("data")), timeout_ms); // never the user's database
 }
 
 void TestOtherSimulator::initTestCase()

@@ -11,6 +11,8 @@
 // (H:MM:SS) and DRIFTLAB_PRESET_BASELINE_PAIRS (default 10) change them, e.g. 4:00:00 / 3:00:00
 // as in the report.
 
+#include "../support/CliRunner.h"
+
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QProcess>
@@ -39,10 +41,7 @@ private slots:
     void presetPairs();
 
 private:
-    struct Result {
-        int code = -1;
-        QByteArray out, err;
-    };
+    using Result = clirunner::Result;
     Result run(const QStringList &args);
     qint64 record(const QString &db, const QString &preset, int seed, const QString &duration);
     QTemporaryDir m_dir;
@@ -50,17 +49,7 @@ private:
 
 TestRigPresets::Result TestRigPresets::run(const QStringList &args)
 {
-    QProcess p;
-    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-    env.insert(QStringLiteral("XDG_DATA_HOME"), m_dir.filePath(QStringLiteral("data"))); // never the user's database
-    p.setProcessEnvironment(env);
-    p.start(QStringLiteral(DRIFTLAB_CLI), args);
-    if (!p.waitForFinished(600000)) {
-        p.kill();
-        p.waitForFinished();
-        return {};
-    }
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(), p.readAllStandardError()};
+    return clirunner::run(args, m_dir.filePath(QStringLiteral("data")), 600000); // never the user's database
 }
 
 void TestRigPresets::initTestCase()

@@ -5,6 +5,8 @@
 // with the same headings and vector (SVG) figures; page 1 renders (pdftoppm); a lab template
 // changes lab name and headings; bad input exits 2 and leaves no file (and an old one intact).
 
+#include "../support/CliRunner.h"
+
 #include "SessionStore.h"
 
 #include <QImage>
@@ -31,10 +33,7 @@ private slots:
     void combinedDiagnosisListsItsSteps(); // last: it stores a newer diagnosis
 
 private:
-    struct Result {
-        int code = -1;
-        QByteArray out, err;
-    };
+    using Result = clirunner::Result;
     Result run(const QString &program, const QStringList &args);
     Result cli(const QStringList &args) { return run(QStringLiteral(DRIFTLAB_CLI), args); }
     QString pdfText(const QString &pdf);
@@ -48,11 +47,7 @@ private:
 
 TestReportCli::Result TestReportCli::run(const QString &program, const QStringList &args)
 {
-    QProcess p;
-    p.start(program, args);
-    if (!p.waitForFinished(120000))
-        return {};
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(), p.readAllStandardError()};
+    return clirunner::runProgram(program, args, QString(), 120000);
 }
 
 QString TestReportCli::pdfText(const QString &pdf)

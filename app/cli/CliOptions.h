@@ -1,0 +1,23 @@
+#pragma once
+// The options every driftlab-cli command shares, declared in one place so that they have
+// one spelling and one help text everywhere: --db, --json, --force and --out.
+
+#include <QCommandLineOption>
+#include <QString>
+
+namespace driftlab {
+
+class CliOptions {
+public:
+    // --db FILE: a session database file or a central store (postgresql://...); the
+    // default is driftlab.sqlite in the user's data directory.
+    static QCommandLineOption db();
+    // --json FILE: the command's result as JSON, '-' for standard output.
+    static QCommandLineOption json();
+    // --force: overwrite existing outputs and write outputs above the size bound.
+    static QCommandLineOption force();
+    // --out VALUE; `what` names what is written there ("Output file: .png, .svg or .pdf.").
+    static QCommandLineOption out(const QString &what, const QString &valueName = QStringLiteral("file"));
+};
+
+} // namespace driftlab
