@@ -7,6 +7,7 @@
 #include "MeasurementRunDialog.h"
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
+#include "Workbench.h"
 
 #include <QComboBox>
 #include <QDir>
@@ -173,6 +174,38 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
         dialog->show();
     });
     updateButtons();
+}
+
+AcquisitionPanel::AcquisitionPanel(Workbench *workbench, QWidget *parent) : AcquisitionPanel(parent)
+{
+    connect(workbench, &Workbench::storeChanged, this, [this, workbench](SessionStore *store) {
+        if (!store)
+            return;
+        // A central store is for review: recordings keep going to the local database.
+        if (!workbench->localPath().isEmpty())
+            setDatabasePath(workbench->localPath());
+        if (!recording())
+            clearView();
+    });
+    connect(this, &AcquisitionPanel::recordingStarted, workbench,
+            [this, workbench](qint64 id) { workbench->recordingChanged(m_dbPath, id); });
+    connect(this, &AcquisitionPanel::recordingStopped, workbench,
+            [this, workbench](qint64 id) { workbench->recordingChanged(m_dbPath, id); });
+    workbench->addGuard(this, [this, workbench](qint64 id) {
+        if (id != 0 && recording() && id == m_session && QFileInfo(m_dbPath).absoluteFilePath() == workbench->localPath())
+            return tr("Session %1 is being recorded; stop the recording first").arg(id);
+        return QString();
+    });
+}
+
+void AcquisitionPanel::clearView()
+{
+    m_session = 0;
+    m_devices->setRowCount(0);
+    m_plot->clearCurves();
+    m_plot->replot();
+    m_message->clear();
+    m_elapsed->setText(tr("not recording"));
 }
 
 AcquisitionPanel::~AcquisitionPanel()
