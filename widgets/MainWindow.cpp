@@ -6,6 +6,7 @@
 #include "CompensationPanel.h"
 #include "DiagnosisPanel.h"
 #include "ErrorSurface3D.h"
+#include "HelpBrowser.h"
 #include "ModelExportDialog.h"
 #include "ModelsPanel.h"
 #include "PlotExporter.h"
@@ -14,6 +15,7 @@
 #include "SessionBrowser.h"
 #include "SessionStore.h"
 #include "WheelGuard.h"
+#include "WelcomePage.h"
 #include "Workbench.h"
 
 #include <QApplication>
@@ -35,7 +37,11 @@
 #include <QScrollArea>
 #include <QSettings>
 #include <QSplitter>
+#include <QStackedWidget>
+#include <QStandardPaths>
 #include <QStatusBar>
+#include <QTemporaryDir>
+#include <QDirIterator>
 #include <QTabWidget>
 #include <QUrl>
 
@@ -61,6 +67,8 @@ MainWindow::MainWindow(QWidget *parent)
       m_workbench(new Workbench(this)),
       m_actions(new SessionActions(m_workbench, this)),
       m_views(new QTabWidget(this)),
+      m_sessionPage(new QStackedWidget(this)),
+      m_welcome(new WelcomePage(this)),
       m_browser(new SessionBrowser(this)),
       m_split(new QSplitter(this)),
       m_workspace(new ReviewWorkspace(this)),
@@ -83,7 +91,10 @@ MainWindow::MainWindow(QWidget *parent)
     // and Analysis docks at full size (the docks keep their controls and tables).
     m_views->setObjectName(QStringLiteral("CentralViews"));
     m_views->setDocumentMode(true);
-    m_views->addTab(m_split, tr("Session"));
+    // A database without sessions shows the ways to begin instead of empty plots.
+    m_sessionPage->addWidget(m_welcome);
+    m_sessionPage->addWidget(m_split);
+    m_views->addTab(m_sessionPage, tr("Session"));
     m_views->addTab(m_models->resultsView(), tr("Model fit"));
     m_diagnosis->resultsView()->setOrientation(Qt::Horizontal);
     m_views->addTab(m_diagnosis->resultsView(), tr("Diagnosis"));
@@ -144,6 +155,12 @@ MainWindow::MainWindow(QWidget *parent)
     connect(m_workbench, &Workbench::message, this, &MainWindow::say);
     connect(m_workbench, &Workbench::failed, this, &MainWindow::say);
     connect(m_acquisition, &AcquisitionPanel::recordingStopped, this, &MainWindow::onRecordingStopped);
+    connect(m_welcome, &WelcomePage::recordSimulated, this, &MainWindow::recordSimulatedSession);
+    connect(m_welcome, &WelcomePage::openExample, this, &MainWindow::openExampleBundle);
+    connect(m_welcome, &WelcomePage::importCsv, this, [this] {
+        if (ensureDatabase())
+            m_actions->importCsv();
+    });
     connect(m_browser, &SessionBrowser::sessionSelected, m_workbench, &Workbench::setCurrentSession);
     connect(m_browser, &SessionBrowser::channelsChanged, this, &MainWindow::showChannels);
 
@@ -276,13 +293,15 @@ void MainWindow::onSessionsChanged()
 {
     const SessionStore *store = m_workbench->store();
     m_browser->setSessions(m_workbench->sessions());
+    m_welcome->setDatabase(store ? store->path() : QString());
+    m_sessionPage->setCurrentWidget(m_workbench->sessions().isEmpty() ? static_cast<QWidget *>(m_welcome) : m_split);
     m_summary->setText(store ? tr("%1: %n session(s)", nullptr, m_workbench->sessions().size()).arg(store->path())
                              : tr("no database open"));
 }
 
 void MainWindow::onSessionChanged(qint64 sessionId)
 {
-    m_views->setCurrentWidget(m_split);
+    m_views->setCurrentWidget(m_sessionPage);
     const SessionStore *store = m_workbench->store();
     if (!store || sessionId == 0) {
         m_workspace->clear();
@@ -309,6 +328,61 @@ void MainWindow::onRecordingStopped(qint64 sessionId)
     QString message;
     if (CentralStoreActions::autoPush())
         say(m_central->afterRecording(sessionId, &message) ? message : tr("Automatic push: %1").arg(message));
+}
+
+bool MainWindow::ensureDatabase()
+{
+    if (m_workbench->store())
+        return true;
+    QString path = m_acquisition->targetDatabase();
+    if (path.isEmpty())
+        path = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + QStringLiteral("/driftlab.sqlite");
+    return QFileInfo::exists(path) ? m_workbench->openDatabase(path) : m_workbench->newDatabase(path);
+}
+
+bool MainWindow::recordSimulatedSession()
+{
+    if (!ensureDatabase())
+        return false;
+    if (m_workbench->localPath().isEmpty()) {
+        m_workbench->reportError(tr("A central store is open: open a local database to record into"));
+        return false;
+    }
+    if (QDockWidget *d = dock(QStringLiteral("AcquisitionDock"))) {
+        d->show();
+        d->raise();
+    }
+    m_acquisition->setRunDetails(QString(), QString(), 600.0, tr("first simulated session"));
+    if (!m_acquisition->startRecording(QStringLiteral("baseline"), m_workbench->localPath(), 60.0)) {
+        m_workbench->reportError(m_acquisition->lastError());
+        return false;
+    }
+    return true;
+}
+
+bool MainWindow::openExampleBundle()
+{
+    if (!ensureDatabase())
+        return false;
+    // The example ships as a Qt resource: copied to a temporary folder, imported from there.
+    const QString root = QStringLiteral(":/bundles/bundles/example.bundle");
+    if (!QFileInfo(root).isDir()) {
+        m_workbench->reportError(tr("This build has no example bundle"));
+        return false;
+    }
+    QTemporaryDir tmp;
+    const QString dir = tmp.filePath(QStringLiteral("example.bundle"));
+    QDirIterator it(root, QDir::Files, QDirIterator::Subdirectories);
+    while (it.hasNext()) {
+        const QString from = it.next();
+        const QString to = dir + from.mid(root.size());
+        QDir().mkpath(QFileInfo(to).absolutePath());
+        if (!QFile::copy(from, to)) {
+            m_workbench->reportError(tr("Cannot copy the example bundle to %1").arg(to));
+            return false;
+        }
+    }
+    return m_actions->importBundle(dir);
 }
 
 void MainWindow::showChannels(const QVector<qint64> &channelIds)
@@ -385,13 +459,14 @@ void MainWindow::showAbout()
 
 void MainWindow::showDocumentation()
 {
-    if (!m_docs.isEmpty() && QFileInfo(m_docs).isDir() && QDesktopServices::openUrl(QUrl::fromLocalFile(m_docs)))
-        return;
-    QMessageBox::information(this, tr("Documentation"),
-                             tr("The documentation is the docs/ folder of the DriftLab sources%1: README.md, "
-                                "docs/recording-bundle.md (the file format), docs/acquisition.md, docs/review.md, "
-                                "docs/models.md, docs/diagnosis.md.")
-                                 .arg(m_docs.isEmpty() ? QString() : QStringLiteral(" (%1)").arg(m_docs)));
+    // The documentation shipped in the application (Qt resources, :/docs).
+    auto *help = findChild<HelpBrowser *>();
+    if (!help) {
+        help = new HelpBrowser(m_docs, this);
+        help->setObjectName(QStringLiteral("HelpBrowser"));
+    }
+    help->show();
+    help->raise();
 }
 
 QImage MainWindow::snapshot()

@@ -15,6 +15,7 @@ class QAction;
 class QLabel;
 class QMenu;
 class QSplitter;
+class QStackedWidget;
 class QTabWidget;
 
 namespace driftlab {
@@ -29,6 +30,7 @@ class ReviewWorkspace;
 class SessionActions;
 class SessionBrowser;
 class TimeSeriesPlot;
+class WelcomePage;
 class Workbench;
 
 class MainWindow : public QMainWindow {
@@ -40,6 +42,11 @@ public:
     Workbench *workbench() const { return m_workbench; }
     SessionActions *sessionActions() const { return m_actions; }
     void showChannels(const QVector<qint64> &channelIds);
+    // The first-start offers (WelcomePage): open the acquisition target database when none is
+    // open, then record 10 min of the simulated baseline rig, or import the example bundle.
+    bool recordSimulatedSession();
+    bool openExampleBundle();
+    WelcomePage *welcome() const { return m_welcome; }
     // Shows a second session beside the first (0 closes the comparison).
     void compareWith(qint64 sessionId);
 
@@ -53,7 +60,7 @@ public:
     QDockWidget *dock(const QString &objectName) const;
     // View > Reset layout: the docks as on the first start, hidden ones hidden.
     void resetLayout();
-    // Folder opened by Help > Documentation.
+    // Where Help > Documentation finds the .md files (default: the resources, :/docs).
     void setDocumentationDirectory(const QString &dir) { m_docs = dir; }
 
     TimeSeriesPlot *plot() const;
@@ -90,10 +97,13 @@ private:
     void onSessionsChanged();
     void onRecordingStopped(qint64 sessionId);
     void say(const QString &message);
+    bool ensureDatabase();
 
     Workbench *m_workbench;
     SessionActions *m_actions;
     QTabWidget *m_views;
+    QStackedWidget *m_sessionPage;
+    WelcomePage *m_welcome;
     SessionBrowser *m_browser;
     QSplitter *m_split;
     ReviewWorkspace *m_workspace;
@@ -109,7 +119,7 @@ private:
     CentralStoreActions *m_central = nullptr;
     QAction *m_viewDocksEnd = nullptr;
     QByteArray m_defaultLayout;
-    QString m_docs;
+    QString m_docs = QStringLiteral(":/docs");
 };
 
 } // namespace driftlab

@@ -28,6 +28,7 @@ enum Tab { TimeSeriesTab, SurfaceTab, ProfilesTab, HistoriesTab, TemperatureTab,
 
 ReviewWorkspace::ReviewWorkspace(QWidget *parent)
     : QWidget(parent),
+      m_heading(new QLabel(this)),
       m_tabs(new QTabWidget(this)),
       m_timeSeries(new TimeSeriesPlot(this)),
       m_surface(new ErrorSurfacePlot(this)),
@@ -42,6 +43,11 @@ ReviewWorkspace::ReviewWorkspace(QWidget *parent)
 {
     auto *layout = new QVBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
+    m_heading->setObjectName(QStringLiteral("SessionHeading"));
+    m_heading->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    m_heading->setContentsMargins(4, 2, 4, 0);
+    m_heading->setText(tr("No session"));
+    layout->addWidget(m_heading);
     layout->addWidget(m_tabs);
     auto *tempLayout = new QVBoxLayout(m_temperaturePage);
     auto *pickers = new QHBoxLayout();
@@ -73,6 +79,11 @@ ReviewWorkspace::ReviewWorkspace(QWidget *parent)
 
 ReviewWorkspace::~ReviewWorkspace() = default;
 
+QString ReviewWorkspace::heading() const
+{
+    return m_heading->text();
+}
+
 void ReviewWorkspace::clear()
 {
     m_store = nullptr;
@@ -80,6 +91,7 @@ void ReviewWorkspace::clear()
     m_data.reset();
     m_hasErrors = false;
     m_timeSeries->clearCurves();
+    m_heading->setText(tr("No session"));
     for (int t = SurfaceTab; t <= InfraredTab; ++t)
         m_tabs->setTabEnabled(t, false);
 }
@@ -91,6 +103,12 @@ void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
     m_sessionId = sessionId;
     m_data = data;
     m_timeSeries->setTitle(data->info().name);
+    const SessionInfo &info = data->info();
+    m_heading->setText(tr("<b>Session #%1</b>&nbsp;&nbsp;%2&nbsp;&nbsp;<span style='color:#555'>started %3%4%5</span>")
+                           .arg(sessionId)
+                           .arg(info.name.toHtmlEscaped(), info.started.toHtmlEscaped(),
+                                info.operatorName.isEmpty() ? QString() : tr(", operator %1").arg(info.operatorName.toHtmlEscaped()),
+                                info.complete ? QString() : tr(", incomplete")));
     m_timeSeries->setEvents(store->events(sessionId));
 
     m_hasErrors = data->hasInterferometer();
@@ -180,8 +198,8 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
             const SampleBlock block = m_store->samples(c.id);
             m_timeSeries->addCurve(c.key, block.t, block.v, right);
         }
-        if (right && !rightKinds.contains(c.kind))
-            rightKinds += (rightKinds.isEmpty() ? QString() : QStringLiteral(", ")) + c.kind;
+        if (right && !rightKinds.contains(UnitLabels::quantity(c.kind)))
+            rightKinds += (rightKinds.isEmpty() ? QString() : QStringLiteral(", ")) + UnitLabels::quantity(c.kind);
         QString &units = right ? rightUnits : leftUnits;
         const QString unit = UnitLabels::display(c.unit);
         if (!units.contains(unit))

@@ -10,6 +10,7 @@
 #include <memory>
 
 class QComboBox;
+class QLabel;
 class QTabWidget;
 class QwtPlot;
 
@@ -51,6 +52,9 @@ public:
     TimeSeriesPlot *timeSeriesPlot() const { return m_timeSeries; }
     ErrorSurfacePlot *errorSurface() const { return m_surface; }
     InfraredPanel *infraredPanel() const { return m_infrared; }
+    // The line above the tabs naming the session ("#3  X axis warm-up, 2026-11-20 08:14"):
+    // beside a comparison, it says which session is which.
+    QString heading() const;
 
 private:
     void updateTemperatureView();
@@ -60,6 +64,7 @@ private:
     qint64 m_sessionId = 0;
     std::shared_ptr<SessionReviewData> m_data;
     bool m_hasErrors = false;
+    QLabel *m_heading;
     QTabWidget *m_tabs;
     TimeSeriesPlot *m_timeSeries;
     ErrorSurfacePlot *m_surface;

@@ -3,7 +3,9 @@
 #include "DeviceTestRunner.h"
 #include "ModbusPreset.h"
 #include "RealDevices.h"
+#include "RangeCodeDelegate.h"
 #include "RigConfigLoader.h"
+#include "ScreenFit.h"
 
 #include <QComboBox>
 #include <QDialogButtonBox>
@@ -19,6 +21,7 @@
 #include <QLineEdit>
 #include <QListWidget>
 #include <QMenu>
+#include <QMessageBox>
 #include <QPlainTextEdit>
 #include <QPushButton>
 #include <QSaveFile>
@@ -204,7 +207,18 @@ void RigSetupDialog::buildUi()
     layout->addLayout(top);
     layout->addLayout(body, 1);
     layout->addWidget(buttons);
-    resize(1400, 760);
+    ScreenFit::resize(this, QSize(1400, 760));
+    // Range codes from the module preset's list, not free hex text.
+    m_channels->setItemDelegateForColumn(ColRange, new RangeCodeDelegate([this] {
+        try {
+            const QString preset = m_preset->currentData().toString();
+            return preset.isEmpty() ? QVector<ModbusRange>() : ModbusPreset::load(preset).ranges;
+        } catch (const std::exception &) {
+            return QVector<ModbusRange>();
+        }
+    }, this));
+    m_testState->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    m_testState->setSizePolicy(QSizePolicy::Preferred, QSizePolicy::MinimumExpanding);
 
     connect(m_list, &QListWidget::currentRowChanged, this, &RigSetupDialog::selectDevice);
     connect(remove, &QPushButton::clicked, this, [this] { removeDevice(m_current); });
@@ -490,6 +504,24 @@ void RigSetupDialog::setChannelCell(int row, int column, const QString &text)
         item->setText(text); // itemChanged -> formEdited
 }
 
+bool RigSetupDialog::unsaved() const
+{
+    return !m_devices.isEmpty() && QJsonDocument(RigConfigLoader::toJson(rig())).toJson(QJsonDocument::Compact) != m_clean;
+}
+
+void RigSetupDialog::reject()
+{
+    if (unsaved()) {
+        const auto answer = QMessageBox::question(
+            this, tr("Discard the rig set-up?"),
+            tr("%n device(s) set up here are not saved in a rig file. Discard them?", nullptr, m_devices.size()),
+            QMessageBox::Discard | QMessageBox::Cancel, QMessageBox::Cancel);
+        if (answer != QMessageBox::Discard)
+            return;
+    }
+    QDialog::reject();
+}
+
 RigConfig RigSetupDialog::rig() const
 {
     RigConfig c = m_base;
@@ -563,6 +595,7 @@ bool RigSetupDialog::saveTo(const QString &path)
         return false;
     }
     m_savedPath = path;
+    m_clean = QJsonDocument(RigConfigLoader::toJson(rig())).toJson(QJsonDocument::Compact);
     return true;
 }
 
@@ -578,6 +611,7 @@ bool RigSetupDialog::loadFrom(const QString &path)
         m_current = -1;
         refreshList();
         selectDevice(m_devices.isEmpty() ? -1 : 0);
+        m_clean = QJsonDocument(RigConfigLoader::toJson(rig())).toJson(QJsonDocument::Compact);
         return true;
     } catch (const std::exception &e) {
         m_validation = QString::fromUtf8(e.what());

@@ -126,7 +126,6 @@ int main(int argc, char **argv)
         path = QDir(QStandardPaths::writableLocation(QStandardPaths::AppDataLocation)).filePath(QStringLiteral("driftlab.sqlite"));
 
     MainWindow window;
-    window.setDocumentationDirectory(QStringLiteral(DRIFTLAB_DOCS_DIR));
     QObject::connect(window.reportAction(), &QAction::triggered, &window, [&window] {
         Workbench *bench = window.workbench();
         if (!bench->store() || bench->currentSession() <= 0) {

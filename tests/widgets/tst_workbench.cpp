@@ -9,9 +9,11 @@
 #include "SessionBrowser.h"
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
+#include "WelcomePage.h"
 #include "Workbench.h"
 
 #include <QListWidget>
+#include <QPushButton>
 #include <QUndoStack>
 #include <QSettings>
 #include <QSignalSpy>
@@ -29,6 +31,7 @@ class TestWorkbench : public QObject {
 private slots:
     void initTestCase();
     void recordingIsListedWhileItRuns();
+    void welcomeOffersAFirstSession();
     void guardsKeepTheDatabase();
     void signalsOnOpen();
     void backgroundJobRunsOneAtATime();
@@ -79,6 +82,30 @@ void TestWorkbench::recordingIsListedWhileItRuns()
     QCOMPARE(list->count(), 0);
     QCOMPARE(bench->currentSession(), qint64(0));
     QVERIFY2(window.storeSummary().contains(QStringLiteral("0 sessions")), qPrintable(window.storeSummary()));
+}
+
+void TestWorkbench::welcomeOffersAFirstSession()
+{
+    const QString db = m_dir.filePath(QStringLiteral("welcome.sqlite"));
+    MainWindow window;
+    window.resize(1366, 768);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QVERIFY(window.welcome()->isVisible()); // nothing open
+    QVERIFY(window.workbench()->newDatabase(db));
+    QVERIFY(window.welcome()->isVisible()); // open, but empty
+    window.welcome()->recordButton()->click();
+    AcquisitionPanel *acq = window.acquisition();
+    QVERIFY2(acq->recording(), qPrintable(window.workbench()->lastError()));
+    QCOMPARE(acq->databasePath(), QFileInfo(db).absoluteFilePath());
+    QVERIFY(!window.welcome()->isVisible());
+    QVERIFY(window.workspace()->isVisible());
+    QCOMPARE(window.browser()->sessionList()->count(), 1);
+    acq->stopRecording();
+    QCOMPARE(window.workbench()->sessions().size(), 1);
+    // The example bundle is a resource of the application, not of this test: said so.
+    QVERIFY(!window.openExampleBundle());
+    QVERIFY2(window.workbench()->lastError().contains(QStringLiteral("example bundle")), qPrintable(window.workbench()->lastError()));
 }
 
 void TestWorkbench::guardsKeepTheDatabase()
