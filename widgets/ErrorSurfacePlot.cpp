@@ -1,6 +1,7 @@
 #include "ErrorSurfacePlot.h"
 
 #include "ElapsedTimeAxis.h"
+#include "PlotInteraction.h"
 
 #include "ContourSpectrogram.h"
 #include "ThermalErrorTable.h"
@@ -112,6 +113,7 @@ ErrorSurfacePlot::ErrorSurfacePlot(QWidget *parent) : QwtPlot(parent), m_spectro
     enableAxis(QwtPlot::yRight);
     axisWidget(QwtPlot::yRight)->setColorBarEnabled(true);
     plotLayout()->setAlignCanvasToScales(true);
+    PlotInteraction::install(this, nullptr); // context menu (image), per-axis wheel zoom
 }
 
 ErrorSurfacePlot::~ErrorSurfacePlot() = default;

@@ -1,6 +1,7 @@
 #include "TimeSeriesPlot.h"
 
 #include "ElapsedTimeAxis.h"
+#include "PlotInteraction.h"
 #include "PlotReadout.h"
 
 #include <qwt_legend.h>
@@ -64,6 +65,7 @@ TimeSeriesPlot::TimeSeriesPlot(QWidget *parent) : QwtPlot(parent), m_refresh(new
     auto *panner = new QwtPlotPanner(canvas());
     panner->setMouseButton(Qt::MiddleButton);
     new QwtPlotMagnifier(canvas());
+    PlotInteraction::install(this, m_zoomer); // context menu, per-axis wheel zoom
 }
 
 void TimeSeriesPlot::clearCurves()

@@ -3,11 +3,14 @@
 
 #include "ElapsedTimeAxis.h"
 #include "ErrorSurfacePlot.h"
+#include "PlotInteraction.h"
 #include "PlotReadout.h"
 #include "TimeSeriesPlot.h"
 
 #include <qwt_scale_div.h>
 
+#include <QMenu>
+#include <QTemporaryDir>
 #include <QtTest>
 
 using namespace driftlab;
@@ -20,6 +23,7 @@ private slots:
     void ticksOnTheClock();
     void everyTimeAxisUsesIt();
     void readoutHasUnits();
+    void contextMenuAndVisibleData();
 };
 
 void TestElapsedTimeAxis::formats()
@@ -106,6 +110,53 @@ void TestElapsedTimeAxis::readoutHasUnits()
     const QString text = readout->readout(QPointF(6727.2336, 25.4973));
     QVERIFY2(text.startsWith(QStringLiteral("1:52:07")), qPrintable(text));
     QVERIFY2(text.contains(QStringLiteral("°C")) && text.contains(QStringLiteral("µm")), qPrintable(text));
+}
+
+void TestElapsedTimeAxis::contextMenuAndVisibleData()
+{
+    TimeSeriesPlot plot;
+    plot.resize(600, 400);
+    plot.setAxisTitles(QStringLiteral("temperature (°C)"), QString());
+    QVector<double> t, v;
+    for (int i = 0; i <= 100; ++i) {
+        t << 60.0 * i; // one point a minute over 100 minutes
+        v << 20.0 + 0.01 * i;
+    }
+    plot.addCurve(QStringLiteral("T_amb"), t, v, false);
+    plot.zoomToData();
+    plot.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&plot));
+    auto *interaction = plot.findChild<PlotInteraction *>();
+    QVERIFY(interaction);
+    std::unique_ptr<QMenu> menu(interaction->createMenu(&plot));
+    QStringList entries;
+    for (QAction *a : menu->actions())
+        if (!a->isSeparator())
+            entries << a->text();
+    QCOMPARE(entries, QStringList({QStringLiteral("Undo zoom"), QStringLiteral("Reset zoom"), QStringLiteral("Copy image"),
+                                   QStringLiteral("Save image (PNG, SVG, PDF)..."), QStringLiteral("Export visible data as CSV...")}));
+    // Only the visible range is exported: 10:00 to 20:00 holds the points of minutes 10..20.
+    plot.setAxisScale(QwtPlot::xBottom, 600.0, 1200.0);
+    plot.replot();
+    QTemporaryDir dir;
+    QString error;
+    int rows = 0;
+    QVERIFY2(PlotInteraction::exportVisibleData(plot, dir.filePath(QStringLiteral("v.csv")), &error, &rows), qPrintable(error));
+    QCOMPARE(rows, 11);
+    QFile f(dir.filePath(QStringLiteral("v.csv")));
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QStringList lines = QString::fromUtf8(f.readAll()).split(QLatin1Char('\n'), Qt::SkipEmptyParts);
+    QCOMPARE(lines.size(), 12);
+    QCOMPARE(lines.at(0), QStringLiteral("curve,elapsed time (h:mm:ss),value,temperature (°C)").section(QLatin1Char(','), 0, 2) +
+                              QStringLiteral(",axis"));
+    QCOMPARE(lines.at(1), QStringLiteral("T_amb,600,20.1,temperature (°C)"));
+    // Wheel zoom of one axis: the other keeps its scale.
+    const QwtScaleDiv before = plot.axisScaleDiv(QwtPlot::yLeft);
+    PlotInteraction::zoomAxis(plot, QwtPlot::xBottom, 0.5, 900.0);
+    QCOMPARE(plot.axisScaleDiv(QwtPlot::xBottom).lowerBound(), 750.0);
+    QCOMPARE(plot.axisScaleDiv(QwtPlot::xBottom).upperBound(), 1050.0);
+    QCOMPARE(plot.axisScaleDiv(QwtPlot::yLeft).lowerBound(), before.lowerBound());
+    QCOMPARE(plot.axisScaleDiv(QwtPlot::yLeft).upperBound(), before.upperBound());
 }
 
 QTEST_MAIN(TestElapsedTimeAxis)
