@@ -256,9 +256,13 @@ QWidget *AnalysisPanel::resultsView() const
 
 void AnalysisPanel::setBusy(bool busy)
 {
+    // Cancel enabled (and focused) before the buttons go: the focus must not wander down the
+    // dock and scroll progress and Cancel out of view.
+    m_cancel->setEnabled(busy);
+    if (busy && (m_select->hasFocus() || m_fit->hasFocus()))
+        m_cancel->setFocus();
     m_select->setEnabled(!busy && m_store);
     m_fit->setEnabled(!busy && m_store);
-    m_cancel->setEnabled(busy);
     m_session->setEnabled(!busy);
 }
 

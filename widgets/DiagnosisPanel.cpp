@@ -196,8 +196,12 @@ bool DiagnosisPanel::start(qint64 trainSession, qint64 validationSession)
     options.identification.simulator.grid.dt_s = 20.0;
     options.identification.simulator.driveSample_s = 1.0;
     options.identification.maxIterations = 60;
-    m_run->setEnabled(false);
+    // Cancel first, and the focus with it: a disabled focused button hands the focus down
+    // the chain, and the dock's scroll area followed it away from progress and Cancel.
     m_cancel->setEnabled(true);
+    if (m_run->hasFocus())
+        m_cancel->setFocus();
+    m_run->setEnabled(false);
     m_progress->setValue(0);
     m_answer->clear();
     m_candidates->setRowCount(0);

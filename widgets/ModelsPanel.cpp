@@ -177,8 +177,12 @@ bool ModelsPanel::startFit(const QVector<qint64> &training, qint64 heldOut)
         m_lastError = QString::fromStdString(e.what());
         return false;
     }
-    m_fit->setEnabled(false);
+    // Cancel first, and the focus with it: a disabled focused button hands the focus down
+    // the chain, and the dock's scroll area followed it away from progress and Cancel.
     m_cancel->setEnabled(true);
+    if (m_fit->hasFocus())
+        m_cancel->setFocus();
+    m_fit->setEnabled(false);
     m_progress->setRange(0, 0); // busy until the first iteration
     m_status->setText(tr("Simulating unit responses and fitting..."));
     IdentificationOptions options;
