@@ -178,13 +178,33 @@ QVector<qint64> ReviewWorkspace::defaultChannels() const
 void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
 {
     m_timeSeries->clearCurves();
+    m_leftOut.clear();
     if (!m_store || !m_data)
         return;
-    QString leftUnits, rightUnits, rightKinds;
-    for (const ChannelInfo &c : m_data->channels()) {
-        if (!channelIds.contains(c.id))
+    // One unit per value axis (an axis reading "(µm, mm)" is no scale): temperatures on the
+    // left, the first other unit on the right (on the left when no temperature is shown);
+    // channels of a third unit are left out and the plot's footer says so.
+    QVector<ChannelInfo> chosen;
+    for (const ChannelInfo &c : m_data->channels())
+        if (channelIds.contains(c.id))
+            chosen.push_back(c);
+    QString leftUnit, rightUnit;
+    for (const ChannelInfo &c : chosen)
+        if (c.kind == QLatin1String("temperature") && leftUnit.isEmpty())
+            leftUnit = c.unit;
+    for (const ChannelInfo &c : chosen) {
+        if (leftUnit.isEmpty())
+            leftUnit = c.unit;
+        else if (rightUnit.isEmpty() && c.unit != leftUnit)
+            rightUnit = c.unit;
+    }
+    QStringList leftNames, rightNames, leftOut;
+    for (const ChannelInfo &c : chosen) {
+        const bool right = c.unit == rightUnit && c.unit != leftUnit;
+        if (c.unit != leftUnit && !right) {
+            leftOut << QStringLiteral("%1 (%2)").arg(c.key, UnitLabels::display(c.unit));
             continue;
-        const bool right = c.kind != QLatin1String("temperature");
+        }
         if (m_store->sampleCount(c.id) > kRawCurveLimit) {
             const SessionStore *store = m_store;
             const qint64 id = c.id;
@@ -198,16 +218,18 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
             const SampleBlock block = m_store->samples(c.id);
             m_timeSeries->addCurve(c.key, block.t, block.v, right);
         }
-        if (right && !rightKinds.contains(UnitLabels::quantity(c.kind)))
-            rightKinds += (rightKinds.isEmpty() ? QString() : QStringLiteral(", ")) + UnitLabels::quantity(c.kind);
-        QString &units = right ? rightUnits : leftUnits;
-        const QString unit = UnitLabels::display(c.unit);
-        if (!units.contains(unit))
-            units += (units.isEmpty() ? QString() : QStringLiteral(", ")) + unit;
+        QStringList &names = right ? rightNames : leftNames;
+        if (!names.contains(UnitLabels::quantity(c.kind)))
+            names << UnitLabels::quantity(c.kind);
     }
-    m_timeSeries->enableAxis(QwtPlot::yRight, !rightUnits.isEmpty());
-    m_timeSeries->setAxisTitles(leftUnits.isEmpty() ? QString() : tr("temperature (%1)").arg(leftUnits),
-                                rightUnits.isEmpty() ? QString() : QStringLiteral("%1 (%2)").arg(rightKinds, rightUnits));
+    if (!leftOut.isEmpty())
+        m_leftOut = tr("Not drawn: %1 (a third unit; a plot has two value axes)").arg(leftOut.join(QStringLiteral(", ")));
+    m_timeSeries->setFooter(m_leftOut);
+    m_timeSeries->enableAxis(QwtPlot::yRight, !rightUnit.isEmpty());
+    auto title = [](const QStringList &names, const QString &unit) {
+        return unit.isEmpty() ? QString() : QStringLiteral("%1 (%2)").arg(names.join(QStringLiteral(", ")), UnitLabels::display(unit));
+    };
+    m_timeSeries->setAxisTitles(title(leftNames, leftUnit), title(rightNames, rightUnit));
     m_timeSeries->zoomToData();
 }
 

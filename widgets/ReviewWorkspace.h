@@ -37,6 +37,8 @@ public:
     // Plots the channels (by id) in the time-series view.
     void showChannels(const QVector<qint64> &channelIds);
     QVector<qint64> defaultChannels() const;
+    // Channels showChannels() left out because their unit needed a third axis ("" for none).
+    QString leftOutChannels() const { return m_leftOut; }
 
     // Export names: timeseries, error-surface, error-position, error-time,
     // error-temperature, ir-profile, ir-surface.
@@ -77,6 +79,7 @@ private:
     QWidget *m_3dPage;
     ErrorSurface3D *m_3d = nullptr;
     InfraredPanel *m_infrared;
+    QString m_leftOut;
 };
 
 } // namespace driftlab

@@ -126,6 +126,19 @@ void TestMainWindow::channelSelectionChangesCurves()
     const QRectF bounds = x->boundingRect();
     QVERIFY(bounds.top() >= 0.0 - 1e-9);
     QVERIFY(bounds.bottom() <= 600.0 + 1e-9);
+
+    // One unit per value axis: with a temperature and the probe, position (mm) would make a
+    // third unit: left out, and said (the right axis read "(µm, mm)" before).
+    QVector<qint64> three{positionId};
+    for (const ChannelInfo &c : store.channels(m_session))
+        if (c.key == QLatin1String("T_amb") || c.key == QLatin1String("S1"))
+            three << c.id;
+    window.showChannels(three);
+    QCOMPARE(window.plot()->curves().size(), 2);
+    QVERIFY(!window.plot()->curve(QStringLiteral("X")));
+    QVERIFY2(window.workspace()->leftOutChannels().contains(QStringLiteral("X (mm)")), qPrintable(window.workspace()->leftOutChannels()));
+    QCOMPARE(window.plot()->axisTitle(QwtPlot::yLeft).text(), QStringLiteral("temperature (°C)"));
+    QCOMPARE(window.plot()->axisTitle(QwtPlot::yRight).text(), QStringLiteral("elongation (µm)"));
 }
 
 void TestMainWindow::reportsUnreadableDatabase()
