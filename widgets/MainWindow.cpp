@@ -35,6 +35,7 @@
 #include <QPainter>
 #include <QScreen>
 #include <QScrollArea>
+#include <QScrollBar>
 #include <QSettings>
 #include <QSplitter>
 #include <QStackedWidget>
@@ -208,6 +209,8 @@ QDockWidget *MainWindow::addPanelDock(const QString &title, const QString &objec
     scroll->setWidgetResizable(true);
     scroll->setFrameShape(QFrame::NoFrame);
     scroll->setWidget(panel);
+    // Never narrower than the panel's content: docks scroll vertically, not sideways.
+    scroll->setMinimumWidth(panel->minimumSizeHint().width() + scroll->verticalScrollBar()->sizeHint().width());
     dock->setWidget(scroll);
     addDockWidget(area, dock);
     QAction *toggle = dock->toggleViewAction();

@@ -114,6 +114,7 @@ void RigSetupDialog::buildUi()
 
     m_id = new QLineEdit(this);
     m_type = new QLabel(this);
+    m_type->setWordWrap(true); // long device descriptions widened the dialog past 1366 px
     m_preset = new QComboBox(this);
     m_preset->addItem(tr("(register map)"), QString());
     for (const QString &p : ModbusPreset::names())
@@ -168,9 +169,13 @@ void RigSetupDialog::buildUi()
     m_status->setWordWrap(true);
     auto *editor = new QVBoxLayout;
     editor->addLayout(form);
-    editor->addWidget(new QLabel(tr("Channels of the module (edit ids, ranges, roles, locations; the rest in the settings below)"), this));
+    auto *channelsLabel = new QLabel(tr("Channels of the module (edit ids, ranges, roles, locations; the rest in the settings below)"), this);
+    channelsLabel->setWordWrap(true);
+    editor->addWidget(channelsLabel);
     editor->addWidget(m_channels, 2);
-    editor->addWidget(new QLabel(tr("Settings (JSON, as in the rig file; see docs/acquisition.md)"), this));
+    auto *settingsLabel = new QLabel(tr("Settings (JSON, as in the rig file; see docs/acquisition.md)"), this);
+    settingsLabel->setWordWrap(true);
+    editor->addWidget(settingsLabel);
     editor->addWidget(m_json, 3);
     editor->addWidget(m_status);
 

@@ -12,6 +12,7 @@
 #include "ModelExportDialog.h"
 #include "RigConfig.h"
 #include "RigRecorder.h"
+#include "ReviewWorkspace.h"
 #include "RigSetupDialog.h"
 #include "ScreenFit.h"
 #include "SessionStore.h"
@@ -27,6 +28,7 @@
 #include <QSettings>
 #include <QTabWidget>
 #include <QTemporaryDir>
+#include <QTextBrowser>
 #include <QTextDocument>
 #include <QWheelEvent>
 #include <QtTest>
@@ -82,7 +84,7 @@ QStringList problems(QWidget *top)
         }
         if (auto *label = qobject_cast<QLabel *>(w)) {
             const QString text = plain(label);
-            if (text.trimmed().isEmpty() || label->pixmap())
+            if (text.trimmed().isEmpty() || !label->pixmap(Qt::ReturnByValue).isNull())
                 continue;
             const QRect c = label->contentsRect();
             if (label->wordWrap()) {
