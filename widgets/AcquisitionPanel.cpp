@@ -16,6 +16,7 @@
 #include <QDoubleSpinBox>
 #include <QFileDialog>
 #include <QFormLayout>
+#include <QGridLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QInputDialog>
@@ -108,11 +109,12 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     form->addRow(tr("Duration"), m_duration);
     form->addRow(tr("Notes"), m_notes);
     form->addRow(tr("Simulation speed"), m_speed);
-    auto *buttons = new QHBoxLayout;
-    for (QWidget *w : {static_cast<QWidget *>(m_start), static_cast<QWidget *>(m_pause), static_cast<QWidget *>(m_marker),
-                       static_cast<QWidget *>(m_stop)})
-        buttons->addWidget(w);
-    buttons->addStretch();
+    // Two rows of two: the dock stays narrow enough for a 1366-pixel screen beside the sessions.
+    auto *buttons = new QGridLayout;
+    buttons->addWidget(m_start, 0, 0);
+    buttons->addWidget(m_pause, 0, 1);
+    buttons->addWidget(m_marker, 1, 0);
+    buttons->addWidget(m_stop, 1, 1);
     auto *during = new QHBoxLayout; // what a running recording offers, and how far it is
     during->addWidget(m_run);
     during->addStretch();

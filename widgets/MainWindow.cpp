@@ -210,7 +210,8 @@ QDockWidget *MainWindow::addPanelDock(const QString &title, const QString &objec
     scroll->setFrameShape(QFrame::NoFrame);
     scroll->setWidget(panel);
     // Never narrower than the panel's content: docks scroll vertically, not sideways.
-    scroll->setMinimumWidth(panel->minimumSizeHint().width() + scroll->verticalScrollBar()->sizeHint().width());
+    // (Side docks at most 460 px: sessions + acquisition + the central views fit 1366 px.)
+    scroll->setMinimumWidth(std::min(460, panel->minimumSizeHint().width() + scroll->verticalScrollBar()->sizeHint().width()));
     dock->setWidget(scroll);
     addDockWidget(area, dock);
     QAction *toggle = dock->toggleViewAction();
