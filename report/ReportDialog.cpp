@@ -12,7 +12,9 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QScrollBar>
 #include <QTextBrowser>
+#include <QTextCursor>
 #include <QVBoxLayout>
 
 namespace driftlab {
@@ -65,6 +67,9 @@ bool ReportDialog::rebuild(const QString &templateFolder)
         m_built = true;
         m_templateFolder->setText(templateFolder);
         ReportWriter(m_document, m_template).fillPreview(*m_preview->document(), 480);
+        // The preview opens at the title, not where filling it left the cursor (the end).
+        m_preview->setTextCursor(QTextCursor(m_preview->document()));
+        m_preview->verticalScrollBar()->setValue(0);
         m_status->setText(tr("Report built in %1 s. The saved PDF and HTML hold the same content with vector figures.")
                               .arg(timer.elapsed() / 1000.0, 0, 'f', 1));
     } catch (const std::exception &e) {

@@ -7,6 +7,7 @@
 #include "MeasurementRunDialog.h"
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
+#include "Workbench.h"
 
 #include <QComboBox>
 #include <QDir>
@@ -15,6 +16,7 @@
 #include <QDoubleSpinBox>
 #include <QFileDialog>
 #include <QFormLayout>
+#include <QGridLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QInputDialog>
@@ -107,11 +109,12 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     form->addRow(tr("Duration"), m_duration);
     form->addRow(tr("Notes"), m_notes);
     form->addRow(tr("Simulation speed"), m_speed);
-    auto *buttons = new QHBoxLayout;
-    for (QWidget *w : {static_cast<QWidget *>(m_start), static_cast<QWidget *>(m_pause), static_cast<QWidget *>(m_marker),
-                       static_cast<QWidget *>(m_stop)})
-        buttons->addWidget(w);
-    buttons->addStretch();
+    // Two rows of two: the dock stays narrow enough for a 1366-pixel screen beside the sessions.
+    auto *buttons = new QGridLayout;
+    buttons->addWidget(m_start, 0, 0);
+    buttons->addWidget(m_pause, 0, 1);
+    buttons->addWidget(m_marker, 1, 0);
+    buttons->addWidget(m_stop, 1, 1);
     auto *during = new QHBoxLayout; // what a running recording offers, and how far it is
     during->addWidget(m_run);
     during->addStretch();
@@ -173,6 +176,38 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
         dialog->show();
     });
     updateButtons();
+}
+
+AcquisitionPanel::AcquisitionPanel(Workbench *workbench, QWidget *parent) : AcquisitionPanel(parent)
+{
+    connect(workbench, &Workbench::storeChanged, this, [this, workbench](SessionStore *store) {
+        if (!store)
+            return;
+        // A central store is for review: recordings keep going to the local database.
+        if (!workbench->localPath().isEmpty())
+            setDatabasePath(workbench->localPath());
+        if (!recording())
+            clearView();
+    });
+    connect(this, &AcquisitionPanel::recordingStarted, workbench,
+            [this, workbench](qint64 id) { workbench->recordingChanged(m_dbPath, id); });
+    connect(this, &AcquisitionPanel::recordingStopped, workbench,
+            [this, workbench](qint64 id) { workbench->recordingChanged(m_dbPath, id); });
+    workbench->addGuard(this, [this, workbench](qint64 id) {
+        if (id != 0 && recording() && id == m_session && QFileInfo(m_dbPath).absoluteFilePath() == workbench->localPath())
+            return tr("Session %1 is being recorded; stop the recording first").arg(id);
+        return QString();
+    });
+}
+
+void AcquisitionPanel::clearView()
+{
+    m_session = 0;
+    m_devices->setRowCount(0);
+    m_plot->clearCurves();
+    m_plot->replot();
+    m_message->clear();
+    m_elapsed->setText(tr("not recording"));
 }
 
 AcquisitionPanel::~AcquisitionPanel()

@@ -27,11 +27,15 @@ class AcquisitionEngine;
 class SessionStore;
 class SimulatedRigHub;
 class TimeSeriesPlot;
+class Workbench;
 
 class AcquisitionPanel : public QWidget {
     Q_OBJECT
 public:
     explicit AcquisitionPanel(QWidget *parent = nullptr);
+    // Records into the workbench's open local database; a recording is listed there while
+    // it runs; opening another database clears the view of a finished recording.
+    explicit AcquisitionPanel(Workbench *workbench, QWidget *parent = nullptr);
     ~AcquisitionPanel() override;
 
     // The database the Start button records into (MainWindow: the open one). Its folder is
@@ -65,6 +69,7 @@ private:
     void onTick();
     void refreshPlot();
     void updateButtons();
+    void clearView();
 
     QComboBox *m_rig;
     QLabel *m_db;

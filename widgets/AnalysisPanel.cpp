@@ -4,6 +4,7 @@
 #include "DataDrivenModelJson.h"
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
+#include "Workbench.h"
 
 #include <qwt_plot.h>
 
@@ -232,18 +233,36 @@ bool AnalysisPanel::startWorkflow(qint64 session, const QString &target, double 
     return true;
 }
 
+AnalysisPanel::AnalysisPanel(Workbench *workbench, QWidget *parent) : AnalysisPanel(parent)
+{
+    connect(workbench, &Workbench::storeChanged, this, [this](SessionStore *store) { setStore(store); });
+    connect(workbench, &Workbench::sessionsChanged, this, [this, workbench] {
+        if (!running())
+            setStore(workbench->store());
+    });
+    workbench->addGuard(this, [this](qint64) { return running() ? tr("An analysis is running on the open database; cancel it first") : QString(); });
+}
+
 AnalysisPanel::~AnalysisPanel()
 {
-    m_cancelRequested = true;
-    if (m_thread.joinable())
-        m_thread.join();
+    m_job.cancel();
+    m_job.finish();
+}
+
+QWidget *AnalysisPanel::resultsView() const
+{
+    return m_tabs;
 }
 
 void AnalysisPanel::setBusy(bool busy)
 {
+    // Cancel enabled (and focused) before the buttons go: the focus must not wander down the
+    // dock and scroll progress and Cancel out of view.
+    m_cancel->setEnabled(busy);
+    if (busy && (m_select->hasFocus() || m_fit->hasFocus()))
+        m_cancel->setFocus();
     m_select->setEnabled(!busy && m_store);
     m_fit->setEnabled(!busy && m_store);
-    m_cancel->setEnabled(busy);
     m_session->setEnabled(!busy);
 }
 
@@ -319,20 +338,14 @@ DataDrivenFitRequest AnalysisPanel::request(const QString &model) const
 
 void AnalysisPanel::runInBackground(std::function<void()> work)
 {
-    if (m_thread.joinable())
-        m_thread.join();
-    m_cancelRequested = false;
-    m_finished = false;
     m_progress->setValue(0);
     setBusy(true);
-    m_thread = std::thread(std::move(work));
+    m_job.start(std::move(work));
 }
 
 void AnalysisPanel::finishWorker()
 {
-    if (m_thread.joinable())
-        m_thread.join();
-    m_finished = true;
+    m_job.finish();
     setBusy(false);
 }
 
@@ -359,13 +372,13 @@ bool AnalysisPanel::startSelection()
                         m_progress->setValue(static_cast<int>(100 * f));
                         m_stage->setText(stage);
                     }, Qt::QueuedConnection);
-                    return !m_cancelRequested.load();
+                    return !m_job.cancelled();
                 });
             result = DataDrivenFit::selectionJson(r);
             result.insert(QStringLiteral("session"), q.session);
             store.addAnalysisResult(q.session, AnalysisPlots::selectionResultKind(), result);
         } catch (const std::exception &e) {
-            error = m_cancelRequested ? tr("Cancelled: no selection was made") : QString::fromUtf8(e.what());
+            error = m_job.cancelled() ? tr("Cancelled: no selection was made") : QString::fromUtf8(e.what());
         }
         QMetaObject::invokeMethod(this, [this, result, error, session = q.session] {
             finishWorker();
@@ -411,7 +424,7 @@ bool AnalysisPanel::startFits(const QStringList &models)
         try {
             SessionStore store(path);
             const DataDrivenFit fit(store);
-            for (std::size_t i = 0; i < requests.size() && !m_cancelRequested; ++i) {
+            for (std::size_t i = 0; i < requests.size() && !m_job.cancelled(); ++i) {
                 ModelRow row;
                 row.model = requests[i].model;
                 try {
@@ -420,10 +433,10 @@ bool AnalysisPanel::startFits(const QStringList &models)
                             m_progress->setValue(static_cast<int>(100.0 * (static_cast<double>(i) + f) / static_cast<double>(n)));
                             m_stage->setText(QStringLiteral("%1: %2").arg(model, stage));
                         }, Qt::QueuedConnection);
-                        return !m_cancelRequested.load();
+                        return !m_job.cancelled();
                     });
                 } catch (const std::exception &e) {
-                    row.error = m_cancelRequested ? tr("cancelled") : QString::fromUtf8(e.what());
+                    row.error = m_job.cancelled() ? tr("cancelled") : QString::fromUtf8(e.what());
                 }
                 rows.push_back(std::move(row));
             }
@@ -432,7 +445,7 @@ bool AnalysisPanel::startFits(const QStringList &models)
             row.error = QString::fromUtf8(e.what());
             rows.push_back(row);
         }
-        const bool cancelled = m_cancelRequested;
+        const bool cancelled = m_job.cancelled();
         QMetaObject::invokeMethod(this, [this, rows = std::move(rows), cancelled]() mutable {
             finishWorker();
             m_rows = std::move(rows);
@@ -451,7 +464,7 @@ bool AnalysisPanel::startFits(const QStringList &models)
 
 void AnalysisPanel::cancel()
 {
-    m_cancelRequested = true;
+    m_job.cancel();
     m_stage->setText(tr("Cancelling..."));
 }
 

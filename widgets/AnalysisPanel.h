@@ -10,11 +10,11 @@
 #include "DataDrivenFit.h"
 
 #include <QJsonObject>
+#include "BackgroundJob.h"
+
 #include <QWidget>
 
-#include <atomic>
 #include <optional>
-#include <thread>
 #include <vector>
 
 class QCheckBox;
@@ -29,6 +29,8 @@ class QTableWidget;
 
 namespace driftlab {
 
+class Workbench;
+
 class SessionStore;
 class TimeSeriesPlot;
 
@@ -36,6 +38,9 @@ class AnalysisPanel : public QWidget {
     Q_OBJECT
 public:
     explicit AnalysisPanel(QWidget *parent = nullptr);
+    // Follows the workbench's database and session list (the list is re-read when no job runs);
+    // the workbench keeps its database while a job runs.
+    explicit AnalysisPanel(Workbench *workbench, QWidget *parent = nullptr);
     ~AnalysisPanel() override;
 
     // The store must outlive the panel or the next call; nullptr clears the panel.
@@ -51,7 +56,7 @@ public:
     // workflowFinished at the end (the GUI's --analysis option).
     bool startWorkflow(qint64 session, const QString &target, double trainTo_h, bool selectOnly);
     void cancel();
-    bool running() const { return m_thread.joinable() && !m_finished; }
+    bool running() const { return m_job.running(); }
     QString lastError() const { return m_lastError; }
 
     struct ModelRow {
@@ -64,6 +69,9 @@ public:
     QTableWidget *comparisonTable() const { return m_table; }
     QTableWidget *silhouetteTable() const { return m_silhouettes; }
     QTableWidget *channelTable() const { return m_channels; }
+    // Selection and model-comparison pages: beside the controls, or (MainWindow) a
+    // full-size view of the central area, taken out of the panel.
+    QWidget *resultsView() const;
     // Writes the model of a comparison row as MODEL.json; false with lastError() on failure.
     bool saveModel(int row, const QString &path);
 
@@ -108,9 +116,7 @@ private:
     TimeSeriesPlot *m_prediction;
     TimeSeriesPlot *m_residual;
 
-    std::thread m_thread;
-    std::atomic<bool> m_cancelRequested{false};
-    bool m_finished = true;
+    BackgroundJob m_job;
     QString m_lastError;
     QJsonObject m_selection;
     qint64 m_selectionSession = 0;

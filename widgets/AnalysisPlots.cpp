@@ -283,7 +283,7 @@ void AnalysisPlots::showPrediction(TimeSeriesPlot &plot, const ValidationSeries 
         add(QObject::tr("measured (%1)").arg(where), holdout->t, holdout->measured);
         add(QObject::tr("predicted (%1)").arg(where), holdout->t, holdout->predicted);
     }
-    plot.setAxisTitles(QObject::tr("displacement (µm)"), QString());
+    plot.setAxisTitles(QObject::tr("thermal error (µm)"), QString());
     plot.enableAxis(QwtPlot::yRight, false);
     plot.zoomToData();
 }

@@ -6,6 +6,7 @@
 #include "SessionAnalysis.h"
 #include "UnitLabels.h"
 #include "SessionStore.h"
+#include "Workbench.h"
 
 #include <QComboBox>
 #include <QGridLayout>
@@ -14,6 +15,7 @@
 #include <QLabel>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QSplitter>
 #include <QSignalBlocker>
 #include <QTableWidget>
 #include <QVBoxLayout>
@@ -57,12 +59,14 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
 
     m_before->setTitle(tr("Validation residual, baseline"));
     m_after->setTitle(tr("Validation residual, corrected model"));
-    auto *plots = new QVBoxLayout();
-    plots->addWidget(m_before);
-    plots->addWidget(m_after);
+    m_results = new QSplitter(Qt::Vertical, this);
+    m_results->setObjectName(QStringLiteral("DiagnosisView"));
+    m_results->addWidget(m_before);
+    m_results->addWidget(m_after);
+    m_results->setChildrenCollapsible(false);
     auto *layout = new QHBoxLayout(this);
     layout->addLayout(left, 1);
-    layout->addLayout(plots, 1);
+    layout->addWidget(m_results, 1);
 
     m_progress->setRange(0, 100);
     m_progress->setValue(0);
@@ -77,16 +81,20 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
         connect(box, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &DiagnosisPanel::updateHeading);
 }
 
-DiagnosisPanel::~DiagnosisPanel()
+DiagnosisPanel::DiagnosisPanel(Workbench *workbench, QWidget *parent) : DiagnosisPanel(parent)
 {
-    m_cancelRequested = true;
-    joinWorker();
+    connect(workbench, &Workbench::storeChanged, this, [this](SessionStore *store) { setStore(store); });
+    connect(workbench, &Workbench::sessionsChanged, this, [this, workbench] {
+        if (!running())
+            setStore(workbench->store());
+    });
+    workbench->addGuard(this, [this](qint64) { return running() ? tr("A diagnosis is running on the open database; cancel it first") : QString(); });
 }
 
-void DiagnosisPanel::joinWorker()
+DiagnosisPanel::~DiagnosisPanel()
 {
-    if (m_thread.joinable())
-        m_thread.join();
+    m_job.cancel();
+    m_job.finish();
 }
 
 namespace {
@@ -160,7 +168,6 @@ bool DiagnosisPanel::start(qint64 trainSession, qint64 validationSession)
         m_lastError = tr("Training and validation must be different sessions");
         return false;
     }
-    joinWorker();
     {
         const QSignalBlocker blockTrain(m_train), blockValidate(m_validate);
         selectSession(m_train, trainSession);
@@ -189,14 +196,16 @@ bool DiagnosisPanel::start(qint64 trainSession, qint64 validationSession)
     options.identification.simulator.grid.dt_s = 20.0;
     options.identification.simulator.driveSample_s = 1.0;
     options.identification.maxIterations = 60;
-    m_cancelRequested = false;
-    m_finished = false;
-    m_run->setEnabled(false);
+    // Cancel first, and the focus with it: a disabled focused button hands the focus down
+    // the chain, and the dock's scroll area followed it away from progress and Cancel.
     m_cancel->setEnabled(true);
+    if (m_run->hasFocus())
+        m_cancel->setFocus();
+    m_run->setEnabled(false);
     m_progress->setValue(0);
     m_answer->clear();
     m_candidates->setRowCount(0);
-    m_thread = std::thread([this, geometry, options, train = std::move(train), validate = std::move(validate)] {
+    m_job.start([this, geometry, options, train = std::move(train), validate = std::move(validate)] {
         DiagnosisReport report;
         QString error;
         bool ok = true;
@@ -208,7 +217,7 @@ bool DiagnosisPanel::start(qint64 trainSession, qint64 validationSession)
                     m_progress->setValue(static_cast<int>(100.0 * fraction));
                     m_stage->setText(text);
                 }, Qt::QueuedConnection);
-                return !m_cancelRequested.load();
+                return !m_job.cancelled();
             });
             if (report.cancelled) {
                 ok = false;
@@ -228,7 +237,7 @@ bool DiagnosisPanel::start(qint64 trainSession, qint64 validationSession)
 
 void DiagnosisPanel::cancel()
 {
-    m_cancelRequested = true;
+    m_job.cancel();
     m_stage->setText(tr("Cancelling..."));
 }
 
@@ -251,8 +260,7 @@ void DiagnosisPanel::residualGrid(const std::vector<DiagnosisPrediction> &predic
 
 void DiagnosisPanel::finish(bool ok, const QString &error)
 {
-    joinWorker();
-    m_finished = true;
+    m_job.finish();
     m_run->setEnabled(true);
     m_cancel->setEnabled(false);
     m_lastError = error;

@@ -6,18 +6,21 @@
 
 #include "DiagnosisTypes.h"
 
+#include "BackgroundJob.h"
+
 #include <QWidget>
 
-#include <atomic>
-#include <thread>
 
 class QComboBox;
 class QLabel;
 class QProgressBar;
 class QPushButton;
+class QSplitter;
 class QTableWidget;
 
 namespace driftlab {
+
+class Workbench;
 
 class ErrorSurfacePlot;
 class SessionStore;
@@ -26,6 +29,9 @@ class DiagnosisPanel : public QWidget {
     Q_OBJECT
 public:
     explicit DiagnosisPanel(QWidget *parent = nullptr);
+    // Follows the workbench's database and session list (the list is re-read when no job runs);
+    // the workbench keeps its database while a job runs.
+    explicit DiagnosisPanel(Workbench *workbench, QWidget *parent = nullptr);
     ~DiagnosisPanel() override;
 
     void setStore(const SessionStore *store);
@@ -37,12 +43,15 @@ public:
     qint64 resultValidationSession() const { return m_resultValidate; }
     QString resultHeading() const { return m_heading; }
     void cancel();
-    bool running() const { return m_thread.joinable() && !m_finished; }
+    bool running() const { return m_job.running(); }
     QString lastError() const { return m_lastError; }
     const DiagnosisReport &report() const { return m_report; }
     QTableWidget *candidateTable() const { return m_candidates; }
     ErrorSurfacePlot *baselineResiduals() const { return m_before; }
     ErrorSurfacePlot *correctedResiduals() const { return m_after; }
+    // The two residual maps: beside the controls, or (MainWindow) a full-size view of the
+    // central area, taken out of the panel. A vertical splitter; MainWindow may turn it.
+    QSplitter *resultsView() const { return m_results; }
 
     // Validation residual grid (target x run time) of the baseline (corrected = false) or
     // the corrected model; reference-run points are left out.
@@ -54,7 +63,6 @@ signals:
 
 private:
     void finish(bool ok, const QString &error);
-    void joinWorker();
 
     const SessionStore *m_store = nullptr;
     QComboBox *m_train;
@@ -71,9 +79,8 @@ private:
     QTableWidget *m_candidates;
     ErrorSurfacePlot *m_before;
     ErrorSurfacePlot *m_after;
-    std::thread m_thread;
-    std::atomic<bool> m_cancelRequested{false};
-    bool m_finished = true;
+    QSplitter *m_results;
+    BackgroundJob m_job;
     QString m_lastError;
     DiagnosisReport m_report;
 };

@@ -1,5 +1,6 @@
 #include "ErrorSurface3D.h"
 
+#include "ElapsedTimeAxis.h"
 #include "ThermalErrorTable.h"
 
 #include <QHBoxLayout>
@@ -10,12 +11,25 @@
 #include <QtDataVisualization/QSurface3DSeries>
 #include <QtDataVisualization/QSurfaceDataProxy>
 #include <QtDataVisualization/QValue3DAxis>
+#include <QtDataVisualization/QValue3DAxisFormatter>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace QtDataVisualization;
 
 namespace driftlab {
+
+namespace {
+// The time axis of the 3-D view in h:mm:ss, like every other time axis (ElapsedTimeAxis).
+class ElapsedAxisFormatter : public QValue3DAxisFormatter {
+public:
+    QValue3DAxisFormatter *createNewInstance() const override { return new ElapsedAxisFormatter; }
+
+protected:
+    QString stringForValue(qreal value, const QString &) const override { return ElapsedTimeAxis::format(value); }
+};
+} // namespace
 
 ErrorSurface3D::ErrorSurface3D(QWidget *parent) : QWidget(parent)
 {
@@ -32,12 +46,12 @@ ErrorSurface3D::ErrorSurface3D(QWidget *parent) : QWidget(parent)
     series->setColorStyle(Q3DTheme::ColorStyleRangeGradient);
     m_graph->addSeries(series);
     m_graph->axisX()->setTitle(tr("position (mm)"));
-    m_graph->axisZ()->setTitle(tr("time (min)"));
+    m_graph->axisZ()->setTitle(tr("elapsed time (h:mm:ss)"));
+    m_graph->axisZ()->setFormatter(new ElapsedAxisFormatter);
     m_graph->axisY()->setTitle(tr("thermal error (µm)"));
     for (QValue3DAxis *axis : {m_graph->axisX(), m_graph->axisY(), m_graph->axisZ()})
         axis->setTitleVisible(true);
     m_graph->axisX()->setLabelFormat(QStringLiteral("%.0f"));
-    m_graph->axisZ()->setLabelFormat(QStringLiteral("%.0f"));
     m_graph->axisY()->setLabelFormat(QStringLiteral("%.1f"));
     m_graph->axisZ()->setSegmentCount(4);
     m_graph->scene()->activeCamera()->setCameraPreset(Q3DCamera::CameraPresetIsometricRightHigh);
@@ -65,7 +79,7 @@ void ErrorSurface3D::fillProxy(QSurfaceDataProxy &proxy, const ThermalErrorTable
             }
             (*row)[static_cast<int>(k)].setPosition(QVector3D(static_cast<float>(table.targets_mm()[k]),
                                                               static_cast<float>(std::isnan(e) ? 0.0 : e),
-                                                              static_cast<float>(table.runTimes_s()[r] / 60.0)));
+                                                              static_cast<float>(table.runTimes_s()[r])));
         }
         rows->append(row);
     }
@@ -82,6 +96,14 @@ QImage ErrorSurface3D::renderImage() const
 void ErrorSurface3D::setTable(const ThermalErrorTable &table)
 {
     fillProxy(*m_proxy, table);
+    // Ticks on round clock steps over the runs' time span.
+    if (table.runCount() > 0) {
+        const double t1 = *std::max_element(table.runTimes_s().begin(), table.runTimes_s().end());
+        const double step = ElapsedTimeAxis::roundStep(std::max(1.0, t1) / 4.0);
+        const int segments = std::max(1, static_cast<int>(std::ceil(t1 / step - 1e-9)));
+        m_graph->axisZ()->setRange(0.0f, static_cast<float>(segments * step));
+        m_graph->axisZ()->setSegmentCount(segments);
+    }
 }
 
 } // namespace driftlab

@@ -1,5 +1,8 @@
 #include "ErrorSurfacePlot.h"
 
+#include "ElapsedTimeAxis.h"
+#include "PlotInteraction.h"
+
 #include "ContourSpectrogram.h"
 #include "ThermalErrorTable.h"
 
@@ -100,7 +103,7 @@ ErrorSurfacePlot::ErrorSurfacePlot(QWidget *parent) : QwtPlot(parent), m_spectro
     setTitle(tr("Thermal error over position and time"));
     setMinimumSize(260, 140); // not the plot's size hint: windows must fit 1366 x 768
     setAxisTitle(QwtPlot::xBottom, tr("axis position (mm)"));
-    setAxisTitle(QwtPlot::yLeft, tr("time (s)"));
+    ElapsedTimeAxis::install(this, QwtPlot::yLeft, tr("elapsed time"));
     setAxisTitle(QwtPlot::yRight, tr("thermal error (µm)"));
     m_spectrogram->setRenderThreadCount(0);
     m_spectrogram->setColorMap(errorColourMap());
@@ -110,6 +113,7 @@ ErrorSurfacePlot::ErrorSurfacePlot(QWidget *parent) : QwtPlot(parent), m_spectro
     enableAxis(QwtPlot::yRight);
     axisWidget(QwtPlot::yRight)->setColorBarEnabled(true);
     plotLayout()->setAlignCanvasToScales(true);
+    PlotInteraction::install(this, nullptr); // context menu (image), per-axis wheel zoom
 }
 
 ErrorSurfacePlot::~ErrorSurfacePlot() = default;
@@ -138,7 +142,9 @@ void ErrorSurfacePlot::setGrid(const std::vector<double> &x, const std::vector<d
     axisWidget(QwtPlot::yRight)->setColorMap(range, errorColourMap());
     setAxisScale(QwtPlot::yRight, range.minValue(), range.maxValue());
     setAxisScale(QwtPlot::xBottom, raster->interval(Qt::XAxis).minValue(), raster->interval(Qt::XAxis).maxValue());
-    setAxisScale(QwtPlot::yLeft, raster->interval(Qt::YAxis).minValue(), raster->interval(Qt::YAxis).maxValue());
+    const QwtInterval t = raster->interval(Qt::YAxis);
+    setAxisScale(QwtPlot::yLeft, t.minValue(), t.maxValue(),
+                 ElapsedTimeAxis::installed(this, QwtPlot::yLeft) ? ElapsedTimeAxis::roundStep((t.maxValue() - t.minValue()) / 8.0) : 0.0);
     replot();
 }
 

@@ -1,22 +1,22 @@
 #include "MainWindow.h"
 
 #include "AcquisitionPanel.h"
-#include "CompensationPanel.h"
-#include "BundleTransfer.h"
-#include "CsvImportDialog.h"
 #include "AnalysisPanel.h"
-#include "DiagnosisPanel.h"
-#include "DuplicateSessionError.h"
-#include "ErrorSurface3D.h"
-#include "ModelExportDialog.h"
 #include "CentralStoreActions.h"
+#include "CompensationPanel.h"
+#include "DiagnosisPanel.h"
+#include "ErrorSurface3D.h"
+#include "HelpBrowser.h"
+#include "ModelExportDialog.h"
 #include "ModelsPanel.h"
 #include "PlotExporter.h"
 #include "ReviewWorkspace.h"
+#include "SessionActions.h"
 #include "SessionBrowser.h"
 #include "SessionStore.h"
-#include "SessionTextCommand.h"
-#include "StorageError.h"
+#include "WheelGuard.h"
+#include "WelcomePage.h"
+#include "Workbench.h"
 
 #include <QApplication>
 #include <QCloseEvent>
@@ -27,6 +27,7 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QInputDialog>
+#include <QLabel>
 #include <QListWidget>
 #include <QMenuBar>
 #include <QMessageBox>
@@ -34,18 +35,20 @@
 #include <QPainter>
 #include <QScreen>
 #include <QScrollArea>
+#include <QScrollBar>
 #include <QSettings>
 #include <QSplitter>
+#include <QStackedWidget>
+#include <QStandardPaths>
 #include <QStatusBar>
-#include <QUndoStack>
+#include <QTemporaryDir>
+#include <QDirIterator>
+#include <QTabWidget>
 #include <QUrl>
 
 namespace driftlab {
 
 namespace {
-constexpr int kMaxRecent = 8;
-const char *kRecentKey = "recentDatabases";
-
 bool isBundlePath(const QString &path)
 {
     const QFileInfo info(path);
@@ -62,25 +65,55 @@ bool isDatabasePath(const QString &path)
 
 MainWindow::MainWindow(QWidget *parent)
     : QMainWindow(parent),
+      m_workbench(new Workbench(this)),
+      m_actions(new SessionActions(m_workbench, this)),
+      m_views(new QTabWidget(this)),
+      m_sessionPage(new QStackedWidget(this)),
+      m_welcome(new WelcomePage(this)),
       m_browser(new SessionBrowser(this)),
       m_split(new QSplitter(this)),
       m_workspace(new ReviewWorkspace(this)),
       m_comparison(new ReviewWorkspace(this)),
-      m_acquisition(new AcquisitionPanel(this)),
-      m_models(new ModelsPanel(this)),
-      m_diagnosis(new DiagnosisPanel(this)),
-      m_undo(new QUndoStack(this)),
-      m_analysis(new AnalysisPanel(this)),
+      m_acquisition(new AcquisitionPanel(m_workbench, this)),
+      m_models(new ModelsPanel(m_workbench, this)),
+      m_diagnosis(new DiagnosisPanel(m_workbench, this)),
+      m_analysis(new AnalysisPanel(m_workbench, this)),
       m_compensation(new CompensationPanel(this))
 {
     setObjectName(QStringLiteral("DriftLabMainWindow"));
     setWindowTitle(tr("DriftLab"));
     setAcceptDrops(true);
+    WheelGuard::installOnApplication();
     m_split->addWidget(m_workspace);
     m_split->addWidget(m_comparison);
     m_split->setChildrenCollapsible(false);
     m_comparison->hide();
-    setCentralWidget(m_split);
+    // The central area: the session under review, and the results of the Models, Diagnosis
+    // and Analysis docks at full size (the docks keep their controls and tables).
+    m_views->setObjectName(QStringLiteral("CentralViews"));
+    m_views->setDocumentMode(true);
+    // A database without sessions shows the ways to begin instead of empty plots.
+    m_sessionPage->addWidget(m_welcome);
+    m_sessionPage->addWidget(m_split);
+    m_views->addTab(m_sessionPage, tr("Session"));
+    m_views->addTab(m_models->resultsView(), tr("Model fit"));
+    m_diagnosis->resultsView()->setOrientation(Qt::Horizontal);
+    m_views->addTab(m_diagnosis->resultsView(), tr("Diagnosis"));
+    m_views->addTab(m_analysis->resultsView(), tr("Analysis"));
+    setCentralWidget(m_views);
+    connect(m_models, &ModelsPanel::fitFinished, this, [this](bool ok) {
+        if (ok)
+            m_views->setCurrentWidget(m_models->resultsView());
+    });
+    connect(m_diagnosis, &DiagnosisPanel::finished, this, [this](bool ok) {
+        if (ok)
+            m_views->setCurrentWidget(m_diagnosis->resultsView());
+    });
+    for (auto signal : {&AnalysisPanel::selectionFinished, &AnalysisPanel::fitsFinished})
+        connect(m_analysis, signal, this, [this](bool ok) {
+            if (ok)
+                m_views->setCurrentWidget(m_analysis->resultsView());
+        });
     // The sessions dock runs the full height; bottom docks share the width right of it.
     setCorner(Qt::TopLeftCorner, Qt::LeftDockWidgetArea);
     setCorner(Qt::BottomLeftCorner, Qt::LeftDockWidgetArea);
@@ -89,7 +122,8 @@ MainWindow::MainWindow(QWidget *parent)
     setDockOptions(dockOptions() | QMainWindow::AllowTabbedDocks);
 
     m_central = new CentralStoreActions(
-        this, [this] { return m_store.get(); }, [this] { return m_sessionId; }, [this](const QString &a) { return openDatabase(a); });
+        this, [this] { return m_workbench->store(); }, [this] { return m_workbench->currentSession(); },
+        [this](const QString &a) { return m_workbench->openDatabase(a); });
     buildMenus();
     addPanelDock(tr("Sessions"), QStringLiteral("SessionsDock"), m_browser, Qt::LeftDockWidgetArea,
                  QKeySequence(Qt::CTRL + Qt::Key_1));
@@ -113,23 +147,26 @@ MainWindow::MainWindow(QWidget *parent)
     compensation->hide();
     // Further docks (rig setup, ...): addPanelDock(...) here.
 
-    // A finished recording appears in the session list of the database it went to.
-    connect(m_acquisition, &AcquisitionPanel::recordingStopped, this, [this](qint64 id) {
-        const QString db = m_acquisition->databasePath();
-        bool open = m_store && QFileInfo(m_store->path()).absoluteFilePath() == QFileInfo(db).absoluteFilePath();
-        if (!open)
-            open = openDatabase(db);
-        if (!open)
-            return;
-        refreshSessions(id);
-        QString message;
-        if (CentralStoreActions::autoPush())
-            statusBar()->showMessage(m_central->afterRecording(id, &message) ? message : tr("Automatic push: %1").arg(message));
+    m_summary = new QLabel(this);
+    m_summary->setObjectName(QStringLiteral("StoreSummary"));
+    statusBar()->addPermanentWidget(m_summary);
+    connect(m_workbench, &Workbench::storeChanged, this, &MainWindow::onStoreChanged);
+    connect(m_workbench, &Workbench::sessionsChanged, this, &MainWindow::onSessionsChanged);
+    connect(m_workbench, &Workbench::sessionChanged, this, &MainWindow::onSessionChanged);
+    connect(m_workbench, &Workbench::message, this, &MainWindow::say);
+    connect(m_workbench, &Workbench::failed, this, &MainWindow::say);
+    connect(m_acquisition, &AcquisitionPanel::recordingStopped, this, &MainWindow::onRecordingStopped);
+    connect(m_welcome, &WelcomePage::recordSimulated, this, &MainWindow::recordSimulatedSession);
+    connect(m_welcome, &WelcomePage::openExample, this, &MainWindow::openExampleBundle);
+    connect(m_welcome, &WelcomePage::importCsv, this, [this] {
+        if (ensureDatabase())
+            m_actions->importCsv();
     });
-    connect(m_browser, &SessionBrowser::sessionSelected, this, &MainWindow::showSession);
+    connect(m_browser, &SessionBrowser::sessionSelected, m_workbench, &Workbench::setCurrentSession);
     connect(m_browser, &SessionBrowser::channelsChanged, this, &MainWindow::showChannels);
 
     fitToScreen();
+    m_defaultLayout = saveState();
     QSettings settings;
     restoreGeometry(settings.value(QStringLiteral("geometry")).toByteArray());
     restoreState(settings.value(QStringLiteral("windowState")).toByteArray());
@@ -139,13 +176,11 @@ MainWindow::MainWindow(QWidget *parent)
         if (width() > avail.width() || height() > avail.height())
             resize(std::min(width(), avail.width()), std::min(height(), avail.height()));
     }
-    statusBar()->showMessage(tr("No database open: File > New or Open database, or drop a .sqlite or a recording bundle here"));
+    onSessionsChanged();
+    say(tr("No database open: File > New or Open database, or drop a .sqlite or a recording bundle here"));
 }
 
-MainWindow::~MainWindow()
-{
-    m_undo->clear(); // commands refer to the store
-}
+MainWindow::~MainWindow() = default;
 
 void MainWindow::fitToScreen()
 {
@@ -159,6 +194,11 @@ void MainWindow::fitToScreen()
     resize(size);
 }
 
+void MainWindow::resetLayout()
+{
+    restoreState(m_defaultLayout);
+}
+
 QDockWidget *MainWindow::addPanelDock(const QString &title, const QString &objectName, QWidget *panel, Qt::DockWidgetArea area,
                                       const QKeySequence &shortcut)
 {
@@ -169,6 +209,9 @@ QDockWidget *MainWindow::addPanelDock(const QString &title, const QString &objec
     scroll->setWidgetResizable(true);
     scroll->setFrameShape(QFrame::NoFrame);
     scroll->setWidget(panel);
+    // Never narrower than the panel's content: docks scroll vertically, not sideways.
+    // (Side docks at most 460 px: sessions + acquisition + the central views fit 1366 px.)
+    scroll->setMinimumWidth(std::min(460, panel->minimumSizeHint().width() + scroll->verticalScrollBar()->sizeHint().width()));
     dock->setWidget(scroll);
     addDockWidget(area, dock);
     QAction *toggle = dock->toggleViewAction();
@@ -186,15 +229,9 @@ QDockWidget *MainWindow::dock(const QString &objectName) const
 void MainWindow::buildMenus()
 {
     QMenu *file = menuBar()->addMenu(tr("&File"));
-    file->addAction(tr("&New database..."), this, &MainWindow::chooseNewDatabase, QKeySequence::New);
-    file->addAction(tr("&Open database..."), this, &MainWindow::chooseDatabase, QKeySequence::Open);
-    m_recentMenu = file->addMenu(tr("Open &recent"));
-    refreshRecentMenu();
-    m_central->addTo(file);
+    m_actions->addDatabaseActions(file, [this](QMenu *menu) { m_central->addTo(menu); });
     file->addSeparator();
-    file->addAction(tr("&Import recording bundle..."), this, &MainWindow::chooseBundle, QKeySequence(Qt::CTRL + Qt::Key_I));
-    file->addAction(tr("Import &CSV table..."), this, &MainWindow::importCsv)->setObjectName(QStringLiteral("ImportCsvAction"));
-    file->addAction(tr("&Export session as bundle..."), this, &MainWindow::exportSession, QKeySequence(Qt::CTRL + Qt::Key_E));
+    m_actions->addImportExportActions(file);
     file->addAction(tr("Export &model to controller..."), this, [this] { ModelExportDialog(this).exec(); })
         ->setObjectName(QStringLiteral("ExportModelAction"));
     file->addAction(tr("Export current &view (PNG, SVG, PDF)..."), this, &MainWindow::exportView,
@@ -206,27 +243,18 @@ void MainWindow::buildMenus()
     file->addAction(tr("&Quit"), this, &QWidget::close, QKeySequence::Quit);
 
     QMenu *edit = menuBar()->addMenu(tr("&Edit"));
-    QAction *undo = m_undo->createUndoAction(this, tr("&Undo"));
-    undo->setShortcut(QKeySequence::Undo);
-    QAction *redo = m_undo->createRedoAction(this, tr("&Redo"));
-    redo->setShortcut(QKeySequence::Redo);
-    edit->addAction(undo);
-    edit->addAction(redo);
-    edit->addSeparator();
-    QAction *rename = edit->addAction(tr("Re&name session..."), this, &MainWindow::askRename, QKeySequence(Qt::Key_F2));
-    QAction *notes = edit->addAction(tr("Session &notes..."), this, &MainWindow::askNotes,
-                                     QKeySequence(Qt::CTRL + Qt::SHIFT + Qt::Key_N));
-    QAction *remove = edit->addAction(tr("&Delete session..."), this, &MainWindow::askDelete, QKeySequence::Delete);
-    // The same actions on the session list's context menu.
+    // The session edits also on the session list's context menu.
     QListWidget *list = m_browser->sessionList();
     list->setContextMenuPolicy(Qt::ActionsContextMenu);
-    list->addActions({rename, notes, remove});
+    list->addActions(m_actions->addEditActions(edit));
 
     m_viewMenu = menuBar()->addMenu(tr("&View"));
     m_viewMenu->setObjectName(QStringLiteral("ViewMenu"));
     m_viewDocksEnd = m_viewMenu->addSeparator(); // dock toggles go above
     m_viewMenu->addAction(tr("&Compare with session..."), this, &MainWindow::chooseComparison);
     m_viewMenu->addAction(tr("Close c&omparison"), this, [this] { compareWith(0); });
+    m_viewMenu->addSeparator();
+    m_viewMenu->addAction(tr("&Reset layout"), this, &MainWindow::resetLayout)->setObjectName(QStringLiteral("ResetLayoutAction"));
 
     QMenu *help = menuBar()->addMenu(tr("&Help"));
     help->addAction(tr("&Documentation"), this, &MainWindow::showDocumentation, QKeySequence::HelpContents);
@@ -238,37 +266,14 @@ TimeSeriesPlot *MainWindow::plot() const
     return m_workspace->timeSeriesPlot();
 }
 
-void MainWindow::reportError(const QString &message)
+void MainWindow::say(const QString &message)
 {
-    m_lastError = message;
     statusBar()->showMessage(message);
 }
 
-QStringList MainWindow::recentDatabases() const
+QString MainWindow::storeSummary() const
 {
-    return QSettings().value(QLatin1String(kRecentKey)).toStringList();
-}
-
-void MainWindow::rememberDatabase(const QString &path)
-{
-    QSettings settings;
-    QStringList recent = settings.value(QLatin1String(kRecentKey)).toStringList();
-    const QString abs = SessionStore::isCentral(path) ? SessionStore::displayPath(path) : QFileInfo(path).absoluteFilePath();
-    recent.removeAll(abs);
-    recent.prepend(abs);
-    while (recent.size() > kMaxRecent)
-        recent.removeLast();
-    settings.setValue(QLatin1String(kRecentKey), recent);
-    settings.setValue(QStringLiteral("lastDatabase"), abs);
-    refreshRecentMenu();
-}
-
-void MainWindow::refreshRecentMenu()
-{
-    m_recentMenu->clear();
-    for (const QString &path : recentDatabases())
-        m_recentMenu->addAction(path, this, [this, path] { openDatabase(path); });
-    m_recentMenu->setEnabled(!m_recentMenu->isEmpty());
+    return m_summary->text();
 }
 
 void MainWindow::closeEvent(QCloseEvent *event)
@@ -279,144 +284,145 @@ void MainWindow::closeEvent(QCloseEvent *event)
     QMainWindow::closeEvent(event);
 }
 
-void MainWindow::chooseDatabase()
+void MainWindow::onStoreChanged()
 {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Open session database"), QString(),
-                                                      tr("DriftLab databases (*.sqlite *.db);;All files (*)"));
-    if (!path.isEmpty())
-        openDatabase(path);
+    m_workspace->clear();
+    m_comparison->clear();
+    m_comparison->hide();
+    if (const SessionStore *store = m_workbench->store())
+        setWindowTitle(tr("DriftLab - %1").arg(store->isCentralStore() ? store->path() : QFileInfo(store->path()).fileName()));
 }
 
-void MainWindow::chooseNewDatabase()
+void MainWindow::onSessionsChanged()
 {
-    QString path = QFileDialog::getSaveFileName(this, tr("New session database"), QStringLiteral("sessions.sqlite"),
-                                                tr("DriftLab databases (*.sqlite)"), nullptr,
-                                                QFileDialog::DontConfirmOverwrite);
-    if (path.isEmpty())
-        return;
-    if (QFileInfo(path).suffix().isEmpty())
-        path += QStringLiteral(".sqlite");
-    newDatabase(path);
+    const SessionStore *store = m_workbench->store();
+    m_browser->setSessions(m_workbench->sessions());
+    m_welcome->setDatabase(store ? store->path() : QString());
+    m_sessionPage->setCurrentWidget(m_workbench->sessions().isEmpty() ? static_cast<QWidget *>(m_welcome) : m_split);
+    m_summary->setText(store ? tr("%1: %n session(s)", nullptr, m_workbench->sessions().size()).arg(store->path())
+                             : tr("no database open"));
 }
 
-bool MainWindow::newDatabase(const QString &path)
+void MainWindow::onSessionChanged(qint64 sessionId)
 {
-    if (QFileInfo::exists(path)) {
-        reportError(tr("%1 already exists: open it with File > Open database, or choose a new name").arg(path));
-        return false;
-    }
-    if (!QDir().mkpath(QFileInfo(path).absolutePath())) {
-        reportError(tr("Cannot create the folder %1").arg(QFileInfo(path).absolutePath()));
-        return false;
-    }
-    return openDatabase(path);
-}
-
-bool MainWindow::openDatabase(const QString &path)
-{
-    if (m_models->running() || m_diagnosis->running() || m_analysis->running()) {
-        reportError(tr("A model fit or diagnosis is running on the open database; cancel it first"));
-        return false;
-    }
-    try {
-        auto store = std::make_unique<SessionStore>(path);
-        m_undo->clear();
-        m_models->setStore(nullptr);
-        m_diagnosis->setStore(nullptr);
-        m_analysis->setStore(nullptr);
-        m_workspace->clear();
-        m_comparison->clear();
-        m_comparison->hide();
-        m_sessionId = 0;
-        m_store = std::move(store);
-        // A central store is for review: recordings keep going to the local database.
-        const bool central = m_store->isCentralStore();
-        if (!central)
-            m_acquisition->setDatabasePath(QFileInfo(path).absoluteFilePath());
-        setWindowTitle(tr("DriftLab - %1").arg(central ? m_store->path() : QFileInfo(path).fileName()));
-        rememberDatabase(path);
-        refreshSessions(0);
-        statusBar()->showMessage(tr("%1: %n session(s)", nullptr, m_store->sessions().size()).arg(m_store->path()));
-        return true;
-    } catch (const StorageError &e) {
-        reportError(QString::fromStdString(e.what()));
-        return false;
-    }
-}
-
-void MainWindow::refreshSessions(qint64 select)
-{
-    const QVector<SessionInfo> sessions = m_store->sessions();
-    if (!m_models->running())
-        m_models->setStore(m_store.get());
-    if (!m_diagnosis->running())
-        m_diagnosis->setStore(m_store.get());
-    if (!m_analysis->running())
-        m_analysis->setStore(m_store.get());
-    m_browser->setSessions(sessions);
-    if (sessions.isEmpty()) {
+    m_views->setCurrentWidget(m_sessionPage);
+    const SessionStore *store = m_workbench->store();
+    if (!store || sessionId == 0) {
         m_workspace->clear();
         m_browser->setChannels({}, {});
-        m_sessionId = 0;
         return;
     }
-    qint64 id = sessions.back().id;
-    for (const SessionInfo &s : sessions)
-        if (s.id == select)
-            id = select;
-    m_browser->selectSession(id);
-    showSession(id);
+    try {
+        m_workspace->setSession(store, sessionId);
+        m_compensation->setSession(store->path(), sessionId);
+        m_browser->selectSession(sessionId);
+        m_browser->setChannels(store->channels(sessionId), m_workspace->defaultChannels());
+    } catch (const std::exception &e) {
+        m_workbench->reportError(QString::fromStdString(e.what()));
+    }
 }
 
-void MainWindow::showSession(qint64 sessionId)
+void MainWindow::onRecordingStopped(qint64 sessionId)
 {
-    if (!m_store)
+    // A finished recording appears in the session list of the database it went to.
+    const QString db = QFileInfo(m_acquisition->databasePath()).absoluteFilePath();
+    if (m_workbench->localPath() != db && !m_workbench->openDatabase(db))
         return;
-    try {
-        m_workspace->setSession(m_store.get(), sessionId);
-        m_sessionId = sessionId;
-        m_compensation->setSession(m_store->path(), sessionId);
-        m_browser->selectSession(sessionId);
-        m_browser->setChannels(m_store->channels(sessionId), m_workspace->defaultChannels());
-    } catch (const std::exception &e) {
-        reportError(QString::fromStdString(e.what()));
+    m_workbench->refreshSessions(sessionId);
+    QString message;
+    if (CentralStoreActions::autoPush())
+        say(m_central->afterRecording(sessionId, &message) ? message : tr("Automatic push: %1").arg(message));
+}
+
+bool MainWindow::ensureDatabase()
+{
+    if (m_workbench->store())
+        return true;
+    QString path = m_acquisition->targetDatabase();
+    if (path.isEmpty())
+        path = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + QStringLiteral("/driftlab.sqlite");
+    return QFileInfo::exists(path) ? m_workbench->openDatabase(path) : m_workbench->newDatabase(path);
+}
+
+bool MainWindow::recordSimulatedSession()
+{
+    if (!ensureDatabase())
+        return false;
+    if (m_workbench->localPath().isEmpty()) {
+        m_workbench->reportError(tr("A central store is open: open a local database to record into"));
+        return false;
     }
+    if (QDockWidget *d = dock(QStringLiteral("AcquisitionDock"))) {
+        d->show();
+        d->raise();
+    }
+    m_acquisition->setRunDetails(QString(), QString(), 600.0, tr("first simulated session"));
+    if (!m_acquisition->startRecording(QStringLiteral("baseline"), m_workbench->localPath(), 60.0)) {
+        m_workbench->reportError(m_acquisition->lastError());
+        return false;
+    }
+    return true;
+}
+
+bool MainWindow::openExampleBundle()
+{
+    if (!ensureDatabase())
+        return false;
+    // The example ships as a Qt resource: copied to a temporary folder, imported from there.
+    const QString root = QStringLiteral(":/bundles/bundles/example.bundle");
+    if (!QFileInfo(root).isDir()) {
+        m_workbench->reportError(tr("This build has no example bundle"));
+        return false;
+    }
+    QTemporaryDir tmp;
+    const QString dir = tmp.filePath(QStringLiteral("example.bundle"));
+    QDirIterator it(root, QDir::Files, QDirIterator::Subdirectories);
+    while (it.hasNext()) {
+        const QString from = it.next();
+        const QString to = dir + from.mid(root.size());
+        QDir().mkpath(QFileInfo(to).absolutePath());
+        if (!QFile::copy(from, to)) {
+            m_workbench->reportError(tr("Cannot copy the example bundle to %1").arg(to));
+            return false;
+        }
+    }
+    return m_actions->importBundle(dir);
 }
 
 void MainWindow::showChannels(const QVector<qint64> &channelIds)
 {
-    if (!m_store || m_sessionId == 0)
+    if (!m_workbench->store() || m_workbench->currentSession() == 0)
         return;
     try {
         m_workspace->showChannels(channelIds);
     } catch (const std::exception &e) {
-        reportError(QString::fromStdString(e.what()));
+        m_workbench->reportError(QString::fromStdString(e.what()));
     }
 }
 
 void MainWindow::compareWith(qint64 sessionId)
 {
-    if (sessionId == 0 || !m_store) {
+    if (sessionId == 0 || !m_workbench->store()) {
         m_comparison->clear();
         m_comparison->hide();
         return;
     }
     try {
-        m_comparison->setSession(m_store.get(), sessionId);
+        m_comparison->setSession(m_workbench->store(), sessionId);
         m_comparison->show();
         m_split->setSizes({m_split->width() / 2, m_split->width() / 2});
     } catch (const std::exception &e) {
-        reportError(QString::fromStdString(e.what()));
+        m_workbench->reportError(QString::fromStdString(e.what()));
     }
 }
 
 void MainWindow::chooseComparison()
 {
-    if (!m_store)
+    if (!m_workbench->store())
         return;
     QStringList labels;
     QVector<qint64> ids;
-    for (const SessionInfo &s : m_store->sessions()) {
+    for (const SessionInfo &s : m_workbench->sessions()) {
         labels << QStringLiteral("#%1  %2").arg(s.id).arg(s.name);
         ids << s.id;
     }
@@ -425,199 +431,6 @@ void MainWindow::chooseComparison()
                                                  labels, 0, false, &ok);
     if (ok)
         compareWith(ids.value(labels.indexOf(choice)));
-}
-
-bool MainWindow::importBundle(const QString &path)
-{
-    return importBundle(path, false);
-}
-
-bool MainWindow::importBundle(const QString &path, bool allowDuplicate)
-{
-    if (!m_store) {
-        reportError(tr("Open a database before importing %1 (File > New database or Open database)").arg(path));
-        return false;
-    }
-    try {
-        statusBar()->showMessage(tr("Importing %1...").arg(path));
-        QApplication::setOverrideCursor(Qt::WaitCursor);
-        const qint64 id = BundleTransfer::importBundle(*m_store, path, allowDuplicate);
-        QApplication::restoreOverrideCursor();
-        refreshSessions(id);
-        statusBar()->showMessage(tr("Imported %1 as session %2").arg(path).arg(id));
-        return true;
-    } catch (const DuplicateSessionError &e) {
-        QApplication::restoreOverrideCursor();
-        const QMessageBox::StandardButton answer = QMessageBox::question(
-            this, tr("Already in this database"),
-            tr("%1.\n\nImport a second copy as a new session?").arg(QString::fromStdString(e.what())),
-            QMessageBox::Yes | QMessageBox::No, QMessageBox::No);
-        if (answer == QMessageBox::Yes)
-            return importBundle(path, true);
-        reportError(tr("%1 not imported: it is already session %2").arg(path).arg(e.existingSession()));
-        m_browser->selectSession(e.existingSession());
-        showSession(e.existingSession());
-        return false;
-    } catch (const std::exception &e) {
-        QApplication::restoreOverrideCursor();
-        // Nothing was imported: the store rolls the whole bundle back.
-        reportError(QString::fromStdString(e.what()));
-        if (isVisible())
-            QMessageBox::warning(this, tr("Import failed"), m_lastError);
-        return false;
-    }
-}
-
-void MainWindow::chooseBundle()
-{
-    const QString path = QFileDialog::getOpenFileName(this, tr("Import recording bundle"), QString(),
-                                                      tr("Bundles (manifest.json *.zip);;All files (*)"));
-    if (path.isEmpty())
-        return;
-    importBundle(QFileInfo(path).fileName() == QLatin1String("manifest.json") ? QFileInfo(path).absolutePath() : path);
-}
-
-bool MainWindow::renameSession(qint64 sessionId, const QString &name)
-{
-    if (!m_store)
-        return false;
-    try {
-        const QString before = m_store->session(sessionId).name;
-        if (name.trimmed() == before)
-            return true;
-        if (name.trimmed().isEmpty()) {
-            reportError(tr("A session name must not be empty"));
-            return false;
-        }
-        m_undo->push(new SessionTextCommand(*m_store, sessionId, SessionTextCommand::Field::Name, before, name.trimmed(),
-                                            [this](qint64 id) { refreshSessions(id); }));
-        return true;
-    } catch (const std::exception &e) {
-        reportError(QString::fromStdString(e.what()));
-        return false;
-    }
-}
-
-bool MainWindow::setSessionNotes(qint64 sessionId, const QString &notes)
-{
-    if (!m_store)
-        return false;
-    try {
-        const QString before = m_store->session(sessionId).notes;
-        if (notes == before)
-            return true;
-        m_undo->push(new SessionTextCommand(*m_store, sessionId, SessionTextCommand::Field::Notes, before, notes,
-                                            [this](qint64 id) { m_browser->setSessions(m_store->sessions());
-                                                                m_browser->selectSession(id); }));
-        return true;
-    } catch (const std::exception &e) {
-        reportError(QString::fromStdString(e.what()));
-        return false;
-    }
-}
-
-bool MainWindow::deleteSession(qint64 sessionId)
-{
-    if (!m_store)
-        return false;
-    if (m_models->running() || m_diagnosis->running() || m_analysis->running()) {
-        reportError(tr("A model fit or diagnosis is running; cancel it before deleting sessions"));
-        return false;
-    }
-    if (m_acquisition->recording() && m_acquisition->sessionId() == sessionId &&
-        QFileInfo(m_acquisition->databasePath()).absoluteFilePath() == QFileInfo(m_store->path()).absoluteFilePath()) {
-        reportError(tr("Session %1 is being recorded; stop the recording first").arg(sessionId));
-        return false;
-    }
-    try {
-        const QString name = m_store->session(sessionId).name;
-        m_store->deleteSession(sessionId);
-        m_undo->clear(); // earlier edits may refer to the deleted session
-        if (m_comparison->session() == sessionId)
-            compareWith(0);
-        if (m_sessionId == sessionId) {
-            m_workspace->clear();
-            m_sessionId = 0;
-        }
-        refreshSessions(m_sessionId);
-        statusBar()->showMessage(tr("Deleted session %1 '%2'").arg(sessionId).arg(name));
-        return true;
-    } catch (const std::exception &e) {
-        reportError(QString::fromStdString(e.what()));
-        return false;
-    }
-}
-
-void MainWindow::askRename()
-{
-    if (!m_store || m_sessionId == 0)
-        return;
-    bool ok = false;
-    const QString name = QInputDialog::getText(this, tr("Rename session"), tr("Name of session %1:").arg(m_sessionId),
-                                               QLineEdit::Normal, m_store->session(m_sessionId).name, &ok);
-    if (ok)
-        renameSession(m_sessionId, name);
-}
-
-void MainWindow::askNotes()
-{
-    if (!m_store || m_sessionId == 0)
-        return;
-    bool ok = false;
-    const QString notes = QInputDialog::getMultiLineText(this, tr("Session notes"), tr("Notes of session %1:").arg(m_sessionId),
-                                                         m_store->session(m_sessionId).notes, &ok);
-    if (ok)
-        setSessionNotes(m_sessionId, notes);
-}
-
-void MainWindow::askDelete()
-{
-    if (!m_store || m_sessionId == 0)
-        return;
-    const qint64 id = m_sessionId;
-    const QString name = m_store->session(id).name;
-    const auto answer = QMessageBox::warning(
-        this, tr("Delete session"),
-        tr("Delete session %1 '%2' with everything recorded, fitted and analysed with it?\n\n"
-           "This cannot be undone (export it as a bundle first to keep a copy).")
-            .arg(id)
-            .arg(name),
-        QMessageBox::Yes | QMessageBox::Cancel, QMessageBox::Cancel);
-    if (answer == QMessageBox::Yes)
-        deleteSession(id);
-}
-
-void MainWindow::importCsv()
-{
-    if (!m_store) {
-        reportError(tr("Open a database first (File > Open database): the table is imported into it"));
-        return;
-    }
-    const QString path = QFileDialog::getOpenFileName(this, tr("Import CSV table"), QString(),
-                                                      tr("Tables (*.csv *.txt *.tsv *.dat);;All files (*)"));
-    if (path.isEmpty())
-        return;
-    auto *dialog = new CsvImportDialog(m_store->path(), this);
-    dialog->setAttribute(Qt::WA_DeleteOnClose);
-    connect(dialog, &CsvImportDialog::imported, this, [this](qint64 id) { refreshSessions(id); });
-    dialog->openFile(path);
-    dialog->open();
-}
-
-void MainWindow::exportSession()
-{
-    if (!m_store || m_sessionId == 0)
-        return;
-    const QString out = QFileDialog::getSaveFileName(this, tr("Export session"), QStringLiteral("session.zip"),
-                                                     tr("Zipped bundle (*.zip);;Bundle folder (*.bundle)"));
-    if (out.isEmpty())
-        return;
-    try {
-        BundleTransfer::exportBundle(*m_store, m_sessionId, out);
-        statusBar()->showMessage(tr("Exported session %1 to %2").arg(m_sessionId).arg(out));
-    } catch (const std::exception &e) {
-        reportError(QString::fromStdString(e.what()));
-    }
 }
 
 void MainWindow::exportView()
@@ -634,7 +447,7 @@ void MainWindow::exportView()
         PlotExporter::exportPlot(*plot, out);
         statusBar()->showMessage(tr("Wrote %1").arg(out));
     } catch (const std::exception &e) {
-        reportError(QString::fromStdString(e.what()));
+        m_workbench->reportError(QString::fromStdString(e.what()));
     }
 }
 
@@ -650,13 +463,14 @@ void MainWindow::showAbout()
 
 void MainWindow::showDocumentation()
 {
-    if (!m_docs.isEmpty() && QFileInfo(m_docs).isDir() && QDesktopServices::openUrl(QUrl::fromLocalFile(m_docs)))
-        return;
-    QMessageBox::information(this, tr("Documentation"),
-                             tr("The documentation is the docs/ folder of the DriftLab sources%1: README.md, "
-                                "docs/recording-bundle.md (the file format), docs/acquisition.md, docs/review.md, "
-                                "docs/models.md, docs/diagnosis.md.")
-                                 .arg(m_docs.isEmpty() ? QString() : QStringLiteral(" (%1)").arg(m_docs)));
+    // The documentation shipped in the application (Qt resources, :/docs).
+    auto *help = findChild<HelpBrowser *>();
+    if (!help) {
+        help = new HelpBrowser(m_docs, this);
+        help->setObjectName(QStringLiteral("HelpBrowser"));
+    }
+    help->show();
+    help->raise();
 }
 
 QImage MainWindow::snapshot()
@@ -689,9 +503,9 @@ void MainWindow::dropEvent(QDropEvent *event)
         if (!url.isLocalFile())
             continue;
         if (isDatabasePath(url.toLocalFile()))
-            openDatabase(url.toLocalFile());
+            m_workbench->openDatabase(url.toLocalFile());
         else if (isBundlePath(url.toLocalFile()))
-            importBundle(url.toLocalFile());
+            m_actions->importBundle(url.toLocalFile());
     }
     event->acceptProposedAction();
 }

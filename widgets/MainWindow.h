@@ -1,20 +1,22 @@
 #pragma once
-// The main window: a dockable session browser, the review workspace of the chosen
-// session, and optionally a second workspace beside it to compare two sessions; docks for
-// acquisition, models and diagnosis. Session management (new / open database, import by
-// menu or by dropping a bundle or a .sqlite, rename, notes, delete), undo for renames and
-// notes, recent files, Help. Laid out for 1366 x 768 and up: every dock scrolls, the
-// sessions dock runs the full height; geometry and dock state persist (QSettings).
+// The main window: the layout only. A dockable session browser, the review workspace of the
+// workbench's current session and optionally a second workspace beside it to compare two
+// sessions; docks for acquisition, models, diagnosis, analysis and compensation; the menus.
+// The open database, the current session and their edits belong to the Workbench; the
+// dialogs that ask for them to SessionActions. Laid out for 1366 x 768 and up: every dock
+// scrolls, docks tabify, the sessions dock runs the full height; geometry and dock state
+// persist (QSettings) and View > Reset layout brings back the first arrangement.
 
+#include <QByteArray>
 #include <QMainWindow>
 #include <QStringList>
 
-#include <memory>
-
 class QAction;
+class QLabel;
 class QMenu;
 class QSplitter;
-class QUndoStack;
+class QStackedWidget;
+class QTabWidget;
 
 namespace driftlab {
 
@@ -25,9 +27,11 @@ class CompensationPanel;
 class DiagnosisPanel;
 class ModelsPanel;
 class ReviewWorkspace;
+class SessionActions;
 class SessionBrowser;
-class SessionStore;
 class TimeSeriesPlot;
+class WelcomePage;
+class Workbench;
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
@@ -35,23 +39,16 @@ public:
     explicit MainWindow(QWidget *parent = nullptr);
     ~MainWindow() override;
 
-    // Opens a session database; returns false and shows the reason in the status bar on failure.
-    bool openDatabase(const QString &path);
-    // Creates a new, empty database (its folder too) and opens it; refuses an existing file.
-    bool newDatabase(const QString &path);
-    void showSession(qint64 sessionId);
+    Workbench *workbench() const { return m_workbench; }
+    SessionActions *sessionActions() const { return m_actions; }
     void showChannels(const QVector<qint64> &channelIds);
+    // The first-start offers (WelcomePage): open the acquisition target database when none is
+    // open, then record 10 min of the simulated baseline rig, or import the example bundle.
+    bool recordSimulatedSession();
+    bool openExampleBundle();
+    WelcomePage *welcome() const { return m_welcome; }
     // Shows a second session beside the first (0 closes the comparison).
     void compareWith(qint64 sessionId);
-    // Imports a recording bundle (directory or .zip) into the open database. A bundle that is
-    // already there (same session UUID or content) asks whether to import a second copy.
-    bool importBundle(const QString &path);
-    // Undoable edits of the open database's sessions (Edit > Undo).
-    bool renameSession(qint64 sessionId, const QString &name);
-    bool setSessionNotes(qint64 sessionId, const QString &notes);
-    // Deletes a session and everything recorded, fitted and analysed with it, in one
-    // transaction; not undoable, so the Edit menu asks first (this call does not).
-    bool deleteSession(qint64 sessionId);
 
     // The window as on screen, with the 3-D view's OpenGL surface drawn in (QWidget::grab
     // leaves a native OpenGL window blank).
@@ -61,26 +58,27 @@ public:
     QDockWidget *addPanelDock(const QString &title, const QString &objectName, QWidget *panel, Qt::DockWidgetArea area,
                               const QKeySequence &shortcut = {});
     QDockWidget *dock(const QString &objectName) const;
-    // Folder opened by Help > Documentation.
+    // View > Reset layout: the docks as on the first start, hidden ones hidden.
+    void resetLayout();
+    // Where Help > Documentation finds the .md files (default: the resources, :/docs).
     void setDocumentationDirectory(const QString &dir) { m_docs = dir; }
 
     TimeSeriesPlot *plot() const;
     ReviewWorkspace *workspace() const { return m_workspace; }
     ReviewWorkspace *comparison() const { return m_comparison; }
+    // The central area's tabs: Session (the review workspace), Model fit, Diagnosis, Analysis.
+    QTabWidget *centralViews() const { return m_views; }
     AcquisitionPanel *acquisition() const { return m_acquisition; }
     ModelsPanel *models() const { return m_models; }
     DiagnosisPanel *diagnosis() const { return m_diagnosis; }
     AnalysisPanel *analysis() const { return m_analysis; }
     CompensationPanel *compensation() const { return m_compensation; }
     SessionBrowser *browser() const { return m_browser; }
-    QUndoStack *undoStack() const { return m_undo; }
-    const SessionStore *store() const { return m_store.get(); }
-    qint64 currentSession() const { return m_sessionId; }
     // File > Test report: the application connects it to the report dialog (report/ sits above widgets/).
     QAction *reportAction() const { return m_reportAction; }
     CentralStoreActions *centralStore() const { return m_central; }
-    QString lastError() const { return m_lastError; }
-    QStringList recentDatabases() const;
+    // The permanent status-bar text: open database and its number of sessions.
+    QString storeSummary() const;
 
 protected:
     void closeEvent(QCloseEvent *event) override;
@@ -89,26 +87,23 @@ protected:
 
 private:
     void buildMenus();
-    void chooseDatabase();
-    void chooseNewDatabase();
-    void chooseBundle();
-    void importCsv();
-    void exportSession();
     void exportView();
     void chooseComparison();
-    void askRename();
-    void askNotes();
-    void askDelete();
     void showAbout();
     void showDocumentation();
-    void rememberDatabase(const QString &path);
-    void refreshRecentMenu();
-    void reportError(const QString &message);
-    void refreshSessions(qint64 select);
-    bool importBundle(const QString &path, bool allowDuplicate);
     void fitToScreen();
+    void onStoreChanged();
+    void onSessionChanged(qint64 sessionId);
+    void onSessionsChanged();
+    void onRecordingStopped(qint64 sessionId);
+    void say(const QString &message);
+    bool ensureDatabase();
 
-    std::unique_ptr<SessionStore> m_store;
+    Workbench *m_workbench;
+    SessionActions *m_actions;
+    QTabWidget *m_views;
+    QStackedWidget *m_sessionPage;
+    WelcomePage *m_welcome;
     SessionBrowser *m_browser;
     QSplitter *m_split;
     ReviewWorkspace *m_workspace;
@@ -116,17 +111,15 @@ private:
     AcquisitionPanel *m_acquisition;
     ModelsPanel *m_models;
     DiagnosisPanel *m_diagnosis;
-    QUndoStack *m_undo;
     AnalysisPanel *m_analysis;
     CompensationPanel *m_compensation;
-    QMenu *m_recentMenu = nullptr;
+    QLabel *m_summary = nullptr;
     QMenu *m_viewMenu = nullptr;
     QAction *m_reportAction = nullptr;
     CentralStoreActions *m_central = nullptr;
     QAction *m_viewDocksEnd = nullptr;
-    qint64 m_sessionId = 0;
-    QString m_lastError;
-    QString m_docs;
+    QByteArray m_defaultLayout;
+    QString m_docs = QStringLiteral(":/docs");
 };
 
 } // namespace driftlab

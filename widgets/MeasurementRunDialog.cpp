@@ -75,7 +75,7 @@ MeasurementRunDialog::MeasurementRunDialog(Now now, Commit commit, QWidget *pare
     fb->addWidget(rtl);
     form->addRow(fb);
     m_table = new QTableWidget(0, ColCount, this);
-    m_table->setHorizontalHeaderLabels({tr("Target (mm)"), tr("Deviation (um)"), tr("Session time (s)")});
+    m_table->setHorizontalHeaderLabels({tr("Target (mm)"), tr("Thermal error (µm)"), tr("Session time (s)")});
     m_table->horizontalHeader()->setStretchLastSection(true);
     m_runLabel = new QLabel(this);
     m_status = new QLabel(tr("Type each deviation as the laser software shows it, or paste a column of values (Ctrl+V)."), this);

@@ -2,6 +2,7 @@
 
 #include "ExportableModelJson.h"
 #include "ModelExportWriter.h"
+#include "ScreenFit.h"
 
 #include <QComboBox>
 #include <QDialogButtonBox>
@@ -10,6 +11,7 @@
 #include <QFontDatabase>
 #include <QFormLayout>
 #include <QHBoxLayout>
+#include <QAbstractItemView>
 #include <QLabel>
 #include <QLineEdit>
 #include <QPlainTextEdit>
@@ -32,6 +34,13 @@ ModelExportDialog::ModelExportDialog(QWidget *parent) : QDialog(parent)
     for (const auto &e : m_registry.exporters())
         m_target->addItem(QStringLiteral("%1 - %2").arg(QString::fromStdString(e->name()), QString::fromStdString(e->description())),
                           QString::fromStdString(e->name()));
+    // Long exporter descriptions must not widen the dialog past a laptop screen (it opened
+    // 1429 px wide): the combo keeps a moderate width, the full text is in its list and tooltip.
+    m_target->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    m_target->setMinimumContentsLength(32);
+    for (int i = 0; i < m_target->count(); ++i)
+        m_target->setItemData(i, m_target->itemText(i), Qt::ToolTipRole);
+    m_target->view()->setTextElideMode(Qt::ElideNone);
     m_axis = new QComboBox(this);
     m_axis->addItems({QStringLiteral("X"), QStringLiteral("Y"), QStringLiteral("Z")});
     m_name = new QLineEdit(QStringLiteral("driftlab_comp"), this);
@@ -58,7 +67,7 @@ ModelExportDialog::ModelExportDialog(QWidget *parent) : QDialog(parent)
     layout->addWidget(m_message);
     layout->addWidget(m_preview, 1);
     layout->addWidget(buttons);
-    resize(900, 640);
+    ScreenFit::resize(this, QSize(900, 640));
 
     connect(browseModel, &QPushButton::clicked, this, &ModelExportDialog::browseModel);
     connect(browseFolder, &QPushButton::clicked, this, &ModelExportDialog::browseFolder);

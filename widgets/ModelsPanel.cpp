@@ -5,6 +5,7 @@
 #include "SessionAnalysis.h"
 #include "SessionStore.h"
 #include "UnitLabels.h"
+#include "Workbench.h"
 
 #include <QComboBox>
 #include <QHBoxLayout>
@@ -65,13 +66,15 @@ ModelsPanel::ModelsPanel(QWidget *parent)
     m_predicted->setTitle(tr("Predicted thermal error"));
     m_residual->setTitle(tr("Residual (measured − predicted)"));
     // One row: the panel stays usable in a bottom dock of a 768-pixel-high screen.
-    auto *plots = new QHBoxLayout();
-    plots->addWidget(m_measured);
-    plots->addWidget(m_predicted);
-    plots->addWidget(m_residual);
+    m_results = new QSplitter(Qt::Horizontal, this);
+    m_results->setObjectName(QStringLiteral("ModelFitView"));
+    m_results->addWidget(m_measured);
+    m_results->addWidget(m_predicted);
+    m_results->addWidget(m_residual);
+    m_results->setChildrenCollapsible(false);
     auto *layout = new QHBoxLayout(this);
     layout->addLayout(left, 1);
-    layout->addLayout(plots, 4);
+    layout->addWidget(m_results, 4);
 
     m_progress->setRange(0, 1);
     m_progress->setValue(0);
@@ -81,16 +84,25 @@ ModelsPanel::ModelsPanel(QWidget *parent)
     connect(m_show, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &ModelsPanel::showRecording);
 }
 
-ModelsPanel::~ModelsPanel()
+ModelsPanel::ModelsPanel(Workbench *workbench, QWidget *parent) : ModelsPanel(parent)
 {
-    m_cancelRequested = true;
-    joinWorker();
+    connect(workbench, &Workbench::storeChanged, this, [this](SessionStore *store) { setStore(store); });
+    connect(workbench, &Workbench::sessionsChanged, this, [this, workbench] {
+        if (!running())
+            setStore(workbench->store());
+    });
+    workbench->addGuard(this, [this](qint64) { return running() ? tr("A model fit is running on the open database; cancel it first") : QString(); });
 }
 
-void ModelsPanel::joinWorker()
+ModelsPanel::~ModelsPanel()
 {
-    if (m_thread.joinable())
-        m_thread.join();
+    m_job.cancel();
+    m_job.finish();
+}
+
+QWidget *ModelsPanel::resultsView() const
+{
+    return m_results;
 }
 
 void ModelsPanel::setStore(const SessionStore *store)
@@ -135,7 +147,6 @@ bool ModelsPanel::startFit(const QVector<qint64> &training, qint64 heldOut)
         m_lastError = tr("The held-out session must not be a training session");
         return false;
     }
-    joinWorker();
     // Show the choice in the widgets too (when called programmatically).
     for (int i = 0; i < m_sessions->count(); ++i)
         m_sessions->item(i)->setCheckState(training.contains(m_sessions->item(i)->data(kIdRole).toLongLong()) ? Qt::Checked
@@ -166,10 +177,12 @@ bool ModelsPanel::startFit(const QVector<qint64> &training, qint64 heldOut)
         m_lastError = QString::fromStdString(e.what());
         return false;
     }
-    m_cancelRequested = false;
-    m_finished = false;
-    m_fit->setEnabled(false);
+    // Cancel first, and the focus with it: a disabled focused button hands the focus down
+    // the chain, and the dock's scroll area followed it away from progress and Cancel.
     m_cancel->setEnabled(true);
+    if (m_fit->hasFocus())
+        m_cancel->setFocus();
+    m_fit->setEnabled(false);
     m_progress->setRange(0, 0); // busy until the first iteration
     m_status->setText(tr("Simulating unit responses and fitting..."));
     IdentificationOptions options;
@@ -181,10 +194,10 @@ bool ModelsPanel::startFit(const QVector<qint64> &training, qint64 heldOut)
             m_progress->setValue(std::min(100, iteration));
             m_status->setText(tr("iteration %1, cost %2").arg(iteration).arg(cost, 0, 'g', 4));
         }, Qt::QueuedConnection);
-        return !m_cancelRequested.load();
+        return !m_job.cancelled();
     };
     m_feedNote = QString::fromStdString(ParameterPlausibility::feedCoverageNote(recordings));
-    m_thread = std::thread([this, geometry, options, recordings = std::move(recordings),
+    m_job.start([this, geometry, options, recordings = std::move(recordings),
                             validation = std::move(validation)]() mutable {
         IdentificationResult result;
         FitStatistics held;
@@ -213,14 +226,13 @@ bool ModelsPanel::startFit(const QVector<qint64> &training, qint64 heldOut)
 
 void ModelsPanel::cancel()
 {
-    m_cancelRequested = true;
+    m_job.cancel();
     m_status->setText(tr("Cancelling..."));
 }
 
 void ModelsPanel::finish(bool ok, const QString &error)
 {
-    joinWorker();
-    m_finished = true;
+    m_job.finish();
     m_fit->setEnabled(true);
     m_cancel->setEnabled(false);
     m_progress->setRange(0, 1);

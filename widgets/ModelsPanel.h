@@ -5,20 +5,23 @@
 
 #include "ScrewModelIdentifier.h"
 
+#include "BackgroundJob.h"
+
 #include <QWidget>
 
-#include <atomic>
 #include <memory>
-#include <thread>
 
 class QComboBox;
 class QLabel;
 class QListWidget;
 class QProgressBar;
 class QPushButton;
+class QSplitter;
 class QTableWidget;
 
 namespace driftlab {
+
+class Workbench;
 
 class ErrorSurfacePlot;
 class SessionStore;
@@ -27,6 +30,9 @@ class ModelsPanel : public QWidget {
     Q_OBJECT
 public:
     explicit ModelsPanel(QWidget *parent = nullptr);
+    // Follows the workbench's database and session list (the list is re-read when no job runs);
+    // the workbench keeps its database while a job runs.
+    explicit ModelsPanel(Workbench *workbench, QWidget *parent = nullptr);
     ~ModelsPanel() override;
 
     // Lists the store's sessions (the store must outlive the panel's use of it).
@@ -34,7 +40,7 @@ public:
     // Starts a fit in the background; false (with lastError()) if it cannot start.
     bool startFit(const QVector<qint64> &training, qint64 heldOut);
     void cancel();
-    bool running() const { return m_thread.joinable() && !m_finished; }
+    bool running() const { return m_job.running(); }
     QString lastError() const { return m_lastError; }
     const IdentificationResult &result() const { return m_result; }
     const FitStatistics &validation() const { return m_validation; }
@@ -42,6 +48,9 @@ public:
     ErrorSurfacePlot *measuredSurface() const { return m_measured; }
     ErrorSurfacePlot *predictedSurface() const { return m_predicted; }
     ErrorSurfacePlot *residualSurface() const { return m_residual; }
+    // The three surfaces side by side: beside the controls, or (MainWindow) a full-size
+    // view of the central area, taken out of the panel.
+    QWidget *resultsView() const;
 
     // Interferometer points of one recording on a (target, run time) grid; a new run starts
     // after a pause of more than `runGap_s`. which: 0 measured, 1 predicted, 2 residual.
@@ -55,7 +64,6 @@ private:
     void onFitClicked();
     void finish(bool ok, const QString &error);
     void showRecording(int index);
-    void joinWorker();
 
     const SessionStore *m_store = nullptr;
     QListWidget *m_sessions;
@@ -69,10 +77,9 @@ private:
     ErrorSurfacePlot *m_measured;
     ErrorSurfacePlot *m_predicted;
     ErrorSurfacePlot *m_residual;
+    QSplitter *m_results;
 
-    std::thread m_thread;
-    std::atomic<bool> m_cancelRequested{false};
-    bool m_finished = true;
+    BackgroundJob m_job;
     QString m_lastError;
     IdentificationResult m_result;
     FitStatistics m_validation;

@@ -28,6 +28,7 @@ enum Tab { TimeSeriesTab, SurfaceTab, ProfilesTab, HistoriesTab, TemperatureTab,
 
 ReviewWorkspace::ReviewWorkspace(QWidget *parent)
     : QWidget(parent),
+      m_heading(new QLabel(this)),
       m_tabs(new QTabWidget(this)),
       m_timeSeries(new TimeSeriesPlot(this)),
       m_surface(new ErrorSurfacePlot(this)),
@@ -42,6 +43,11 @@ ReviewWorkspace::ReviewWorkspace(QWidget *parent)
 {
     auto *layout = new QVBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
+    m_heading->setObjectName(QStringLiteral("SessionHeading"));
+    m_heading->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    m_heading->setContentsMargins(4, 2, 4, 0);
+    m_heading->setText(tr("No session"));
+    layout->addWidget(m_heading);
     layout->addWidget(m_tabs);
     auto *tempLayout = new QVBoxLayout(m_temperaturePage);
     auto *pickers = new QHBoxLayout();
@@ -73,6 +79,11 @@ ReviewWorkspace::ReviewWorkspace(QWidget *parent)
 
 ReviewWorkspace::~ReviewWorkspace() = default;
 
+QString ReviewWorkspace::heading() const
+{
+    return m_heading->text();
+}
+
 void ReviewWorkspace::clear()
 {
     m_store = nullptr;
@@ -80,6 +91,7 @@ void ReviewWorkspace::clear()
     m_data.reset();
     m_hasErrors = false;
     m_timeSeries->clearCurves();
+    m_heading->setText(tr("No session"));
     for (int t = SurfaceTab; t <= InfraredTab; ++t)
         m_tabs->setTabEnabled(t, false);
 }
@@ -91,6 +103,12 @@ void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
     m_sessionId = sessionId;
     m_data = data;
     m_timeSeries->setTitle(data->info().name);
+    const SessionInfo &info = data->info();
+    m_heading->setText(tr("<b>Session #%1</b>&nbsp;&nbsp;%2&nbsp;&nbsp;<span style='color:#555'>started %3%4%5</span>")
+                           .arg(sessionId)
+                           .arg(info.name.toHtmlEscaped(), info.started.toHtmlEscaped(),
+                                info.operatorName.isEmpty() ? QString() : tr(", operator %1").arg(info.operatorName.toHtmlEscaped()),
+                                info.complete ? QString() : tr(", incomplete")));
     m_timeSeries->setEvents(store->events(sessionId));
 
     m_hasErrors = data->hasInterferometer();
@@ -160,13 +178,33 @@ QVector<qint64> ReviewWorkspace::defaultChannels() const
 void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
 {
     m_timeSeries->clearCurves();
+    m_leftOut.clear();
     if (!m_store || !m_data)
         return;
-    QString leftUnits, rightUnits, rightKinds;
-    for (const ChannelInfo &c : m_data->channels()) {
-        if (!channelIds.contains(c.id))
+    // One unit per value axis (an axis reading "(µm, mm)" is no scale): temperatures on the
+    // left, the first other unit on the right (on the left when no temperature is shown);
+    // channels of a third unit are left out and the plot's footer says so.
+    QVector<ChannelInfo> chosen;
+    for (const ChannelInfo &c : m_data->channels())
+        if (channelIds.contains(c.id))
+            chosen.push_back(c);
+    QString leftUnit, rightUnit;
+    for (const ChannelInfo &c : chosen)
+        if (c.kind == QLatin1String("temperature") && leftUnit.isEmpty())
+            leftUnit = c.unit;
+    for (const ChannelInfo &c : chosen) {
+        if (leftUnit.isEmpty())
+            leftUnit = c.unit;
+        else if (rightUnit.isEmpty() && c.unit != leftUnit)
+            rightUnit = c.unit;
+    }
+    QStringList leftNames, rightNames, leftOut;
+    for (const ChannelInfo &c : chosen) {
+        const bool right = c.unit == rightUnit && c.unit != leftUnit;
+        if (c.unit != leftUnit && !right) {
+            leftOut << QStringLiteral("%1 (%2)").arg(c.key, UnitLabels::display(c.unit));
             continue;
-        const bool right = c.kind != QLatin1String("temperature");
+        }
         if (m_store->sampleCount(c.id) > kRawCurveLimit) {
             const SessionStore *store = m_store;
             const qint64 id = c.id;
@@ -180,16 +218,18 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
             const SampleBlock block = m_store->samples(c.id);
             m_timeSeries->addCurve(c.key, block.t, block.v, right);
         }
-        if (right && !rightKinds.contains(c.kind))
-            rightKinds += (rightKinds.isEmpty() ? QString() : QStringLiteral(", ")) + c.kind;
-        QString &units = right ? rightUnits : leftUnits;
-        const QString unit = UnitLabels::display(c.unit);
-        if (!units.contains(unit))
-            units += (units.isEmpty() ? QString() : QStringLiteral(", ")) + unit;
+        QStringList &names = right ? rightNames : leftNames;
+        if (!names.contains(UnitLabels::quantity(c.kind)))
+            names << UnitLabels::quantity(c.kind);
     }
-    m_timeSeries->enableAxis(QwtPlot::yRight, !rightUnits.isEmpty());
-    m_timeSeries->setAxisTitles(leftUnits.isEmpty() ? QString() : tr("temperature (%1)").arg(leftUnits),
-                                rightUnits.isEmpty() ? QString() : QStringLiteral("%1 (%2)").arg(rightKinds, rightUnits));
+    if (!leftOut.isEmpty())
+        m_leftOut = tr("Not drawn: %1 (a third unit; a plot has two value axes)").arg(leftOut.join(QStringLiteral(", ")));
+    m_timeSeries->setFooter(m_leftOut);
+    m_timeSeries->enableAxis(QwtPlot::yRight, !rightUnit.isEmpty());
+    auto title = [](const QStringList &names, const QString &unit) {
+        return unit.isEmpty() ? QString() : QStringLiteral("%1 (%2)").arg(names.join(QStringLiteral(", ")), UnitLabels::display(unit));
+    };
+    m_timeSeries->setAxisTitles(title(leftNames, leftUnit), title(rightNames, rightUnit));
     m_timeSeries->zoomToData();
 }
 

@@ -10,6 +10,7 @@
 #include <memory>
 
 class QComboBox;
+class QLabel;
 class QTabWidget;
 class QwtPlot;
 
@@ -36,6 +37,8 @@ public:
     // Plots the channels (by id) in the time-series view.
     void showChannels(const QVector<qint64> &channelIds);
     QVector<qint64> defaultChannels() const;
+    // Channels showChannels() left out because their unit needed a third axis ("" for none).
+    QString leftOutChannels() const { return m_leftOut; }
 
     // Export names: timeseries, error-surface, error-position, error-time,
     // error-temperature, ir-profile, ir-surface.
@@ -51,6 +54,9 @@ public:
     TimeSeriesPlot *timeSeriesPlot() const { return m_timeSeries; }
     ErrorSurfacePlot *errorSurface() const { return m_surface; }
     InfraredPanel *infraredPanel() const { return m_infrared; }
+    // The line above the tabs naming the session ("#3  X axis warm-up, 2026-11-20 08:14"):
+    // beside a comparison, it says which session is which.
+    QString heading() const;
 
 private:
     void updateTemperatureView();
@@ -60,6 +66,7 @@ private:
     qint64 m_sessionId = 0;
     std::shared_ptr<SessionReviewData> m_data;
     bool m_hasErrors = false;
+    QLabel *m_heading;
     QTabWidget *m_tabs;
     TimeSeriesPlot *m_timeSeries;
     ErrorSurfacePlot *m_surface;
@@ -72,6 +79,7 @@ private:
     QWidget *m_3dPage;
     ErrorSurface3D *m_3d = nullptr;
     InfraredPanel *m_infrared;
+    QString m_leftOut;
 };
 
 } // namespace driftlab

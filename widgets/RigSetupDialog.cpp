@@ -3,7 +3,9 @@
 #include "DeviceTestRunner.h"
 #include "ModbusPreset.h"
 #include "RealDevices.h"
+#include "RangeCodeDelegate.h"
 #include "RigConfigLoader.h"
+#include "ScreenFit.h"
 
 #include <QComboBox>
 #include <QDialogButtonBox>
@@ -19,6 +21,7 @@
 #include <QLineEdit>
 #include <QListWidget>
 #include <QMenu>
+#include <QMessageBox>
 #include <QPlainTextEdit>
 #include <QPushButton>
 #include <QSaveFile>
@@ -111,6 +114,7 @@ void RigSetupDialog::buildUi()
 
     m_id = new QLineEdit(this);
     m_type = new QLabel(this);
+    m_type->setWordWrap(true); // long device descriptions widened the dialog past 1366 px
     m_preset = new QComboBox(this);
     m_preset->addItem(tr("(register map)"), QString());
     for (const QString &p : ModbusPreset::names())
@@ -165,9 +169,13 @@ void RigSetupDialog::buildUi()
     m_status->setWordWrap(true);
     auto *editor = new QVBoxLayout;
     editor->addLayout(form);
-    editor->addWidget(new QLabel(tr("Channels of the module (edit ids, ranges, roles, locations; the rest in the settings below)"), this));
+    auto *channelsLabel = new QLabel(tr("Channels of the module (edit ids, ranges, roles, locations; the rest in the settings below)"), this);
+    channelsLabel->setWordWrap(true);
+    editor->addWidget(channelsLabel);
     editor->addWidget(m_channels, 2);
-    editor->addWidget(new QLabel(tr("Settings (JSON, as in the rig file; see docs/acquisition.md)"), this));
+    auto *settingsLabel = new QLabel(tr("Settings (JSON, as in the rig file; see docs/acquisition.md)"), this);
+    settingsLabel->setWordWrap(true);
+    editor->addWidget(settingsLabel);
     editor->addWidget(m_json, 3);
     editor->addWidget(m_status);
 
@@ -204,7 +212,18 @@ void RigSetupDialog::buildUi()
     layout->addLayout(top);
     layout->addLayout(body, 1);
     layout->addWidget(buttons);
-    resize(1400, 760);
+    ScreenFit::resize(this, QSize(1400, 760));
+    // Range codes from the module preset's list, not free hex text.
+    m_channels->setItemDelegateForColumn(ColRange, new RangeCodeDelegate([this] {
+        try {
+            const QString preset = m_preset->currentData().toString();
+            return preset.isEmpty() ? QVector<ModbusRange>() : ModbusPreset::load(preset).ranges;
+        } catch (const std::exception &) {
+            return QVector<ModbusRange>();
+        }
+    }, this));
+    m_testState->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    m_testState->setSizePolicy(QSizePolicy::Preferred, QSizePolicy::MinimumExpanding);
 
     connect(m_list, &QListWidget::currentRowChanged, this, &RigSetupDialog::selectDevice);
     connect(remove, &QPushButton::clicked, this, [this] { removeDevice(m_current); });
@@ -490,6 +509,24 @@ void RigSetupDialog::setChannelCell(int row, int column, const QString &text)
         item->setText(text); // itemChanged -> formEdited
 }
 
+bool RigSetupDialog::unsaved() const
+{
+    return !m_devices.isEmpty() && QJsonDocument(RigConfigLoader::toJson(rig())).toJson(QJsonDocument::Compact) != m_clean;
+}
+
+void RigSetupDialog::reject()
+{
+    if (unsaved()) {
+        const auto answer = QMessageBox::question(
+            this, tr("Discard the rig set-up?"),
+            tr("%n device(s) set up here are not saved in a rig file. Discard them?", nullptr, m_devices.size()),
+            QMessageBox::Discard | QMessageBox::Cancel, QMessageBox::Cancel);
+        if (answer != QMessageBox::Discard)
+            return;
+    }
+    QDialog::reject();
+}
+
 RigConfig RigSetupDialog::rig() const
 {
     RigConfig c = m_base;
@@ -563,6 +600,7 @@ bool RigSetupDialog::saveTo(const QString &path)
         return false;
     }
     m_savedPath = path;
+    m_clean = QJsonDocument(RigConfigLoader::toJson(rig())).toJson(QJsonDocument::Compact);
     return true;
 }
 
@@ -578,6 +616,7 @@ bool RigSetupDialog::loadFrom(const QString &path)
         m_current = -1;
         refreshList();
         selectDevice(m_devices.isEmpty() ? -1 : 0);
+        m_clean = QJsonDocument(RigConfigLoader::toJson(rig())).toJson(QJsonDocument::Compact);
         return true;
     } catch (const std::exception &e) {
         m_validation = QString::fromUtf8(e.what());

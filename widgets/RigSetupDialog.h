@@ -58,6 +58,10 @@ public:
     bool saveTo(const QString &path);  // false with validationMessage() set
     bool loadFrom(const QString &path);
     QString savedPath() const { return m_savedPath; }
+    // Devices added or changed since the dialog opened, or since the last save or load.
+    bool unsaved() const;
+    // Esc and Close ask before they discard unsaved devices.
+    void reject() override;
 
 private:
     void buildUi();
@@ -74,6 +78,7 @@ private:
     bool m_updating = false;
     QString m_validation;
     QString m_savedPath;
+    QByteArray m_clean; // the rig's JSON as opened, saved or loaded
 
     QLineEdit *m_name;
     QComboBox *m_basePreset;

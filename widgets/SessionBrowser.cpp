@@ -22,7 +22,9 @@ SessionBrowser::SessionBrowser(QWidget *parent)
     auto *top = new QWidget(split);
     auto *topLayout = new QVBoxLayout(top);
     topLayout->setContentsMargins(0, 0, 0, 0);
-    topLayout->addWidget(new QLabel(tr("Sessions (right-click: rename, notes, delete)"), top));
+    auto *heading = new QLabel(tr("Sessions (right-click: rename, notes, delete)"), top);
+    heading->setWordWrap(true); // a narrow dock must not scroll sideways for it
+    topLayout->addWidget(heading);
     topLayout->addWidget(m_sessions);
     auto *bottom = new QWidget(split);
     auto *bottomLayout = new QVBoxLayout(bottom);

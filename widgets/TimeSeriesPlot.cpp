@@ -1,5 +1,9 @@
 #include "TimeSeriesPlot.h"
 
+#include "ElapsedTimeAxis.h"
+#include "PlotInteraction.h"
+#include "PlotReadout.h"
+
 #include <qwt_legend.h>
 #include <qwt_plot_curve.h>
 #include <qwt_plot_grid.h>
@@ -34,22 +38,6 @@ const QVector<QColor> &curveColours()
     return colours;
 }
 
-// Time labels in h:mm once the visible span passes two hours, else in seconds.
-class ElapsedScaleDraw : public QwtScaleDraw {
-public:
-    explicit ElapsedScaleDraw(const bool *hours) : m_hours(hours) {}
-    QwtText label(double v) const override
-    {
-        if (!*m_hours)
-            return QwtScaleDraw::label(v);
-        const qint64 m = static_cast<qint64>(std::llround(v / 60.0));
-        return QwtText(QStringLiteral("%1%2:%3").arg(m < 0 ? QStringLiteral("-") : QString()).arg(std::abs(m) / 60)
-                           .arg(std::abs(m) % 60, 2, 10, QLatin1Char('0')));
-    }
-
-private:
-    const bool *m_hours;
-};
 } // namespace
 
 TimeSeriesPlot::TimeSeriesPlot(QWidget *parent) : QwtPlot(parent), m_refresh(new QTimer(this))
@@ -65,19 +53,19 @@ TimeSeriesPlot::TimeSeriesPlot(QWidget *parent) : QwtPlot(parent), m_refresh(new
             m_refresh->start();
     });
     setCanvasBackground(Qt::white);
-    setAxisTitle(QwtPlot::xBottom, tr("time (s)"));
     enableAxis(QwtPlot::yRight, true);
     insertLegend(new QwtLegend(), QwtPlot::BottomLegend);
-    setAxisScaleDraw(QwtPlot::xBottom, new ElapsedScaleDraw(&m_hoursAxis));
+    ElapsedTimeAxis::install(this, QwtPlot::xBottom, tr("elapsed time"));
     auto *grid = new QwtPlotGrid();
     grid->setMajorPen(QColor(225, 225, 225), 0.0, Qt::SolidLine); // dotted lines are slow to raster
     grid->attach(this);
-    m_zoomer = new QwtPlotZoomer(canvas());
+    m_zoomer = new PlotReadout(canvas()); // readout with units, time in h:mm:ss
     m_zoomer->setRubberBandPen(QPen(Qt::darkGray, 1, Qt::DashLine));
     m_zoomer->setTrackerMode(QwtPicker::AlwaysOn);
     auto *panner = new QwtPlotPanner(canvas());
     panner->setMouseButton(Qt::MiddleButton);
     new QwtPlotMagnifier(canvas());
+    PlotInteraction::install(this, m_zoomer); // context menu, per-axis wheel zoom
 }
 
 void TimeSeriesPlot::clearCurves()
@@ -195,38 +183,16 @@ void TimeSeriesPlot::setEvents(const QVector<EventRecord> &events)
 void TimeSeriesPlot::setTimeAxis(bool time)
 {
     m_timeAxis = time;
-    if (!time)
-        m_hoursAxis = false;
+    if (time)
+        ElapsedTimeAxis::install(this, QwtPlot::xBottom, tr("elapsed time"));
+    else
+        ElapsedTimeAxis::uninstall(this, QwtPlot::xBottom);
 }
 
 void TimeSeriesPlot::zoomToData()
 {
-    // Long tests read in h:mm on ticks of whole quarter, half or full hours.
-    double t0 = 1e300, t1 = -1e300;
-    for (const QwtPlotCurve *c : m_curves) {
-        if (c->dataSize() == 0)
-            continue;
-        t0 = std::min(t0, c->minXValue());
-        t1 = std::max(t1, c->maxXValue());
-    }
-    for (const DecimatedCurve &d : m_decimated) {
-        t0 = std::min(t0, d.tFirst);
-        t1 = std::max(t1, d.tLast);
-    }
-    m_hoursAxis = m_timeAxis && t1 - t0 > 2.0 * 3600.0;
-    if (m_timeAxis)
-        setAxisTitle(QwtPlot::xBottom, m_hoursAxis ? tr("time (h:mm)") : tr("time (s)"));
-    if (m_hoursAxis) {
-        double step = 900.0;
-        for (double s : {900.0, 1800.0, 3600.0, 7200.0, 10800.0, 21600.0, 43200.0, 86400.0}) {
-            step = s;
-            if ((t1 - t0) / s <= 10.0)
-                break;
-        }
-        setAxisScale(QwtPlot::xBottom, std::floor(t0 / step) * step, std::ceil(t1 / step) * step, step);
-    } else {
-        setAxisAutoScale(QwtPlot::xBottom);
-    }
+    // A time axis divides itself on round clock steps (ElapsedScaleEngine), at any zoom.
+    setAxisAutoScale(QwtPlot::xBottom);
     setAxisAutoScale(QwtPlot::yLeft);
     setAxisAutoScale(QwtPlot::yRight);
     replot();

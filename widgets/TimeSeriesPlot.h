@@ -39,9 +39,9 @@ public:
     // Vertical markers with labels at operator/program events (replaces earlier ones).
     void setEvents(const QVector<EventRecord> &events);
     int eventMarkerCount() const { return m_events.size(); }
-    // Whether x is a time axis (default): then labels turn to h:mm past two hours.
+    // Whether x is a time axis (default): elapsed h:mm:ss on round clock steps (ElapsedTimeAxis).
     void setTimeAxis(bool time);
-    bool hoursAxis() const { return m_hoursAxis; }
+    bool timeAxis() const { return m_timeAxis; }
     void zoomToData();
 
 private:
@@ -57,7 +57,6 @@ private:
     QTimer *m_refresh;
     QwtPlotZoomer *m_zoomer = nullptr;
     bool m_timeAxis = true;
-    bool m_hoursAxis = false;
 };
 
 } // namespace driftlab

@@ -30,4 +30,13 @@ QString UnitLabels::inText(const QString &text)
     return t;
 }
 
+QString UnitLabels::quantity(const QString &kind)
+{
+    if (kind == QLatin1String("displacement"))
+        return QStringLiteral("elongation");
+    if (kind == QLatin1String("interferometer") || kind == QLatin1String("deviation"))
+        return QStringLiteral("thermal error");
+    return kind;
+}
+
 } // namespace driftlab

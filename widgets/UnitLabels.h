@@ -12,6 +12,10 @@ public:
     // The same inside prose from analysis/ (explanations, evidence, location summaries): the
     // words um and degC become µm and °C ("0.68 um", "2.7 um/K", "1.2 degC").
     static QString inText(const QString &text);
+    // One name per quantity on screen (issue 33): a channel kind as axes and tables say it.
+    // A probe's "displacement" is the screw's elongation; the interferometer's deviation at a
+    // target is the thermal error. Other kinds as they are.
+    static QString quantity(const QString &kind);
 };
 
 } // namespace driftlab

@@ -9,6 +9,7 @@
 #include "ReportDialog.h"
 #include "ReviewWorkspace.h"
 #include "SessionStore.h"
+#include "Workbench.h"
 
 #include <QAction>
 #include <QApplication>
@@ -48,9 +49,9 @@ qint64 sessionArg(const MainWindow &window, const QString &text)
 {
     bool ok = false;
     const qint64 id = text.trimmed().toLongLong(&ok);
-    if (!ok || !window.store())
+    if (!ok || !window.workbench()->store())
         return 0;
-    for (const SessionInfo &s : window.store()->sessions())
+    for (const SessionInfo &s : window.workbench()->sessions())
         if (s.id == id)
             return id;
     return 0;
@@ -125,29 +126,29 @@ int main(int argc, char **argv)
         path = QDir(QStandardPaths::writableLocation(QStandardPaths::AppDataLocation)).filePath(QStringLiteral("driftlab.sqlite"));
 
     MainWindow window;
-    window.setDocumentationDirectory(QStringLiteral(DRIFTLAB_DOCS_DIR));
     QObject::connect(window.reportAction(), &QAction::triggered, &window, [&window] {
-        if (!window.store() || window.currentSession() <= 0) {
+        Workbench *bench = window.workbench();
+        if (!bench->store() || bench->currentSession() <= 0) {
             window.statusBar()->showMessage(QObject::tr("Test report: choose a session first"), 5000);
             return;
         }
-        ReportDialog dialog(window.store(), window.currentSession(), &window);
+        ReportDialog dialog(bench->store(), bench->currentSession(), &window);
         dialog.exec();
     });
     if (QFileInfo::exists(path) || SessionStore::isCentral(path)) {
-        if (!window.openDatabase(path))
-            return usageError(window.lastError());
+        if (!window.workbench()->openDatabase(path))
+            return usageError(window.workbench()->lastError());
     } else if (p.isSet(db)) {
         return usageError(QStringLiteral("database %1 does not exist").arg(path));
     }
     const bool needStore = p.isSet(session) || p.isSet(compare) || p.isSet(fit) || p.isSet(diagnose) || p.isSet(analysis);
-    if (needStore && !window.store())
+    if (needStore && !window.workbench()->store())
         return usageError(QStringLiteral("no database open (%1 does not exist): give --db FILE").arg(path));
     if (p.isSet(session)) {
         const qint64 id = sessionArg(window, p.value(session));
         if (!id)
             return usageError(QStringLiteral("--show-session: %1 has no session '%2'").arg(path, p.value(session)));
-        window.showSession(id);
+        window.workbench()->setCurrentSession(id);
     }
     if (p.isSet(compare)) {
         const qint64 id = sessionArg(window, p.value(compare));

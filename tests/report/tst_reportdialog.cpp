@@ -31,6 +31,11 @@ void TestReportDialog::previewsAndSaves()
     dialog.resize(640, 760);
     dialog.show();
     QVERIFY2(dialog.message().startsWith(QStringLiteral("Report built")), qPrintable(dialog.message()));
+    // The preview opens at the title, not scrolled to the end (issue 33).
+    QVERIFY(QTest::qWaitForWindowExposed(&dialog));
+    QApplication::processEvents();
+    QVERIFY(dialog.preview()->verticalScrollBar()->maximum() > 0);
+    QCOMPARE(dialog.preview()->verticalScrollBar()->value(), 0);
     const QString text = dialog.preview()->toPlainText();
     for (const char *h : {"Session", "Sensors", "Figures", "Thermal error surface", "ISO 230-2 positioning and ISO 230-3 drift",
                           "Fitted models", "Left out: no model has been fitted"})

@@ -5,11 +5,13 @@
 #include "CentralStoreActions.h"
 #include "MainWindow.h"
 #include "ReviewWorkspace.h"
+#include "SessionActions.h"
 #include "SessionBrowser.h"
 #include "RigRecorder.h"
 #include "SessionStore.h"
 #include "SimulatedRig.h"
 #include "TimeSeriesPlot.h"
+#include "Workbench.h"
 
 #include <QAction>
 #include <QApplication>
@@ -71,10 +73,10 @@ void TestMainWindow::initTestCase()
 void TestMainWindow::plotsRecordedSamples()
 {
     MainWindow window;
-    QVERIFY2(window.openDatabase(m_db), qPrintable(window.lastError()));
+    QVERIFY2(window.workbench()->openDatabase(m_db), qPrintable(window.workbench()->lastError()));
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
-    QCOMPARE(window.currentSession(), m_session);
+    QCOMPARE(window.workbench()->currentSession(), m_session);
 
     // Independent read of the same channel straight from the store.
     SessionStore store(m_db);
@@ -108,7 +110,7 @@ void TestMainWindow::plotsRecordedSamples()
 void TestMainWindow::channelSelectionChangesCurves()
 {
     MainWindow window;
-    QVERIFY(window.openDatabase(m_db));
+    QVERIFY(window.workbench()->openDatabase(m_db));
     SessionStore store(m_db);
     qint64 positionId = 0;
     for (const ChannelInfo &c : store.channels(m_session)) {
@@ -124,6 +126,19 @@ void TestMainWindow::channelSelectionChangesCurves()
     const QRectF bounds = x->boundingRect();
     QVERIFY(bounds.top() >= 0.0 - 1e-9);
     QVERIFY(bounds.bottom() <= 600.0 + 1e-9);
+
+    // One unit per value axis: with a temperature and the probe, position (mm) would make a
+    // third unit: left out, and said (the right axis read "(µm, mm)" before).
+    QVector<qint64> three{positionId};
+    for (const ChannelInfo &c : store.channels(m_session))
+        if (c.key == QLatin1String("T_amb") || c.key == QLatin1String("S1"))
+            three << c.id;
+    window.showChannels(three);
+    QCOMPARE(window.plot()->curves().size(), 2);
+    QVERIFY(!window.plot()->curve(QStringLiteral("X")));
+    QVERIFY2(window.workspace()->leftOutChannels().contains(QStringLiteral("X (mm)")), qPrintable(window.workspace()->leftOutChannels()));
+    QCOMPARE(window.plot()->axisTitle(QwtPlot::yLeft).text(), QStringLiteral("temperature (°C)"));
+    QCOMPARE(window.plot()->axisTitle(QwtPlot::yRight).text(), QStringLiteral("elongation (µm)"));
 }
 
 void TestMainWindow::reportsUnreadableDatabase()
@@ -134,8 +149,8 @@ void TestMainWindow::reportsUnreadableDatabase()
     f.write(QByteArray(4096, 'x'));
     f.close();
     MainWindow window;
-    QVERIFY(!window.openDatabase(bogus));
-    QVERIFY(window.lastError().contains(bogus));
+    QVERIFY(!window.workbench()->openDatabase(bogus));
+    QVERIFY(window.workbench()->lastError().contains(bogus));
 }
 
 void TestMainWindow::importsBundlesAndRefusesBrokenOnes()
@@ -147,9 +162,9 @@ void TestMainWindow::importsBundlesAndRefusesBrokenOnes()
         BundleTransfer::exportBundle(source, m_session, m_dir.filePath(QStringLiteral("s.zip")));
     }
     MainWindow window;
-    QVERIFY(window.openDatabase(db));
-    QVERIFY(window.importBundle(m_dir.filePath(QStringLiteral("s.zip"))));
-    QVERIFY(window.currentSession() > 0);
+    QVERIFY(window.workbench()->openDatabase(db));
+    QVERIFY(window.sessionActions()->importBundle(m_dir.filePath(QStringLiteral("s.zip"))));
+    QVERIFY(window.workbench()->currentSession() > 0);
     QVERIFY(window.plot()->curve(QStringLiteral("S1")));
     // A broken bundle: refused with a message naming the file; nothing imported.
     const QString broken = m_dir.filePath(QStringLiteral("broken.bundle"));
@@ -158,8 +173,8 @@ void TestMainWindow::importsBundlesAndRefusesBrokenOnes()
     QVERIFY(manifest.open(QIODevice::WriteOnly));
     manifest.write("{\"format\": \"thermal-error-bundle\", \"version\": 99}");
     manifest.close();
-    QVERIFY(!window.importBundle(broken));
-    QVERIFY2(window.lastError().contains(QStringLiteral("manifest.json")), qPrintable(window.lastError()));
+    QVERIFY(!window.sessionActions()->importBundle(broken));
+    QVERIFY2(window.workbench()->lastError().contains(QStringLiteral("manifest.json")), qPrintable(window.workbench()->lastError()));
     SessionStore check(db);
     QCOMPARE(check.sessions().size(), 1);
 }
@@ -167,7 +182,7 @@ void TestMainWindow::importsBundlesAndRefusesBrokenOnes()
 void TestMainWindow::comparesTwoSessions()
 {
     MainWindow window;
-    QVERIFY(window.openDatabase(m_db));
+    QVERIFY(window.workbench()->openDatabase(m_db));
     QVERIFY(!window.comparison()->isVisibleTo(&window));
     window.compareWith(m_session);
     QVERIFY(window.comparison()->isVisibleTo(&window));
@@ -179,8 +194,8 @@ void TestMainWindow::comparesTwoSessions()
 void TestMainWindow::remembersRecentDatabases()
 {
     MainWindow window;
-    QVERIFY(window.openDatabase(m_db));
-    QCOMPARE(window.recentDatabases().first(), QFileInfo(m_db).absoluteFilePath());
+    QVERIFY(window.workbench()->openDatabase(m_db));
+    QCOMPARE(Workbench::recentDatabases().first(), QFileInfo(m_db).absoluteFilePath());
 }
 
 namespace {
@@ -204,7 +219,7 @@ void TestMainWindow::fitsA1366x768Screen()
     // Every dock open on the recorded session: the window still fits 1366 x 768 and no
     // panel is squeezed below a usable size.
     MainWindow window;
-    QVERIFY(window.openDatabase(m_db));
+    QVERIFY(window.workbench()->openDatabase(m_db));
     for (const char *name : {"SessionsDock", "AcquisitionDock", "ModelsDock", "DiagnosisDock"})
         window.dock(QLatin1String(name))->show();
     window.compareWith(m_session);
@@ -236,20 +251,20 @@ void TestMainWindow::duplicateImportAsks()
         BundleTransfer::exportBundle(source, m_session, bundle);
     }
     MainWindow window;
-    QVERIFY(window.openDatabase(db));
-    QVERIFY(window.importBundle(bundle));
+    QVERIFY(window.workbench()->openDatabase(db));
+    QVERIFY(window.sessionActions()->importBundle(bundle));
     QString question;
     answerNextMessageBox(QMessageBox::No, &question);
-    QVERIFY(!window.importBundle(bundle));
+    QVERIFY(!window.sessionActions()->importBundle(bundle));
     QVERIFY2(question.contains(QStringLiteral("already in")) && question.contains(QStringLiteral("as session 1")),
              qPrintable(question));
-    QCOMPARE(window.store()->sessions().size(), 1);
+    QCOMPARE(window.workbench()->store()->sessions().size(), 1);
     answerNextMessageBox(QMessageBox::Yes, &question);
-    QVERIFY(window.importBundle(bundle));
-    const QVector<SessionInfo> sessions = window.store()->sessions();
+    QVERIFY(window.sessionActions()->importBundle(bundle));
+    const QVector<SessionInfo> sessions = window.workbench()->store()->sessions();
     QCOMPARE(sessions.size(), 2);
     QVERIFY(sessions[0].uuid != sessions[1].uuid);
-    QCOMPARE(window.currentSession(), sessions[1].id);
+    QCOMPARE(window.workbench()->currentSession(), sessions[1].id);
 }
 
 void TestMainWindow::renameNotesUndoAndDelete()
@@ -264,23 +279,23 @@ void TestMainWindow::renameNotesUndoAndDelete()
         second = RigRecorder(store, rig).record(QStringLiteral("second"), 300.0);
     }
     MainWindow window;
-    QVERIFY(window.openDatabase(db));
-    QVERIFY(window.renameSession(m_session, QStringLiteral("X axis, cold start")));
-    const QString notes = window.store()->session(m_session).notes;
-    QVERIFY(window.setSessionNotes(m_session, QStringLiteral("door closed")));
-    QCOMPARE(window.store()->session(m_session).name, QStringLiteral("X axis, cold start"));
+    QVERIFY(window.workbench()->openDatabase(db));
+    QVERIFY(window.workbench()->renameSession(m_session, QStringLiteral("X axis, cold start")));
+    const QString notes = window.workbench()->store()->session(m_session).notes;
+    QVERIFY(window.workbench()->setSessionNotes(m_session, QStringLiteral("door closed")));
+    QCOMPARE(window.workbench()->store()->session(m_session).name, QStringLiteral("X axis, cold start"));
     QVERIFY(window.browser()->sessionList()->item(0)->text().contains(QStringLiteral("X axis, cold start")));
-    window.undoStack()->undo(); // notes
-    QCOMPARE(window.store()->session(m_session).notes, notes);
-    window.undoStack()->undo(); // name
-    QCOMPARE(window.store()->session(m_session).name, QStringLiteral("gui test"));
-    window.undoStack()->redo();
-    QCOMPARE(window.store()->session(m_session).name, QStringLiteral("X axis, cold start"));
-    QVERIFY(!window.renameSession(m_session, QStringLiteral("  "))); // refused, nothing on the stack
-    QCOMPARE(window.undoStack()->count(), 2);
+    window.workbench()->undoStack()->undo(); // notes
+    QCOMPARE(window.workbench()->store()->session(m_session).notes, notes);
+    window.workbench()->undoStack()->undo(); // name
+    QCOMPARE(window.workbench()->store()->session(m_session).name, QStringLiteral("gui test"));
+    window.workbench()->undoStack()->redo();
+    QCOMPARE(window.workbench()->store()->session(m_session).name, QStringLiteral("X axis, cold start"));
+    QVERIFY(!window.workbench()->renameSession(m_session, QStringLiteral("  "))); // refused, nothing on the stack
+    QCOMPARE(window.workbench()->undoStack()->count(), 2);
 
     // Delete asks; Cancel keeps the session.
-    window.showSession(second);
+    window.workbench()->setCurrentSession(second);
     QString question;
     answerNextMessageBox(QMessageBox::Cancel, &question);
     QAction *remove = nullptr;
@@ -290,12 +305,12 @@ void TestMainWindow::renameNotesUndoAndDelete()
     QVERIFY(remove);
     remove->trigger();
     QVERIFY2(question.contains(QStringLiteral("cannot be undone")), qPrintable(question));
-    QCOMPARE(window.store()->sessions().size(), 2);
+    QCOMPARE(window.workbench()->store()->sessions().size(), 2);
     answerNextMessageBox(QMessageBox::Yes, &question);
     remove->trigger();
-    QCOMPARE(window.store()->sessions().size(), 1);
-    QCOMPARE(window.currentSession(), m_session);
-    QCOMPARE(window.undoStack()->count(), 0);
+    QCOMPARE(window.workbench()->store()->sessions().size(), 1);
+    QCOMPARE(window.workbench()->currentSession(), m_session);
+    QCOMPARE(window.workbench()->undoStack()->count(), 0);
     SessionStore check(db);
     QVERIFY(check.channels(second).isEmpty());
     QVERIFY(check.irFrames(second).isEmpty());
@@ -314,8 +329,8 @@ void TestMainWindow::pushesAndBrowsesTheCentralStore()
     const QString url = server.url(QStringLiteral("lab"));
 
     MainWindow window;
-    QVERIFY(window.openDatabase(m_db));
-    window.showSession(m_session);
+    QVERIFY(window.workbench()->openDatabase(m_db));
+    window.workbench()->setCurrentSession(m_session);
     QString message;
     QVERIFY2(window.centralStore()->push(url, m_session, &message, false), qPrintable(message));
     QVERIFY2(message.contains(QStringLiteral("verified")), qPrintable(message));
@@ -333,7 +348,7 @@ void TestMainWindow::pushesAndBrowsesTheCentralStore()
     CentralStoreActions::setAutoPush(false);
 
     // Browse it like a file: the session list shows the pushed session, its samples plot.
-    QVERIFY2(window.openDatabase(url), qPrintable(window.lastError()));
+    QVERIFY2(window.workbench()->openDatabase(url), qPrintable(window.workbench()->lastError()));
     QVERIFY(window.windowTitle().contains(QStringLiteral("postgresql://")));
     QListWidget *list = window.findChild<SessionBrowser *>()->sessionList();
     QCOMPARE(list->count(), 1);
@@ -341,8 +356,8 @@ void TestMainWindow::pushesAndBrowsesTheCentralStore()
     // Recording still goes to the local file.
     QCOMPARE(window.findChild<AcquisitionPanel *>()->targetDatabase(), QFileInfo(m_db).absoluteFilePath());
     // A store that cannot be reached is reported, and the window keeps what it had open.
-    QVERIFY(!window.openDatabase(QStringLiteral("postgresql://driftlab@127.0.0.1:1/lab")));
-    QVERIFY(window.lastError().contains(QStringLiteral("cannot connect to the central store")));
+    QVERIFY(!window.workbench()->openDatabase(QStringLiteral("postgresql://driftlab@127.0.0.1:1/lab")));
+    QVERIFY(window.workbench()->lastError().contains(QStringLiteral("cannot connect to the central store")));
     QCOMPARE(list->count(), 1);
 }
 

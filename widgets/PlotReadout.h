@@ -1,0 +1,25 @@
+#pragma once
+// The zoomer of the time-series plots with a readout that says what it reads (issue 33):
+// "0:12:03  25.50 °C  |  12.3 µm" instead of "6727.2336, 25.4973". Time axes read in
+// h:mm:ss (ElapsedTimeAxis), value axes in the unit of their title ("temperature (°C)").
+
+#include <qwt_plot_zoomer.h>
+
+#include <QString>
+
+namespace driftlab {
+
+class PlotReadout : public QwtPlotZoomer {
+public:
+    explicit PlotReadout(QWidget *canvas);
+
+    // The readout at a point of the plot's scales (x, left y); the right axis too when shown.
+    QString readout(const QPointF &plotPos) const;
+    // "temperature (°C)" -> "°C"; "" without parentheses.
+    static QString unitOf(const QString &axisTitle);
+
+protected:
+    QwtText trackerTextF(const QPointF &pos) const override;
+};
+
+} // namespace driftlab
