@@ -177,7 +177,7 @@ void BundleTransfer::exportBundle(const SessionStore &store, qint64 sessionId, c
     // same time gets two rows), streamed in time windows of about kWindowSamples samples: memory
     // does not grow with the session (it held every sample and the whole text, 544 MB for a
     // session of 20 M samples). A first pass over the stored blocks finds the time range.
-    constexpr qint64 kWindowSamples = 1 << 20;
+    constexpr qint64 kWindowSamples = 1 << 17;
     double tMin = INFINITY, tMax = -INFINITY;
     qint64 total = 0;
     for (const ChannelInfo &c : channels)

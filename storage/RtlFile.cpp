@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <numeric>
 #include <tuple>
 #include <vector>
@@ -39,7 +40,7 @@ struct Measurement {
 // The file has fewer deviations than runs x targets. Reports what the full check would: the
 // first line (in file order) with a run beyond Run-count, a target beyond the list, or a second
 // deviation for its run and target; else the first (run, target) without a deviation.
-[[noreturn]] void reportIncomplete(const RtlFile &f, const QVector<Measurement> &ms, const QString &source, int deviationsLine)
+[[noreturn]] void reportIncomplete(const RtlFile &f, const std::deque<Measurement> &ms, const QString &source, int deviationsLine)
 {
     const int n = f.targets_mm.size();
     std::vector<int> order(static_cast<size_t>(ms.size()));
@@ -51,13 +52,13 @@ struct Measurement {
     for (size_t k = 1; k < order.size(); ++k)
         if (ms[order[k]].run == ms[order[k - 1]].run && ms[order[k]].target == ms[order[k - 1]].target)
             second[static_cast<size_t>(order[k])] = 1;
-    for (int i = 0; i < ms.size(); ++i) {
+    for (size_t i = 0; i < ms.size(); ++i) {
         const Measurement &m = ms[i];
         if (m.run > f.runCount)
             throw RtlError(source, m.line, QStringLiteral("run %1 but Run-count is %2").arg(m.run).arg(f.runCount));
         if (m.target > n)
             throw RtlError(source, m.line, QStringLiteral("target %1 but there are %2 targets").arg(m.target).arg(n));
-        if (second[static_cast<size_t>(i)])
+        if (second[i])
             throw RtlError(source, m.line, QStringLiteral("second deviation for run %1, target %2").arg(m.run).arg(m.target));
     }
     int r = 1, t = 1;
@@ -112,7 +113,7 @@ RtlFile RtlFile::parse(const QByteArray &bytes, const QString &source)
     QString section;
     bool inTargets = false, inDeviations = false, sawTargetData = false, sawDeviations = false, sawRuns = false;
     int targetCount = -1, targetCountLine = 0, deviationsLine = 0;
-    QVector<Measurement> measurements;
+    std::deque<Measurement> measurements; // (grows in pieces: no copy of the whole when it grows)
     int lineNo = 0;
     for (int from = bom; from <= bytes.size();) {
         int end = bytes.indexOf('\n', from);
@@ -207,7 +208,7 @@ RtlFile RtlFile::parse(const QByteArray &bytes, const QString &source)
         throw RtlError(source, 0, QStringLiteral("no TARGET DATA section with target positions"));
     if (targetCount >= 0 && targetCount != f.targets_mm.size())
         throw RtlError(source, targetCountLine, QStringLiteral("Target-count is %1 but %2 target positions follow").arg(targetCount).arg(f.targets_mm.size()));
-    if (!sawDeviations || measurements.isEmpty())
+    if (!sawDeviations || measurements.empty())
         throw RtlError(source, deviationsLine, QStringLiteral("no deviations (a DEVIATIONS section with \"run target deviation\" lines)"));
     int maxRun = 0;
     for (const Measurement &m : measurements)
@@ -217,7 +218,7 @@ RtlFile RtlFile::parse(const QByteArray &bytes, const QString &source)
     // Every (run, target) needs exactly one deviation: with fewer measurements than that, some
     // are missing, found without allocating Run-count x targets (a hostile Run-count and
     // target list would ask for gigabytes).
-    if (static_cast<qint64>(f.runCount) * f.targets_mm.size() > measurements.size()) {
+    if (static_cast<qint64>(f.runCount) * f.targets_mm.size() > static_cast<qint64>(measurements.size())) {
         reportIncomplete(f, measurements, source, deviationsLine);
     }
     f.deviations_um = QVector<QVector<double>>(f.runCount, QVector<double>(f.targets_mm.size(), std::nan("")));

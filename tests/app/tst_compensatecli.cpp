@@ -296,7 +296,7 @@ void TestCompensateCli::modelInputMissingFromTheSessionExitsTwo()
     QJsonArray inputs = model.value(QStringLiteral("inputs")).toArray();
     QVERIFY(!inputs.isEmpty());
     QJsonObject first = inputs[0].toObject();
-    first.insert(QStringLiteral("id"), QStringLiteral("T_nowhere"));
+    first.insert(QStringLiteral("channel"), QStringLiteral("T_nowhere"));
     inputs[0] = first;
     model.insert(QStringLiteral("inputs"), inputs);
     const QString renamed = m_dir.filePath(QStringLiteral("renamed.json"));
