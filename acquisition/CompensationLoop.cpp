@@ -15,6 +15,18 @@ namespace driftlab {
 
 namespace {
 
+constexpr double kConnectBackoffInitial_s = 0.1;
+constexpr double kConnectBackoffMax_s = 2.0;
+constexpr double kRefusedBackoffInitial_s = 0.2;
+constexpr double kRefusedBackoffMax_s = 10.0;
+
+// Why a request failed: empty if it did not; refused = the controller answered with a
+// Modbus exception (it is there, but will not do it).
+struct Failure {
+    QString why;
+    bool refused = false;
+};
+
 // Runs a local event loop until `done` or timeout_s; Qt SerialBus delivers its signals there.
 template <typename Done>
 void waitFor(double timeout_s, Done done)
@@ -136,25 +148,63 @@ void CompensationLoop::run()
     bool connected = false;
     bool everConnected = false;
     double retryAt_s = 0.0;
-    double backoff_s = 0.1;
+    double backoff_s = kConnectBackoffInitial_s;          // lost connections, no answer
+    double refusedBackoff_s = kRefusedBackoffInitial_s;   // Modbus exception answers
 
     const auto setProblem = [&](const QString &message) {
         std::lock_guard<std::mutex> lock(m_mutex);
         m_status.connected = connected;
         m_status.message = message;
     };
-    const auto disconnect = [&](double t, const QString &why) {
+    // Drops the connection and schedules the next attempt. A controller that answers with a
+    // Modbus exception still accepts connections, so its backoff grows across reconnects
+    // (0.2 s doubling to 10 s) and shrinks back only after a write it accepted.
+    const auto disconnect = [&](double t, const Failure &failure, const QString &doing) {
         if (client) {
             client->disconnectDevice();
             client.reset();
         }
-        if (connected)
-            note(t, QStringLiteral("connection to %1 lost: %2; writing stopped").arg(endpoint, why));
+        double wait = 0.0;
+        if (failure.refused) {
+            wait = refusedBackoff_s;
+            refusedBackoff_s = std::min(kRefusedBackoffMax_s, refusedBackoff_s * 2.0);
+            note(t, QStringLiteral("controller %1 refused %2: %3; %4retrying in %5 s")
+                        .arg(endpoint, doing, failure.why, connected ? QStringLiteral("writing stopped, ") : QString())
+                        .arg(wait));
+        } else {
+            wait = backoff_s;
+            backoff_s = std::min(kConnectBackoffMax_s, backoff_s * 2.0);
+            if (connected)
+                note(t, QStringLiteral("connection to %1 lost: %2 (%3); writing stopped").arg(endpoint, failure.why, doing));
+        }
         connected = false;
-        retryAt_s = t + backoff_s;
-        backoff_s = std::min(2.0, backoff_s * 2.0);
-        setProblem(QStringLiteral("not connected to %1: %2").arg(endpoint, why));
+        retryAt_s = t + wait;
+        setProblem(QStringLiteral("not connected to %1: %2 (%3)").arg(endpoint, failure.why, doing));
     };
+    // Waits for a reply; a refusal (Modbus exception) is told apart from no answer.
+    const auto await = [&](QModbusReply *reply) -> Failure {
+        if (!reply)
+            return {client->errorString(), false};
+        if (!reply->isFinished()) {
+            waitFor(m_options.timeout_s + 1.0, [&](QEventLoop &loop) {
+                QObject::connect(reply, &QModbusReply::finished, &loop, &QEventLoop::quit);
+            });
+        }
+        if (!reply->isFinished())
+            return {QStringLiteral("no answer within %1 s").arg(m_options.timeout_s), false};
+        if (reply->error() == QModbusDevice::ProtocolError) {
+            // The exception code is the answer's one data byte (see ModbusDevice).
+            const QByteArray data = reply->rawResult().data();
+            return {QStringLiteral("Modbus exception %1 (%2)").arg(data.isEmpty() ? -1 : static_cast<int>(static_cast<quint8>(data.at(0)))).arg(reply->errorString()),
+                    true};
+        }
+        if (reply->error() == QModbusDevice::TimeoutError)
+            return {QStringLiteral("no answer within %1 s").arg(m_options.timeout_s), false};
+        if (reply->error() != QModbusDevice::NoError)
+            return {reply->errorString(), false};
+        return {};
+    };
+    const auto registers = [&](int address) { return QStringLiteral("R%1/R%2").arg(address).arg(address + 1); };
     const auto connectClient = [&](double t) {
         client = std::make_unique<QModbusTcpClient>();
         client->setConnectionParameter(QModbusDevice::NetworkAddressParameter, m_options.host);
@@ -174,42 +224,63 @@ void CompensationLoop::run()
             const QString why = client->error() != QModbusDevice::NoError ? client->errorString()
                                                                           : QStringLiteral("no connection within %1 s").arg(connectTimeout_s);
             const bool first = !everConnected && retryAt_s == 0.0;
-            disconnect(t, why);
+            disconnect(t, {why, false}, QStringLiteral("connecting"));
             if (first)
                 note(t, QStringLiteral("cannot connect to %1: %2; retrying").arg(endpoint, why));
             return;
         }
+        // What the controller holds now (it may have restarted with its registers at 0, or
+        // someone else wrote them): every move starts from the value read back.
+        QVector<double> held(map.axes.size(), 0.0);
+        for (int i = 0; i < map.axes.size(); ++i) {
+            const int address = map.axes[i].address;
+            Failure failure;
+            {
+                // (the reply is deleted before disconnect() deletes the client, its parent)
+                std::unique_ptr<QModbusReply> reply(client->sendReadRequest(QModbusDataUnit(QModbusDataUnit::HoldingRegisters, address, 2), map.unitId));
+                failure = await(reply.get());
+                if (failure.why.isEmpty() && reply->result().valueCount() < 2)
+                    failure = {QStringLiteral("answered %1 registers, 2 asked").arg(reply->result().valueCount()), false};
+                if (failure.why.isEmpty())
+                    held[i] = map.offsetOf(reply->result().value(0), reply->result().value(1));
+            }
+            if (!failure.why.isEmpty()) {
+                disconnect(t, failure, QStringLiteral("reading back %1 (%2)").arg(registers(address), map.axes[i].label()));
+                return;
+            }
+        }
         const bool reconnect = everConnected;
         connected = true;
         everConnected = true;
-        backoff_s = 0.1;
-        for (OffsetGovernor &g : governors)
-            g.resync();
+        backoff_s = kConnectBackoffInitial_s;
+        QStringList holds, changed;
+        for (int i = 0; i < map.axes.size(); ++i) {
+            OffsetGovernor &g = governors[static_cast<size_t>(i)];
+            holds << QStringLiteral("%1 %2 um").arg(map.axes[i].label()).arg(held[i]);
+            if (g.hasWritten() && std::abs(held[i] - g.lastWritten_um()) > 0.5 * map.resolution_um)
+                changed << QStringLiteral("%1 %2 um instead of the %3 um last written").arg(map.axes[i].label()).arg(held[i]).arg(g.lastWritten_um());
+            g.adopt(held[i]);
+        }
         {
             std::lock_guard<std::mutex> lock(m_mutex);
             if (reconnect)
                 ++m_status.reconnects;
             m_status.connected = true;
             m_status.message.clear();
+            for (int i = 0; i < map.axes.size(); ++i)
+                m_status.written_um[i] = held[i];
         }
-        note(t, QStringLiteral("connected to %1").arg(endpoint));
+        note(t, QStringLiteral("connected to %1; the controller holds %2").arg(endpoint, holds.join(QStringLiteral(", "))));
+        if (!changed.isEmpty())
+            note(t, QStringLiteral("the controller holds %1 (restarted or written by someone else): moves start from there at "
+                                   "the rate limit")
+                        .arg(changed.join(QStringLiteral(", "))));
     };
-    // Both words of an axis in one 'write multiple registers' request. Empty on success.
-    const auto writeAxis = [&](int address, const QVector<quint16> &words) -> QString {
+    // Both words of an axis in one 'write multiple registers' request.
+    const auto writeAxis = [&](int address, const QVector<quint16> &words) -> Failure {
         QModbusDataUnit unit(QModbusDataUnit::HoldingRegisters, address, words);
         std::unique_ptr<QModbusReply> reply(client->sendWriteRequest(unit, map.unitId));
-        if (!reply)
-            return client->errorString();
-        if (!reply->isFinished()) {
-            waitFor(m_options.timeout_s + 1.0, [&](QEventLoop &loop) {
-                QObject::connect(reply.get(), &QModbusReply::finished, &loop, &QEventLoop::quit);
-            });
-        }
-        if (!reply->isFinished())
-            return QStringLiteral("no answer");
-        if (reply->error() != QModbusDevice::NoError)
-            return reply->errorString();
-        return QString();
+        return await(reply.get());
     };
 
     const double period = 1.0 / m_options.rate_Hz;
@@ -239,7 +310,7 @@ void CompensationLoop::run()
         // no write is due, so a loss is seen and reported while idle too.
         QCoreApplication::processEvents();
         if (connected && (!client || client->state() != QModbusDevice::ConnectedState))
-            disconnect(t, QStringLiteral("the controller closed the connection"));
+            disconnect(t, {QStringLiteral("the controller closed the connection"), false}, QStringLiteral("idle"));
         disturbed = false;
         if (!connected && t >= retryAt_s) {
             connectClient(t);
@@ -264,13 +335,14 @@ void CompensationLoop::run()
                 setProblem(QString::fromUtf8(e.what()));
                 continue;
             }
-            const QString error = writeAxis(map.axes[i].address, words);
-            if (!error.isEmpty()) {
+            const Failure failure = writeAxis(map.axes[i].address, words);
+            if (!failure.why.isEmpty()) {
                 ++failed;
                 disturbed = true;
-                disconnect(t, error);
+                disconnect(t, failure, QStringLiteral("writing %1 um to %2 (%3)").arg(d.value_um).arg(registers(map.axes[i].address), map.axes[i].label()));
                 break;
             }
+            refusedBackoff_s = kRefusedBackoffInitial_s;
             g.written(t, d.value_um);
             ++writes;
             note(t, QStringLiteral("write %1 %2 um (R%3/R%4 = %5, %6)")

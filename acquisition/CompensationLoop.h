@@ -4,10 +4,14 @@
 // thermal offset, passes it through the axis's OffsetGovernor (maximum offset, rate limit,
 // 1 register step) and writes what is due to the controller's holding registers over Modbus
 // TCP (Qt SerialBus QModbusTcpClient), both words of an axis in one request so the controller
-// never sees half a value. Writing is off until setEnabled(true). A lost connection (no
-// answer, an exception, a dropped socket) stops the writing, is logged and retried with
-// backoff (0.1 s doubling to 2 s); after reconnecting the loop first writes again the value
-// the controller should hold. The loop runs on its own thread (its Qt objects live there);
+// never sees half a value. Writing is off until setEnabled(true). After every (re)connect the
+// loop reads each axis's register pair back and moves from THAT value within the rate limit
+// (a controller that restarted with its registers at 0 is ramped up again, never stepped);
+// its first write is the value read back. A lost connection (no answer, a dropped socket)
+// stops the writing, is logged and retried with backoff (0.1 s doubling to 2 s); a
+// controller that answers with a Modbus exception is retried with a backoff that keeps
+// growing across reconnects (0.2 s doubling to 10 s, back to 0.2 s after an accepted write),
+// each refusal logged with the wait. The loop runs on its own thread (its Qt objects live there);
 // status(), log() and the period statistics are safe to read from any thread.
 
 #include "OffsetGovernor.h"
@@ -44,7 +48,7 @@ public:
 
     struct Entry {
         double t_s = 0.0;
-        QString what;      // "write X 12 um (R5700/R5701 = 12, 0)", "connection lost: ...", ...
+        QString what;      // "write X 12 um (R5700/R5701 = 12, 0)", "connection to ... lost: ...", ...
     };
     struct Status {
         bool running = false;
@@ -52,7 +56,7 @@ public:
         bool enabled = false;
         QString message;              // the last problem, empty when all is well
         QVector<double> requested_um; // per axis, the source's last request
-        QVector<double> written_um;   // per axis, what the controller holds (last write)
+        QVector<double> written_um;   // per axis, what the controller holds (last write or read back)
         long long ticks = 0;
         long long writes = 0;
         long long failedWrites = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace driftlab {
 
@@ -96,43 +97,77 @@ void DeviceWorker::stamp(DeviceBlock &b)
 
 bool DeviceWorker::reconnect(const QString &why)
 {
+    // One gap per outage: a device that reopens but still sends nothing (a serial instrument
+    // whose port opens while the instrument is silent) stays in the same gap, and the backoff
+    // keeps growing; the gap ends with the first data after it (see run()).
     double lastGood = 0.0;
+    bool starts = false;
     {
         std::lock_guard<std::mutex> lock(m_mutex);
         m_health.state = DeviceHealth::State::Reconnecting;
         m_health.message = why;
-        ++m_health.gaps;
+        starts = !m_inGap;
+        if (starts)
+            ++m_health.gaps;
         lastGood = m_health.lastSample_s;
     }
-    pushEvent(std::max(lastGood, 0.0), QStringLiteral("gap start: %1 stopped answering (%2)").arg(m_device.id(), why));
+    if (starts) {
+        m_inGap = true;
+        m_backoff_wall_s = m_options.backoffInitial_wall_s;
+        pushEvent(std::max(lastGood, 0.0), QStringLiteral("gap start: %1 stopped answering (%2)").arg(m_device.id(), why));
+    }
     try {
         m_device.close();
     } catch (const std::exception &) {
     }
-    double backoff = m_options.backoffInitial_wall_s;
     while (!m_stop) {
+        const double backoff = m_backoff_wall_s;
+        m_backoff_wall_s = std::min(m_options.backoffMax_wall_s, m_backoff_wall_s * 2.0);
         m_clock.sleepUntil(m_clock.now_s() + m_clock.speed() * backoff, backoff, &m_stop);
         if (m_stop)
             return false;
         try {
             m_device.open();
             m_device.start(m_clock);
-            {
-                std::lock_guard<std::mutex> lock(m_mutex);
-                m_health.state = DeviceHealth::State::Running;
-                ++m_health.reconnects;
-            }
-            pushEvent(m_clock.now_s(), QStringLiteral("gap end: %1 reconnected").arg(m_device.id()));
+            setState(DeviceHealth::State::Running);
             return true;
         } catch (const DeviceError &e) {
             setState(DeviceHealth::State::Reconnecting, QString::fromUtf8(e.what()));
-            backoff = std::min(m_options.backoffMax_wall_s, backoff * 2.0);
         } catch (const std::exception &e) {
             fail(QString::fromUtf8(e.what()));
             return false;
         }
     }
     return false;
+}
+
+void DeviceWorker::endGap(DeviceBlock &b)
+{
+    // Data flows again: the gap ends at the first new sample (or point, frame; a device
+    // without channels: its first event).
+    double first = std::numeric_limits<double>::infinity();
+    for (const SampleBlock &s : b.channels)
+        if (!s.t.isEmpty())
+            first = std::min(first, s.t.first());
+    for (const InterferometerPoint &p : b.points)
+        first = std::min(first, p.t);
+    for (const IrFrame &f : b.frames)
+        first = std::min(first, f.t);
+    if (!std::isfinite(first) && b.channels.isEmpty())
+        for (const EventRecord &e : b.events)
+            first = std::min(first, e.t);
+    if (!std::isfinite(first))
+        return;
+    m_inGap = false;
+    m_backoff_wall_s = m_options.backoffInitial_wall_s;
+    {
+        std::lock_guard<std::mutex> lock(m_mutex);
+        ++m_health.reconnects;
+    }
+    EventRecord e;
+    e.t = first;
+    e.label = QStringLiteral("gap end: %1 reconnected, data again").arg(m_device.id());
+    b.events.push_front(e);
 }
 
 void DeviceWorker::fail(const QString &why)
@@ -180,6 +215,8 @@ void DeviceWorker::run()
         if (b.empty())
             continue;
         stamp(b);
+        if (m_inGap)
+            endGap(b);
         b.device = m_index;
         long long n = 0;
         double last = -1.0;

@@ -2,7 +2,10 @@
 // Runs one device on its own thread: open, start, read blocks, stamp them on the session
 // clock (latency-corrected), push them into the device's bounded queue. A device that
 // stops answering (DeviceError) is marked with a gap event, closed and reopened with
-// exponential backoff while the other workers continue. Health is readable at any time.
+// exponential backoff while the other workers continue. One outage is one gap: "gap start"
+// at the last sample before it, "gap end" at the first sample after it (not when the device
+// reopens: a serial port opens while its instrument is still silent); reopening without data
+// keeps the gap and the growing backoff. Health is readable at any time.
 
 #include "BlockQueue.h"
 #include "Device.h"
@@ -45,6 +48,7 @@ public:
 private:
     void run();
     bool reconnect(const QString &why);
+    void endGap(DeviceBlock &b); // first data after an outage: ends the gap in b's events
     void stamp(DeviceBlock &b);
     void pushEvent(double t, const QString &label);
     void fail(const QString &why);
@@ -63,6 +67,8 @@ private:
     QVector<double> m_lastStamp; // per channel
     double m_rateWindowStart_s = 0.0;
     long long m_rateWindowSamples = 0;
+    bool m_inGap = false;           // (worker thread only) in an outage until data flows
+    double m_backoff_wall_s = 0.0;  // (worker thread only) next wait before reopening
 };
 
 } // namespace driftlab

@@ -155,11 +155,16 @@ void ModbusDevice::close()
 
 QVector<quint16> ModbusDevice::readRegisters(const QModbusDataUnit &unit)
 {
+    // What the device was doing, for the messages: "reading input registers 0-7".
+    const QString doing = QStringLiteral("reading %1 registers %2-%3")
+                              .arg(unit.registerType() == QModbusDataUnit::InputRegisters ? QStringLiteral("input") : QStringLiteral("holding"))
+                              .arg(unit.startAddress())
+                              .arg(unit.startAddress() + static_cast<int>(unit.valueCount()) - 1);
     if (!m_client || m_client->state() != QModbusDevice::ConnectedState)
-        throw DeviceError(QStringLiteral("%1: connection to %2 lost").arg(m_id, m_config.endpoint()).toStdString());
+        throw DeviceError(QStringLiteral("%1: connection to %2 lost (%3)").arg(m_id, m_config.endpoint(), doing).toStdString());
     std::unique_ptr<QModbusReply> reply(m_client->sendReadRequest(unit, m_config.unitId));
     if (!reply)
-        throw DeviceError(QStringLiteral("%1: cannot send a request to %2: %3").arg(m_id, m_config.endpoint(), m_client->errorString()).toStdString());
+        throw DeviceError(QStringLiteral("%1: cannot send a request to %2 (%3): %4").arg(m_id, m_config.endpoint(), doing, m_client->errorString()).toStdString());
     if (!reply->isFinished()) {
         QEventLoop loop;
         QTimer guard;
@@ -171,28 +176,33 @@ QVector<quint16> ModbusDevice::readRegisters(const QModbusDataUnit &unit)
         loop.exec();
     }
     if (!reply->isFinished())
-        throw DeviceError(QStringLiteral("%1: no answer from %2").arg(m_id, m_config.endpoint()).toStdString());
+        throw DeviceError(QStringLiteral("%1: no answer from %2 (%3)").arg(m_id, m_config.endpoint(), doing).toStdString());
     switch (reply->error()) {
     case QModbusDevice::NoError: break;
     case QModbusDevice::ProtocolError:
         // The exception code is the answer's one data byte (QModbusPdu::exceptionCode()
         // trips UBSan inside Qt's header, so it is read from the data).
-        throw DeviceError(QStringLiteral("%1: %2 answered with Modbus exception %3 (%4)")
-                              .arg(m_id, m_config.endpoint())
+        throw DeviceError(QStringLiteral("%1: %2 answered %3 with Modbus exception %4 (%5)")
+                              .arg(m_id, m_config.endpoint(), doing)
                               .arg(reply->rawResult().data().isEmpty() ? -1 : static_cast<int>(static_cast<quint8>(reply->rawResult().data().at(0))))
                               .arg(reply->errorString())
                               .toStdString());
     case QModbusDevice::TimeoutError:
-        throw DeviceError(QStringLiteral("%1: no answer from %2 within %3 s").arg(m_id, m_config.endpoint()).arg(m_config.timeout_s).toStdString());
+        throw DeviceError(QStringLiteral("%1: no answer from %2 within %3 s (%4; the connection is up, the server does not reply)")
+                              .arg(m_id, m_config.endpoint())
+                              .arg(m_config.timeout_s)
+                              .arg(doing)
+                              .toStdString());
     default:
-        throw DeviceError(QStringLiteral("%1: %2: %3").arg(m_id, m_config.endpoint(), reply->errorString()).toStdString());
+        throw DeviceError(QStringLiteral("%1: %2 (%3): %4").arg(m_id, m_config.endpoint(), doing, reply->errorString()).toStdString());
     }
     const QModbusDataUnit result = reply->result();
     if (static_cast<int>(result.valueCount()) < static_cast<int>(unit.valueCount()))
-        throw DeviceError(QStringLiteral("%1: %2 answered %3 registers, %4 asked")
+        throw DeviceError(QStringLiteral("%1: %2 answered %3 registers, %4 asked (%5)")
                               .arg(m_id, m_config.endpoint())
                               .arg(result.valueCount())
                               .arg(unit.valueCount())
+                              .arg(doing)
                               .toStdString());
     return result.values();
 }

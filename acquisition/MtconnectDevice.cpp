@@ -100,7 +100,12 @@ MtconnectDocument MtconnectDevice::get(const QString &request, double *received_
         loop.exec();
     if (!reply->isFinished()) {
         reply->abort();
-        throw DeviceError(QStringLiteral("%1: no answer from %2 within %3 s").arg(m_id, url.toString()).arg(m_config.timeout_s).toStdString());
+        throw DeviceError(QStringLiteral("%1: no answer from the agent at %2 within %3 s (asking for %4)")
+                              .arg(m_id, m_config.url.toString())
+                              .arg(m_config.timeout_s)
+                              .arg(url.path().endsWith(QLatin1String("/current")) ? QStringLiteral("its current values (%1)").arg(url.toString())
+                                                                                  : QStringLiteral("new samples (%1)").arg(url.toString()))
+                              .toStdString());
     }
     if (received_s && m_clock)
         *received_s = m_clock->now_s();

@@ -40,9 +40,9 @@ OffsetGovernor::Decision OffsetGovernor::decide(double t_s, double requested_um,
         d.rateLimited = true;
     }
     if (m_resync || !m_hasWritten) {
-        // The first write is 0 (the controller's state becomes known; the offset then ramps
-        // at the rate limit from the moment writing starts); after a reconnect, the value the
-        // controller should hold, again, before any move.
+        // The first write is what the controller holds (0, or the value read back by adopt()):
+        // the offset then ramps at the rate limit from the moment writing starts; after a
+        // reconnect, the value read back from the controller, again, before any move.
         d.value_um = m_last_um;
         d.write = enabled;
         return d;
@@ -52,6 +52,13 @@ OffsetGovernor::Decision OffsetGovernor::decide(double t_s, double requested_um,
     d.value_um = m_last_um + std::copysign(steps * m_resolution_um, move);
     d.write = enabled && steps > 0.0;
     return d;
+}
+
+void OffsetGovernor::adopt(double value_um)
+{
+    m_last_um = value_um;
+    m_hasWritten = true;
+    m_resync = true;
 }
 
 void OffsetGovernor::written(double t_s, double value_um)

@@ -4,8 +4,11 @@
 // at most max_rate_um_s (measured between writes), and is written only when it moves by a
 // whole register step (the map's resolution, 1 um on the M80). Steps are truncated toward the
 // last written value, so neither limit is ever exceeded by rounding. Writing is off until
-// enabled; while off, the governor still says what it would write. The first write is 0,
-// so the offset ramps from 0 at the rate limit once writing starts.
+// enabled; while off, the governor still says what it would write. Before the first write
+// the controller is assumed to hold 0, unless the loop read its registers back (adopt()):
+// then the first write is the value read back and the offset ramps from THAT value at the
+// rate limit once writing starts (a controller that restarted with its registers at 0 is
+// never stepped to the held offset in one write).
 
 #include <QString>
 
@@ -35,6 +38,9 @@ public:
     // Forget when the last write happened (e.g. after a reconnect the next value is written
     // whatever its distance, so the controller's register is known again).
     void resync() { m_resync = true; }
+    // The controller holds value_um (its registers read back after a (re)connect): the next
+    // write writes that value again (the time base of the rate limit), moves start from it.
+    void adopt(double value_um);
     double lastWritten_um() const { return m_last_um; }
     bool hasWritten() const { return m_hasWritten; }
 

@@ -10,6 +10,8 @@
 #include <QString>
 #include <QVector>
 
+#include <limits>
+
 namespace driftlab {
 
 struct RigScrew {
@@ -187,6 +189,10 @@ struct RigRandomise {
 
 struct RigConfig {
     QString name = QStringLiteral("baseline");
+    // Not from the rig file: where the recording ends (session seconds), set by the recorder.
+    // The simulated interferometer starts no run it cannot finish by then (a recording whose
+    // duration is a multiple of interval_s used to end with a one-point "run").
+    double recordingEnd_s = std::numeric_limits<double>::infinity();
     QString machineName = QStringLiteral("DriftLab simulated rig");
     QString axis = QStringLiteral("X");
     double fixedEndPosition_mm = -141.0; // P_f (drawing value, written to the manifest)

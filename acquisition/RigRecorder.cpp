@@ -35,6 +35,7 @@ SessionInfo RigRecorder::sessionInfo(const SimulatedRig &rig, const QString &nam
 qint64 RigRecorder::record(const QString &name, double duration_s, const Progress &progress)
 {
     const SessionInfo info = sessionInfo(m_rig, name);
+    m_rig.setRecordingEnd_s(duration_s);
     m_sink = std::make_unique<RecordingSink>(m_store);
     const qint64 session = m_sink->begin(info, {m_rig.channels()});
     std::sort(m_markers.begin(), m_markers.end(), [](const EventRecord &a, const EventRecord &b) { return a.t < b.t; });

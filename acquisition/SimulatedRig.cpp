@@ -334,6 +334,9 @@ void SimulatedRig::sampleDue(double t, QVector<SampleBlock> &blocks)
         const double ts = li.firstRun_s + m_nextRun * li.interval_s + m_nextTarget * li.dwell_s;
         if (ts > t + kEps)
             break;
+        // A run is started only if its last approach is due by the end of the recording.
+        if (m_nextTarget == 0 && ts + (perRun - 1) * li.dwell_s > c.recordingEnd_s + kEps)
+            break;
         const int n = static_cast<int>(m_targets.size());
         const int inCycle = m_nextTarget % (n * legs);
         const bool down = inCycle >= n;

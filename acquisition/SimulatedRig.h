@@ -31,6 +31,8 @@ public:
     explicit SimulatedRig(const RigConfig &config);
 
     const RigConfig &config() const { return m_config; }
+    // The recording ends at end_s: no interferometer run is started that cannot finish by then.
+    void setRecordingEnd_s(double end_s) { m_config.recordingEnd_s = end_s; }
     // Scalar channels in the order of the blocks advance() fills: PT100s, probe, X, F.
     const QVector<ChannelInfo> &channels() const { return m_channels; }
     // Manifest-style machine description (screw, fixed_end_position_mm, travel_mm).

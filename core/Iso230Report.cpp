@@ -74,7 +74,10 @@ QString um(double v)
 Iso230Report::Iso230Report(const SessionStore &store, qint64 sessionId, const Iso230Options &options)
     : m_sessionId(sessionId), m_info(store.session(sessionId)), m_options(options)
 {
-    const std::vector<InterferometerReading> readings = InterferometerReadings::read(store, sessionId);
+    const QVector<InterferometerPoint> points = store.interferometerPoints(sessionId);
+    const std::vector<InterferometerReading> readings = InterferometerReadings::fromPoints(points); // complete runs
+    for (const InterferometerReadings::PartialRun &r : InterferometerReadings::partialRuns(points))
+        m_leftOut << r.note();
     if (readings.empty())
         throw std::invalid_argument(QStringLiteral("session %1 has no interferometer runs: nothing to evaluate").arg(sessionId).toStdString());
     m_referenceRun = InterferometerReadings::referenceRun(m_info, readings);
@@ -160,6 +163,7 @@ QJsonObject Iso230Report::toJson() const
                        {QStringLiteral("runs_per_test"), m_options.runsPerTest},
                        {QStringLiteral("target_tolerance_mm"), m_options.targetTolerance_mm},
                        {QStringLiteral("tests"), tests},
+                       {QStringLiteral("left_out"), QJsonArray::fromStringList(m_leftOut)},
                        {QStringLiteral("drift"), drift}};
 }
 
@@ -188,6 +192,8 @@ QString Iso230Report::text() const
                  .arg(um(a.accuracyUp_um), um(a.accuracyDown_um), um(a.accuracy_um));
     for (const std::string &n : ref->notes)
         lines << QStringLiteral("  note: %1").arg(QString::fromStdString(n));
+    for (const QString &n : m_leftOut)
+        lines << QStringLiteral("  note: %1").arg(n);
     if (m_tests.size() > 1) {
         double loE = INFINITY, hiE = -INFINITY, loB = INFINITY, hiB = -INFINITY;
         for (const Iso230Test &t : m_tests) {

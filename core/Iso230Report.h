@@ -9,6 +9,7 @@
 
 #include <QJsonObject>
 #include <QString>
+#include <QStringList>
 
 #include <vector>
 
@@ -43,6 +44,7 @@ private:
     int m_referenceRun = 0;
     std::vector<Iso230Test> m_tests;
     Iso230DriftSummary m_drift;
+    QStringList m_leftOut; // notes on runs left out (a partial last run)
 };
 
 } // namespace driftlab

@@ -23,16 +23,16 @@ SessionOffsetSource::SessionOffsetSource(const QString &databasePath, qint64 ses
 
 SessionOffsetSource::~SessionOffsetSource() = default;
 
-void SessionOffsetSource::open()
+QVector<qint64> SessionOffsetSource::resolveInputs(SessionStore &store, qint64 *positionId) const
 {
-    m_store = std::make_unique<SessionStore>(m_path);
-    const QVector<ChannelInfo> channels = m_store->channels(m_session);
+    const QVector<ChannelInfo> channels = store.channels(m_session);
     const auto find = [&](const QString &key) -> qint64 {
         for (const ChannelInfo &c : channels)
             if (c.key == key)
                 return c.id;
         return 0;
     };
+    QVector<qint64> ids;
     if (m_fdm) {
         // Position first: its samples are the schedule (the C export's step() calls).
         for (const char *role : {"axis_position", "feed_rate", "ambient"}) {
@@ -45,7 +45,7 @@ void SessionOffsetSource::open()
                                                 .arg(m_session)
                                                 .arg(QLatin1String(role), QString::fromStdString(m_exportable.kind()))
                                                 .toStdString());
-            m_channels.push_back(id);
+            ids.push_back(id);
         }
     }
     for (const ModelChannel &input : m_model.inputs) {
@@ -55,16 +55,30 @@ void SessionOffsetSource::open()
                                             .arg(m_session)
                                             .arg(QString::fromStdString(input.id))
                                             .toStdString());
-        m_channels.push_back(id);
+        ids.push_back(id);
     }
     if (m_model.kind == "synthetic") {
-        m_positionId = find(m_positionChannel);
-        if (!m_positionId)
+        *positionId = find(m_positionChannel);
+        if (!*positionId)
             throw std::invalid_argument(QStringLiteral("session %1 has no position channel '%2' for the synthetic model")
                                             .arg(m_session)
                                             .arg(m_positionChannel)
                                             .toStdString());
     }
+    return ids;
+}
+
+void SessionOffsetSource::checkInputs() const
+{
+    SessionStore store(m_path);
+    qint64 position = 0;
+    resolveInputs(store, &position);
+}
+
+void SessionOffsetSource::open()
+{
+    m_store = std::make_unique<SessionStore>(m_path);
+    m_channels = resolveInputs(*m_store, &m_positionId);
     m_readUpTo = QVector<double>(m_channels.size(), -std::numeric_limits<double>::infinity());
     m_time_s = -1e300;
     m_pendT.clear();

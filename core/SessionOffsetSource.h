@@ -17,6 +17,7 @@
 #include <QString>
 #include <QVector>
 
+#include <cmath>
 #include <memory>
 #include <optional>
 
@@ -32,6 +33,10 @@ public:
                         const QString &positionChannel = QStringLiteral("X"));
     ~SessionOffsetSource();
 
+    // Throws std::invalid_argument naming the channel when the session lacks an input of the
+    // model, StorageError when the database cannot be read; opens (and closes) its own
+    // connection on the calling thread, so a command can refuse before any work.
+    void checkInputs() const;
     // Throws std::invalid_argument when the session lacks an input channel, StorageError when
     // the database cannot be read. NaN until every input has a sample.
     double update();
@@ -39,11 +44,12 @@ public:
     // the support points of a live compensation table): the physics and synthetic models are
     // position-dependent, the others give the same value everywhere. NaN before the first.
     double offsetAt(double position_mm) const;
-    double modelTime_s() const { return m_time_s; }
+    double modelTime_s() const { return m_time_s > -1e299 ? m_time_s : std::nan(""); } // NaN before the first step
     double error_um() const { return m_error_um; } // the model's E at modelTime_s
 
 private:
     void open();
+    QVector<qint64> resolveInputs(SessionStore &store, qint64 *positionId) const;
 
     QString m_path;
     qint64 m_session;

@@ -6,6 +6,7 @@
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
+#include <QTemporaryFile>
 
 #include <signal.h>
 #include <sys/stat.h>
@@ -324,6 +325,57 @@ void BundleArchive::write(const QString &relativePath, const QByteArray &data)
     }
 }
 
+void BundleArchive::writeChunks(const QString &relativePath, const ChunkProducer &produce)
+{
+    if (!isSafeRelativePath(relativePath))
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("unsafe path (absolute or '..'): refused"));
+    std::unique_ptr<QTemporaryFile> spool;
+    QFile plain;
+    QFile *f = &plain;
+    if (m_zip) {
+        spool = std::make_unique<QTemporaryFile>(QFileInfo(m_path).absolutePath() + QStringLiteral("/.") + QFileInfo(m_path).fileName() +
+                                                 QStringLiteral(".spool-XXXXXX"));
+        f = spool.get();
+    } else {
+        const QString full = QDir(m_writeDir).filePath(relativePath);
+        QDir().mkpath(QFileInfo(full).absolutePath());
+        plain.setFileName(full);
+    }
+    const auto failed = [&]() {
+        // QFile says "Unknown error" for a full disk; errno says which
+        return BundleError(relativePath, 0, QString(),
+                           QStringLiteral("cannot write: %1").arg(errno != 0 ? QString::fromLocal8Bit(std::strerror(errno)) : f->errorString()));
+    };
+    errno = 0;
+    if (!(spool ? spool->open() : plain.open(QIODevice::WriteOnly)))
+        throw failed();
+    QByteArray chunk;
+    for (;;) {
+        chunk.clear();
+        const bool more = produce(chunk);
+        if (!chunk.isEmpty() && f->write(chunk) != chunk.size())
+            throw failed();
+        if (!more)
+            break;
+    }
+    if (!f->flush())
+        throw failed();
+    const qint64 size = f->size();
+    f->close();
+    if (f->error() != QFileDevice::NoError)
+        throw failed();
+    if (!m_zip)
+        return;
+    zip_source_t *src = zip_source_file(m_zip, QFile::encodeName(spool->fileName()).constData(), 0, size);
+    if (!src)
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot add to zip: %1").arg(zipError(m_zip)));
+    if (zip_file_add(m_zip, relativePath.toUtf8().constData(), src, ZIP_FL_ENC_UTF_8 | ZIP_FL_OVERWRITE) < 0) {
+        zip_source_free(src);
+        throw BundleError(relativePath, 0, QString(), QStringLiteral("cannot add to zip: %1").arg(zipError(m_zip)));
+    }
+    m_spool.push_back(std::move(spool)); // read by zip_close() in finish()
+}
+
 void BundleArchive::finish()
 {
     if (m_mode != Mode::Write)
@@ -341,9 +393,11 @@ void BundleArchive::finish()
         const QString what = zipError(m_zip);
         zip_discard(m_zip);
         m_zip = nullptr;
+        m_spool.clear();
         throw BundleError(QFileInfo(m_path).fileName(), 0, QString(), QStringLiteral("cannot write zip: %1").arg(what));
     }
     m_zip = nullptr;
+    m_spool.clear();
 }
 
 } // namespace driftlab

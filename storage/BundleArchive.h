@@ -8,6 +8,10 @@
 #include <QStringList>
 
 #include <functional>
+#include <memory>
+#include <vector>
+
+class QTemporaryFile;
 
 struct zip;
 
@@ -33,6 +37,12 @@ public:
     using ChunkSink = std::function<void(const char *data, qint64 size)>;
     void readChunks(const QString &relativePath, qint64 maxBytes, const ChunkSink &sink) const;
     void write(const QString &relativePath, const QByteArray &data);
+    // The same for a file too large to hold (channels.csv of a long session): `produce` is
+    // called until it returns false, each call filling `chunk` (emptied before each call),
+    // which is written at once; memory holds one chunk. A zip gets the file through a hidden
+    // spool file next to it, removed by finish() or when the archive is dropped.
+    using ChunkProducer = std::function<bool(QByteArray &chunk)>;
+    void writeChunks(const QString &relativePath, const ChunkProducer &produce);
     // Writes the zip's central directory, or moves the written directory into place (Write
     // mode); throws BundleError on failure. Without finish() nothing written stays.
     void finish();
@@ -53,6 +63,7 @@ private:
     zip *m_zip = nullptr;
     QString m_prefix;                  // zip: top-level folder holding manifest.json, with '/'
     QHash<QString, qint64> m_entries;  // zip: bundle-relative name -> entry index
+    std::vector<std::unique_ptr<QTemporaryFile>> m_spool; // zip: files zip_close() still reads
 };
 
 } // namespace driftlab

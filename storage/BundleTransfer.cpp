@@ -174,32 +174,77 @@ void BundleTransfer::exportBundle(const SessionStore &store, qint64 sessionId, c
     archive.write(QStringLiteral("manifest.json"), QJsonDocument(m).toJson(QJsonDocument::Indented));
 
     // channels.csv: merge the channels on their time stamps (a channel with two samples at the
-    // same time gets two rows).
-    QVector<SampleBlock> data;
+    // same time gets two rows), streamed in time windows of about kWindowSamples samples: memory
+    // does not grow with the session (it held every sample and the whole text, 544 MB for a
+    // session of 20 M samples). A first pass over the stored blocks finds the time range.
+    constexpr qint64 kWindowSamples = 1 << 17;
+    double tMin = INFINITY, tMax = -INFINITY;
+    qint64 total = 0;
     for (const ChannelInfo &c : channels)
-        data.push_back(store.samples(c.id));
-    QByteArray csv = "time_s";
-    for (const ChannelInfo &c : channels)
-        csv += ',' + c.key.toUtf8();
-    csv += '\n';
-    QVector<int> next(channels.size(), 0);
-    for (;;) {
-        double t = INFINITY;
-        for (int i = 0; i < data.size(); ++i) {
-            if (next[i] < data[i].t.size())
-                t = std::min(t, data[i].t[next[i]]);
+        store.forEachSampleBlock(c.id, [&](const QVector<double> &t, const QVector<double> &) {
+            if (t.isEmpty())
+                return;
+            tMin = std::min(tMin, t.first());
+            tMax = std::max(tMax, t.last());
+            total += t.size();
+        });
+    double from = tMin;
+    double width = total > 0 ? std::max((tMax - tMin) * static_cast<double>(kWindowSamples) / static_cast<double>(total), 1e-6) : 1.0;
+    bool header = true;
+    archive.writeChunks(QStringLiteral("channels.csv"), [&](QByteArray &csv) {
+        if (header) {
+            header = false;
+            csv = "time_s";
+            for (const ChannelInfo &c : channels)
+                csv += ',' + c.key.toUtf8();
+            csv += '\n';
+            return total > 0;
         }
-        if (std::isinf(t))
-            break;
-        csv += formatDouble(t);
-        for (int i = 0; i < data.size(); ++i) {
-            csv += ',';
-            if (next[i] < data[i].t.size() && data[i].t[next[i]] == t)
-                csv += formatDouble(data[i].v[next[i]++]);
+        // The window [from, to), or [from, tMax] for the last one.
+        double to = from + width;
+        if (!(to > from))
+            to = std::nextafter(from, INFINITY);
+        const bool last = to > tMax;
+        if (last)
+            to = tMax;
+        QVector<SampleBlock> data;
+        qint64 got = 0;
+        for (const ChannelInfo &c : channels) {
+            SampleBlock b = store.samples(c.id, from, to);
+            if (!last) {
+                int keep = b.t.size();
+                while (keep > 0 && b.t[keep - 1] >= to)
+                    --keep;
+                b.t.resize(keep);
+                b.v.resize(keep);
+            }
+            got += b.t.size();
+            data.push_back(std::move(b));
         }
-        csv += '\n';
-    }
-    archive.write(QStringLiteral("channels.csv"), csv);
+        QVector<int> next(channels.size(), 0);
+        for (;;) {
+            double t = INFINITY;
+            for (int i = 0; i < data.size(); ++i) {
+                if (next[i] < data[i].t.size())
+                    t = std::min(t, data[i].t[next[i]]);
+            }
+            if (std::isinf(t))
+                break;
+            csv += formatDouble(t);
+            for (int i = 0; i < data.size(); ++i) {
+                csv += ',';
+                if (next[i] < data[i].t.size() && data[i].t[next[i]] == t)
+                    csv += formatDouble(data[i].v[next[i]++]);
+            }
+            csv += '\n';
+        }
+        if (got > 2 * kWindowSamples)
+            width /= 2.0;
+        else if (got < kWindowSamples / 2)
+            width *= 2.0;
+        from = to;
+        return !last;
+    });
 
     if (!interf.isEmpty()) {
         bool directions = false;

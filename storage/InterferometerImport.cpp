@@ -6,30 +6,43 @@
 
 namespace driftlab {
 
+namespace {
+
+// The points of run r (0-based) in the order they were measured.
+QVector<InterferometerPoint> runPoints(const RtlFile &file, int r, int firstRun, double start_s, double dwell_s,
+                                       InterferometerImport::Direction direction)
+{
+    QString dir = file.direction(r + 1);
+    if (direction == InterferometerImport::Direction::Unidirectional)
+        dir = QStringLiteral("+");
+    else if (direction == InterferometerImport::Direction::Bidirectional)
+        dir = r % 2 == 0 ? QStringLiteral("+") : QStringLiteral("-");
+    const int n = file.targets_mm.size();
+    QVector<InterferometerPoint> out;
+    out.reserve(n);
+    for (int k = 0; k < n; ++k) {
+        const int target = dir == QLatin1String("-") ? n - 1 - k : k; // measured order
+        InterferometerPoint p;
+        p.t = start_s + k * dwell_s;
+        p.run = firstRun + r;
+        p.position_mm = file.targets_mm[target];
+        p.error_um = file.deviations_um[r][target];
+        p.direction = dir;
+        out.push_back(p);
+    }
+    return out;
+}
+
+} // namespace
+
 QVector<InterferometerPoint> InterferometerImport::points(const RtlFile &file, int firstRun, const QVector<double> &runStart_s,
                                                           double dwell_s, Direction direction)
 {
     if (runStart_s.size() != file.runCount)
         throw std::invalid_argument(QStringLiteral("%1 run start times for %2 runs").arg(runStart_s.size()).arg(file.runCount).toStdString());
     QVector<InterferometerPoint> out;
-    const int n = file.targets_mm.size();
-    for (int r = 0; r < file.runCount; ++r) {
-        QString dir = file.direction(r + 1);
-        if (direction == Direction::Unidirectional)
-            dir = QStringLiteral("+");
-        else if (direction == Direction::Bidirectional)
-            dir = r % 2 == 0 ? QStringLiteral("+") : QStringLiteral("-");
-        for (int k = 0; k < n; ++k) {
-            const int target = dir == QLatin1String("-") ? n - 1 - k : k; // measured order
-            InterferometerPoint p;
-            p.t = runStart_s[r] + k * dwell_s;
-            p.run = firstRun + r;
-            p.position_mm = file.targets_mm[target];
-            p.error_um = file.deviations_um[r][target];
-            p.direction = dir;
-            out.push_back(p);
-        }
-    }
+    for (int r = 0; r < file.runCount; ++r)
+        out += runPoints(file, r, firstRun, runStart_s[r], dwell_s, direction);
     return out;
 }
 
@@ -98,15 +111,17 @@ InterferometerImport::Result InterferometerImport::import(SessionStore &store, q
     int firstRun = 0;
     for (const InterferometerPoint &p : store.interferometerPoints(sessionId))
         firstRun = std::max(firstRun, p.run + 1);
-    const QVector<InterferometerPoint> pts = points(file, firstRun, starts, o.dwell_s, o.direction);
+    // Run by run into one transaction: the points of the whole file are never held at once.
+    const int n = file.targets_mm.size();
     r.firstRun = firstRun;
     r.lastRun = firstRun + file.runCount - 1;
-    r.points = pts.size();
-    r.firstTime_s = pts.first().t;
-    r.lastTime_s = pts.last().t;
+    r.points = file.runCount * n;
+    r.firstTime_s = starts.front();
+    r.lastTime_s = starts.back() + (n - 1) * o.dwell_s;
     store.begin();
     try {
-        store.addInterferometerPoints(sessionId, pts);
+        for (int run = 0; run < file.runCount; ++run)
+            store.addInterferometerPoints(sessionId, runPoints(file, run, firstRun, starts[run], o.dwell_s, o.direction));
         store.addEvent(sessionId, {r.firstTime_s, QStringLiteral("interferometer runs %1-%2 imported from %3 (times: %4)")
                                                       .arg(r.firstRun)
                                                       .arg(r.lastRun)

@@ -4,7 +4,12 @@
 #include <QRegularExpression>
 #include <QStringList>
 
+#include <algorithm>
 #include <cmath>
+#include <deque>
+#include <numeric>
+#include <tuple>
+#include <vector>
 
 namespace driftlab {
 
@@ -25,6 +30,50 @@ int integer(const QString &text, const QString &file, int line, const QString &w
     if (!ok || v < lo || v > hi)
         throw RtlError(file, line, QStringLiteral("%1: expected an integer in [%2, %3], got \"%4\"").arg(what).arg(lo).arg(hi).arg(text.trimmed().left(40)));
     return v;
+}
+
+struct Measurement {
+    int run, target, line;
+    double deviation;
+};
+
+// The file has fewer deviations than runs x targets. Reports what the full check would: the
+// first line (in file order) with a run beyond Run-count, a target beyond the list, or a second
+// deviation for its run and target; else the first (run, target) without a deviation.
+[[noreturn]] void reportIncomplete(const RtlFile &f, const std::deque<Measurement> &ms, const QString &source, int deviationsLine)
+{
+    const int n = f.targets_mm.size();
+    std::vector<int> order(static_cast<size_t>(ms.size()));
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+        return std::tie(ms[a].run, ms[a].target, ms[a].line) < std::tie(ms[b].run, ms[b].target, ms[b].line);
+    });
+    std::vector<char> second(static_cast<size_t>(ms.size()), 0);
+    for (size_t k = 1; k < order.size(); ++k)
+        if (ms[order[k]].run == ms[order[k - 1]].run && ms[order[k]].target == ms[order[k - 1]].target)
+            second[static_cast<size_t>(order[k])] = 1;
+    for (size_t i = 0; i < ms.size(); ++i) {
+        const Measurement &m = ms[i];
+        if (m.run > f.runCount)
+            throw RtlError(source, m.line, QStringLiteral("run %1 but Run-count is %2").arg(m.run).arg(f.runCount));
+        if (m.target > n)
+            throw RtlError(source, m.line, QStringLiteral("target %1 but there are %2 targets").arg(m.target).arg(n));
+        if (second[i])
+            throw RtlError(source, m.line, QStringLiteral("second deviation for run %1, target %2").arg(m.run).arg(m.target));
+    }
+    int r = 1, t = 1;
+    for (int k : order) {
+        if (ms[k].run != r || ms[k].target != t)
+            break;
+        if (++t > n) {
+            t = 1;
+            ++r;
+        }
+    }
+    throw RtlError(source, deviationsLine, QStringLiteral("run %1 has no deviation for target %2 (%3 mm): an incomplete run")
+                                               .arg(r)
+                                               .arg(t)
+                                               .arg(f.targets_mm[t - 1]));
 }
 
 QDateTime parseDate(const QString &text)
@@ -55,24 +104,24 @@ RtlFile RtlFile::parse(const QByteArray &bytes, const QString &source)
     f.source = source;
     if (bytes.size() > 64 * 1024 * 1024)
         throw RtlError(source, 0, QStringLiteral("larger than 64 MiB: not a linear test file"));
-    QString text = QString::fromUtf8(bytes);
-    if (text.startsWith(QChar(0xfeff)))
-        text.remove(0, 1);
-    const QStringList lines = text.split(QLatin1Char('\n'));
+    // Line by line over the bytes: the file is never held a second time as text or as a list
+    // of lines (that took 10x the file's size); only the numbers are kept.
+    const int bom = bytes.startsWith("\xEF\xBB\xBF") ? 3 : 0;
     static const QRegularExpression sectionRe(QStringLiteral("^([A-Z][A-Z0-9 \\-]*)::$"));
     static const QRegularExpression keyRe(QStringLiteral("^([A-Za-z][A-Za-z0-9 \\-\\.]*?)\\s*:\\s*(.*)$"));
     static const QRegularExpression space(QStringLiteral("\\s+"));
     QString section;
     bool inTargets = false, inDeviations = false, sawTargetData = false, sawDeviations = false, sawRuns = false;
     int targetCount = -1, targetCountLine = 0, deviationsLine = 0;
-    struct Measurement {
-        int run, target, line;
-        double deviation;
-    };
-    QVector<Measurement> measurements;
-    for (int i = 0; i < lines.size(); ++i) {
-        const int lineNo = i + 1;
-        const QString line = lines[i].trimmed();
+    std::deque<Measurement> measurements; // (grows in pieces: no copy of the whole when it grows)
+    int lineNo = 0;
+    for (int from = bom; from <= bytes.size();) {
+        int end = bytes.indexOf('\n', from);
+        if (end < 0)
+            end = bytes.size();
+        ++lineNo;
+        const QString line = QString::fromUtf8(bytes.constData() + from, end - from).trimmed();
+        from = end + 1;
         if (line.isEmpty())
             continue;
         const QRegularExpressionMatch sec = sectionRe.match(line);
@@ -159,13 +208,19 @@ RtlFile RtlFile::parse(const QByteArray &bytes, const QString &source)
         throw RtlError(source, 0, QStringLiteral("no TARGET DATA section with target positions"));
     if (targetCount >= 0 && targetCount != f.targets_mm.size())
         throw RtlError(source, targetCountLine, QStringLiteral("Target-count is %1 but %2 target positions follow").arg(targetCount).arg(f.targets_mm.size()));
-    if (!sawDeviations || measurements.isEmpty())
+    if (!sawDeviations || measurements.empty())
         throw RtlError(source, deviationsLine, QStringLiteral("no deviations (a DEVIATIONS section with \"run target deviation\" lines)"));
     int maxRun = 0;
     for (const Measurement &m : measurements)
         maxRun = std::max(maxRun, m.run);
     if (!sawRuns || f.runCount == 0)
         f.runCount = maxRun;
+    // Every (run, target) needs exactly one deviation: with fewer measurements than that, some
+    // are missing, found without allocating Run-count x targets (a hostile Run-count and
+    // target list would ask for gigabytes).
+    if (static_cast<qint64>(f.runCount) * f.targets_mm.size() > static_cast<qint64>(measurements.size())) {
+        reportIncomplete(f, measurements, source, deviationsLine);
+    }
     f.deviations_um = QVector<QVector<double>>(f.runCount, QVector<double>(f.targets_mm.size(), std::nan("")));
     for (const Measurement &m : measurements) {
         if (m.run > f.runCount)

@@ -127,6 +127,7 @@ int CompensateCommand::run(const QStringList &args)
         const ExportableModel model = ExportableModelJson::read(modelPath);
         source = std::make_unique<SessionOffsetSource>(path, sessionId, model, p.value(position));
         SessionStore(path).session(sessionId); // exists
+        source->checkInputs();                 // has every input channel of the model
     } catch (const std::invalid_argument &e) {
         throw UsageError(QStringLiteral("compensate: %1: %2").arg(modelPath, QString::fromUtf8(e.what())));
     } catch (const StorageError &e) {
@@ -136,6 +137,7 @@ int CompensateCommand::run(const QStringList &args)
     // The source runs on the loop's thread; its last problem is reported here.
     std::mutex problemMutex;
     QString problem;
+    std::atomic<bool> modelFailed{false}; // the model cannot be evaluated: stop, exit 1
     std::atomic<double> modelTime{std::nan("")}, error{std::nan("")};
     const int axes = o.map.axes.size();
     CompensationLoop loop(o, [&](double) {
@@ -144,7 +146,12 @@ int CompensateCommand::run(const QStringList &args)
             const double here = source->update();
             offsets = o.map.requests(o.map.axes[axisIndex].name, here, [&](double x) { return source->offsetAt(x); });
             modelTime = source->modelTime_s();
-            error = source->error_um();
+            if (std::isfinite(source->modelTime_s()))
+                error = source->error_um();
+        } catch (const std::invalid_argument &e) {
+            std::lock_guard<std::mutex> lock(problemMutex);
+            problem = QString::fromUtf8(e.what());
+            modelFailed = true;
         } catch (const std::exception &e) {
             std::lock_guard<std::mutex> lock(problemMutex);
             problem = QString::fromUtf8(e.what());
@@ -166,7 +173,7 @@ int CompensateCommand::run(const QStringList &args)
     int shown = 0;
     double lastReport = 0.0;
     QString lastProblem;
-    while (!g_stop && (seconds <= 0.0 || wall.elapsed() / 1000.0 < seconds)) {
+    while (!g_stop && !modelFailed && (seconds <= 0.0 || wall.elapsed() / 1000.0 < seconds)) {
         QThread::msleep(50);
         const QVector<CompensationLoop::Entry> log = loop.log();
         for (; shown < log.size(); ++shown)
@@ -181,6 +188,12 @@ int CompensateCommand::run(const QStringList &args)
         if (wall.elapsed() / 1000.0 - lastReport >= 1.0) {
             lastReport = wall.elapsed() / 1000.0;
             const CompensationLoop::Status s = loop.status();
+            if (!std::isfinite(modelTime.load())) {
+                CliSupport::progress(QStringLiteral("  %1 s: waiting for a sample of every input of the model%2")
+                                         .arg(lastReport, 0, 'f', 0)
+                                         .arg(s.connected ? QString() : QStringLiteral(" (not connected)")));
+                continue;
+            }
             CliSupport::progress(QStringLiteral("  %1 s: session time %2 s, E %3 um, offset %4 um requested, %5 um written%6")
                                      .arg(lastReport, 0, 'f', 0)
                                      .arg(modelTime.load(), 0, 'f', 1)
@@ -248,6 +261,10 @@ int CompensateCommand::run(const QStringList &args)
                              .arg(s.reconnects)
                              .arg(s.meanPeriod_s * 1e3, 0, 'f', 2)
                              .arg(s.periodJitter_s * 1e3, 0, 'f', 2));
+    if (modelFailed) {
+        std::lock_guard<std::mutex> lock(problemMutex);
+        throw std::runtime_error(QStringLiteral("the model cannot be evaluated on session %1, stopped: %2").arg(sessionId).arg(problem).toStdString());
+    }
     if (!everConnected)
         throw std::runtime_error(QStringLiteral("never reached the controller at %1:%2").arg(o.host).arg(o.port).toStdString());
     return 0;

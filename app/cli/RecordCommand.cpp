@@ -16,6 +16,9 @@
 #include <QCommandLineParser>
 #include <QFileInfo>
 #include <QElapsedTimer>
+#include <QFile>
+#include <QFileInfo>
+#include <QStorageInfo>
 #include <QJsonArray>
 #include <QJsonObject>
 #include <QThread>
@@ -30,6 +33,51 @@ volatile std::sig_atomic_t g_interrupted = 0;
 void onInterrupt(int)
 {
     g_interrupted = 1;
+}
+
+// Ctrl-C / SIGTERM set g_interrupted from the first instruction of the command to its end, so
+// a signal during the set-up (opening the database, starting devices) stops the recording
+// cleanly once it starts instead of killing the process; SIGXFSZ (a file size limit) is
+// ignored so that the write fails with an error the command reports. The previous handlers
+// come back when the command returns.
+class SignalGuard {
+public:
+    SignalGuard()
+    {
+        g_interrupted = 0;
+        m_int = std::signal(SIGINT, onInterrupt);
+        m_term = std::signal(SIGTERM, onInterrupt);
+        m_xfsz = std::signal(SIGXFSZ, SIG_IGN);
+    }
+    ~SignalGuard()
+    {
+        std::signal(SIGINT, m_int);
+        std::signal(SIGTERM, m_term);
+        std::signal(SIGXFSZ, m_xfsz);
+    }
+    SignalGuard(const SignalGuard &) = delete;
+    SignalGuard &operator=(const SignalGuard &) = delete;
+
+private:
+    using Handler = void (*)(int);
+    Handler m_int, m_term, m_xfsz;
+};
+
+// A database this command created but could not set up (a disk full at start): removed with
+// its side files, so nothing is left behind. A database that existed before is never touched.
+[[noreturn]] void failedToStart(const QString &path, bool existed, const std::exception &e)
+{
+    if (!existed)
+        for (const char *suffix : {"", "-wal", "-shm", "-journal"})
+            QFile::remove(path + QLatin1String(suffix));
+    // SQLite does not always say "full" when the first write of a new database fails.
+    QString why = QString::fromUtf8(e.what());
+    const QStorageInfo disk(QFileInfo(path).absolutePath());
+    if (!why.contains(QLatin1String("disk full")) && disk.isValid() && disk.bytesAvailable() < 1024 * 1024)
+        why += QStringLiteral(" (disk full: %1 bytes free on %2)").arg(disk.bytesAvailable()).arg(disk.rootPath());
+    throw std::runtime_error(QStringLiteral("record: cannot start the session in %1: %2%3")
+                                 .arg(path, why, existed ? QString() : QStringLiteral("; the new database was removed, nothing is left behind"))
+                                 .toStdString());
 }
 
 QString hms(double s)
@@ -55,6 +103,7 @@ QString RecordCommand::summary() const
 
 int RecordCommand::run(const QStringList &args)
 {
+    const SignalGuard signalGuard;
     QCommandLineParser p;
     const QCommandLineOption sim(QStringLiteral("sim"), QStringLiteral("Record the built-in baseline simulated rig."));
     const QCommandLineOption rig(QStringLiteral("rig"), QStringLiteral("Rig file (JSON) or built-in preset name."),
@@ -149,6 +198,7 @@ int RecordCommand::run(const QStringList &args)
     if (config.compensationServer.enabled && speedValue <= 0.0)
         throw UsageError(QStringLiteral("record: the rig's compensation_server serves a live compensation loop, which needs a recording "
                                         "on the session clock: give --speed (e.g. --speed 60)"));
+    config.recordingEnd_s = seconds; // the simulated interferometer starts only runs that finish
     std::unique_ptr<SimulatedRig> simRig;
     try {
         simRig = std::make_unique<SimulatedRig>(config);
@@ -199,14 +249,16 @@ int RecordCommand::run(const QStringList &args)
         AcquisitionEngine engine(options);
         for (auto &d : set.devices)
             engine.addDevice(std::move(d));
-        id = engine.start(path, info);
+        const bool existed = QFileInfo::exists(path);
+        try {
+            id = engine.start(path, info);
+        } catch (const std::exception &e) {
+            failedToStart(path, existed, e);
+        }
         if (config.compensationServer.enabled)
             CliSupport::progress(QStringLiteral("  the simulated CNC takes compensation offsets for axis %1 on Modbus TCP %2:%3")
                                      .arg(config.axis, config.compensationServer.host)
                                      .arg(config.compensationServer.port));
-        g_interrupted = 0;
-        const auto previousInt = std::signal(SIGINT, onInterrupt);
-        const auto previousTerm = std::signal(SIGTERM, onInterrupt);
         QVector<DeviceHealth::State> states(engine.deviceCount(), DeviceHealth::State::Closed);
         // Stop at once when the writer fails (disk full): recording on would only lose data.
         while (engine.now_s() < seconds && !g_interrupted && engine.writerError().empty()) {
@@ -230,8 +282,6 @@ int RecordCommand::run(const QStringList &args)
             CliSupport::progress(QStringLiteral("  interrupted at %1: storing what was recorded").arg(hms(engine.now_s())));
         }
         engine.stop();
-        std::signal(SIGINT, previousInt);
-        std::signal(SIGTERM, previousTerm);
         samples = engine.samplesWritten();
         for (int i = 0; i < engine.deviceCount(); ++i) {
             const DeviceHealth h = engine.health().value(i);
@@ -252,21 +302,21 @@ int RecordCommand::run(const QStringList &args)
         points = store->interferometerPoints(id).size();
         frames = store->irFrames(id).size();
     } else {
-        store = std::make_unique<SessionStore>(path);
+        const bool existed = QFileInfo::exists(path);
+        try {
+            store = std::make_unique<SessionStore>(path);
+        } catch (const std::exception &e) {
+            failedToStart(path, existed, e);
+        }
         RigRecorder recorder(*store, *simRig);
         // Ctrl-C / SIGTERM: stop after the chunk being written and close the session as the
         // threaded path does (everything so far is committed chunk by chunk).
-        g_interrupted = 0;
         double reached = 0.0;
-        const auto previousInt = std::signal(SIGINT, onInterrupt);
-        const auto previousTerm = std::signal(SIGTERM, onInterrupt);
         id = recorder.record(sessionName, seconds, [&](double done, double total) {
             reached = done;
             report(done, total, recorder.sink()->samplesWritten());
             return !g_interrupted;
         });
-        std::signal(SIGINT, previousInt);
-        std::signal(SIGTERM, previousTerm);
         if (g_interrupted && reached < seconds) {
             store->addEvent(id, EventRecord{reached, QStringLiteral("recording stopped by the operator")});
             store->setComplete(id, true);

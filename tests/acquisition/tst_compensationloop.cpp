@@ -3,7 +3,9 @@
 // 1-step resolution, disabled until enabled), and the loop itself against an independent
 // Modbus TCP server built on libmodbus (tests/tools/modbus_peer --log-writes), which records
 // every write: sequence, limits, a dropped connection, a stalled controller, reconnects and
-// the loop's period jitter.
+// the loop's period jitter; a controller restarting with its registers at 0 (issue 35: the
+// loop must read them back and ramp from there) and one refusing writes with a Modbus
+// exception (the retry interval must grow).
 #include "CompensationLoop.h"
 #include "JsonFields.h"
 #include "OffsetGovernor.h"
@@ -28,6 +30,8 @@ private slots:
     void registerMapRefusals();
     void governor();
     void loopAgainstLibmodbusPeer();
+    void restartedControllerIsRampedFromItsRegisters();
+    void refusedWritesBackOffMoreAndMore();
 };
 
 void TestCompensationLoop::registerMap()
@@ -256,6 +260,115 @@ void TestCompensationLoop::loopAgainstLibmodbusPeer()
     qInfo("%d writes; period %.2f ms mean, jitter %.3f ms (std), latest tick %.2f ms late", int(writes.size()), s.meanPeriod_s * 1e3,
           s.periodJitter_s * 1e3, s.maxLateness_s * 1e3);
     QVERIFY(std::abs(s.meanPeriod_s - 0.02) < 0.005);
+}
+
+namespace {
+
+QStringList eventsSince(const CompensationLoop &loop, double from_s)
+{
+    QStringList events;
+    for (const CompensationLoop::Entry &e : loop.log())
+        if (e.t_s >= from_s && !e.what.startsWith(QLatin1String("write ")))
+            events << QStringLiteral("%1 s: %2").arg(e.t_s, 0, 'f', 3).arg(e.what);
+    return events;
+}
+
+} // namespace
+
+void TestCompensationLoop::restartedControllerIsRampedFromItsRegisters()
+{
+    // The controller already holds 5 um on X when the loop starts (R5700 = 5): the loop's first
+    // write must keep 5, not write 0.
+    testpeers::Peer peer;
+    QVERIFY2(peer.start(QStringLiteral(MODBUS_PEER), {QStringLiteral("--tcp"), QStringLiteral("0"), QStringLiteral("--log-writes"),
+                                                     QStringLiteral("--holding"), QStringLiteral("5700=5")}),
+             peer.errors().constData());
+    CompensationLoop::Options o;
+    o.port = peer.ready().toInt();
+    o.limits = {25.0, 2.0};
+    o.rate_Hz = 50.0;
+    o.timeout_s = 0.3;
+    o.enabled = true;
+    CompensationLoop loop(o, [](double) { return QVector<double>{5.0, std::nan(""), std::nan("")}; });
+    loop.start();
+    QVERIFY(testpeers::waitFor([&] { return loop.status().writes >= 1; }, 5000));
+    QCOMPARE(loop.status().written_um.value(0), 5.0);
+
+    // The controller restarts: its registers are back at 0 and the connection drops.
+    const int before = parseWrites(peer.output(), o.map).size();
+    QVERIFY(peer.command("set holding 5700 0"));
+    QVERIFY(peer.command("drop"));
+    QVERIFY2(testpeers::waitFor([&] { return loop.status().reconnects == 1 && loop.status().written_um.value(0) == 5.0; }, 8000),
+             qPrintable(eventsSince(loop, 0.0).join(QLatin1Char('\n'))));
+    loop.stop();
+    const QVector<Write> all = parseWrites(peer.output(), o.map);
+    QVERIFY(!all.isEmpty());
+    QCOMPARE(all.front().value_um, 5.0); // the value the controller held, not 0
+    const QVector<Write> after = all.mid(before);
+    // From 0 (what the restarted controller held) to 5 um at 2 um/s: at least 5 writes over
+    // 2 s or more, each within the rate limit since the previous one (one 20 ms tick of slack).
+    QVERIFY2(after.size() >= 5, qPrintable(QString::number(after.size())));
+    double held = 0.0;
+    long long heldMs = after.front().ms;
+    for (const Write &w : after) {
+        QCOMPARE(w.address, 5700);
+        const double dt = (w.ms - heldMs) / 1000.0;
+        QVERIFY2(std::abs(w.value_um - held) <= 2.0 * (dt + 0.02) + 1e-9,
+                 qPrintable(QStringLiteral("%1 -> %2 um in %3 s after the restart").arg(held).arg(w.value_um).arg(dt)));
+        if (w.value_um != held)
+            heldMs = w.ms;
+        held = w.value_um;
+    }
+    QCOMPARE(held, 5.0);
+    QVERIFY((after.back().ms - after.front().ms) / 1000.0 >= 2.0 - 0.05);
+    const QStringList events = eventsSince(loop, 0.0);
+    QVERIFY2(!events.filter(QStringLiteral("X 0 um instead of the 5 um last written")).isEmpty(), qPrintable(events.join(QLatin1Char('\n'))));
+}
+
+void TestCompensationLoop::refusedWritesBackOffMoreAndMore()
+{
+    testpeers::Peer peer;
+    QVERIFY2(peer.start(QStringLiteral(MODBUS_PEER), {QStringLiteral("--tcp"), QStringLiteral("0"), QStringLiteral("--log-writes")}),
+             peer.errors().constData());
+    CompensationLoop::Options o;
+    o.port = peer.ready().toInt();
+    o.limits = {50.0, 20.0};
+    o.rate_Hz = 50.0;
+    o.timeout_s = 0.3;
+    o.enabled = true;
+    CompensationLoop loop(o, [](double t) { return QVector<double>{std::fmod(10.0 * t, 40.0), std::nan(""), std::nan("")}; });
+    loop.start();
+    QVERIFY(testpeers::waitFor([&] { return loop.status().writes >= 3; }, 5000));
+
+    // Every request is answered with exception 4 (server device failure); the TCP connection
+    // itself keeps being accepted. Over 4 s a fixed 0.1-0.2 s retry would reconnect 20-40
+    // times; a doubling backoff from 0.2 s tries at most 0.2 + 0.4 + 0.8 + 1.6 s: 4 retries.
+    QVERIFY(peer.command("exception 4"));
+    const double from = loop.now_s();
+    QTest::qWait(4000);
+    const QStringList refused = eventsSince(loop, from).filter(QStringLiteral("refused"));
+    const QStringList events = eventsSince(loop, from);
+    qInfo("%s", qPrintable(events.join(QLatin1Char('\n'))));
+    QVERIFY2(refused.size() >= 3 && refused.size() <= 6, qPrintable(events.join(QLatin1Char('\n'))));
+    QVERIFY2(events.size() <= 8, qPrintable(events.join(QLatin1Char('\n'))));
+    QVERIFY(refused.front().contains(QLatin1String("Modbus exception 4")));
+    QVERIFY(refused.front().contains(QLatin1String("writing stopped, retrying in 0.2 s")));
+    QVERIFY2(refused.last().contains(QLatin1String("retrying in 1.6 s")) || refused.last().contains(QLatin1String("retrying in 3.2 s")),
+             qPrintable(refused.last()));
+    QVERIFY(!loop.status().connected);
+    QVERIFY(loop.status().message.contains(QLatin1String("Modbus exception 4")));
+
+    // Answering again: back within the pending wait (at most 3.2 s), writing; an accepted
+    // write resets the backoff, so the next refusal waits 0.2 s again.
+    QVERIFY(peer.command("normal"));
+    const long long writes = loop.status().writes;
+    QVERIFY(testpeers::waitFor([&] { return loop.status().connected && loop.status().writes > writes; }, 6000));
+    QVERIFY(peer.command("exception 4"));
+    const double again = loop.now_s();
+    QVERIFY(testpeers::waitFor([&] { return !eventsSince(loop, again).filter(QStringLiteral("refused")).isEmpty(); }, 3000));
+    QVERIFY2(eventsSince(loop, again).filter(QStringLiteral("refused")).front().contains(QLatin1String("retrying in 0.2 s")),
+             qPrintable(eventsSince(loop, again).join(QLatin1Char('\n'))));
+    loop.stop();
 }
 
 QTEST_GUILESS_MAIN(TestCompensationLoop)

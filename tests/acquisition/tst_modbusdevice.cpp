@@ -148,7 +148,9 @@ void TestModbusDevice::stallDropAndExceptionAreDeviceErrors()
         testpeers::readFor(d, 2.0, r, 0.2);
         QFAIL("a stalled server was not noticed");
     } catch (const DeviceError &e) {
-        QVERIFY2(QString::fromUtf8(e.what()).contains(QLatin1String("no answer")), e.what());
+        // Names the server and what the device was doing (issue 35).
+        QVERIFY2(QString::fromUtf8(e.what()).contains(QLatin1String("no answer from 127.0.0.1:") + peer.ready()), e.what());
+        QVERIFY2(QString::fromUtf8(e.what()).contains(QLatin1String("reading input registers 0-0")), e.what());
     }
     QVERIFY2(t.elapsed() < 1500, qPrintable(QStringLiteral("noticed after %1 ms with a 0.2 s timeout").arg(t.elapsed())));
     QVERIFY(peer.command("resume"));

@@ -15,6 +15,7 @@
 #include <QFile>
 #include <QJsonDocument>
 #include <QStandardPaths>
+#include <QElapsedTimer>
 #include <QtTest>
 
 using namespace driftlab;
@@ -205,7 +206,25 @@ void TestMtconnect::agentRestartAndStall()
     readFor(d, 0.3, r);
     // Stalled agent: no answer within 0.5 s.
     QVERIFY(agent.command("stall"));
-    QVERIFY_EXCEPTION_THROWN(readFor(d, 3.0, r), DeviceError);
+    try {
+        readFor(d, 3.0, r);
+        QFAIL("a stalled agent was not noticed");
+    } catch (const DeviceError &e) {
+        // Names the agent and what the device was asking for (issue 35).
+        QVERIFY2(QString::fromUtf8(e.what()).contains(QStringLiteral("no answer from the agent at http://127.0.0.1:%1").arg(port)), e.what());
+        QVERIFY2(QString::fromUtf8(e.what()).contains(QLatin1String("within 0.5 s (asking for new samples")), e.what());
+    }
+    // Connecting to an agent that accepts the connection and never answers: a DeviceError
+    // after the timeout, not a hang.
+    QElapsedTimer opening;
+    opening.start();
+    try {
+        d.open();
+        QFAIL("opening a stalled agent did not fail");
+    } catch (const DeviceError &e) {
+        QVERIFY2(QString::fromUtf8(e.what()).contains(QLatin1String("(asking for its current values")), e.what());
+    }
+    QVERIFY2(opening.elapsed() < 2000, qPrintable(QString::number(opening.elapsed())));
     QVERIFY(agent.command("resume"));
     // Stopped agent: connection refused.
     agent.kill();

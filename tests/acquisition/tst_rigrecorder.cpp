@@ -9,6 +9,7 @@
 #include <QtTest>
 
 #include <cmath>
+#include <map>
 
 using namespace driftlab;
 
@@ -18,6 +19,7 @@ private slots:
     void recordedSessionAgreesWithTruth();
     void cancelLeavesSessionIncomplete();
     void bundleRoundTrip();
+    void noRunStartedThatCannotFinish();
 
 private:
     QTemporaryDir m_dir;
@@ -60,9 +62,10 @@ void TestRigRecorder::recordedSessionAgreesWithTruth()
     }
     const double rms = std::sqrt(sum2 / truthAtChunk.size());
     QVERIFY2(rms < 1.5 * c.probe.noise_um && rms > 0.5 * c.probe.noise_um, qPrintable(QString::number(rms)));
-    // Interferometer: 5 runs of 12 targets in 2 h (0, 30, 60, 90 min and the one at 2 h starts).
+    // Interferometer: 4 runs of 12 targets in 2 h (0, 30, 60, 90 min; the one due at 2 h could
+    // not finish by the end, so it is not started).
     const QVector<InterferometerPoint> pts = store.interferometerPoints(id);
-    QVERIFY(pts.size() >= 48);
+    QCOMPARE(pts.size(), 48);
     QCOMPARE(pts.first().run, 0);
     QCOMPARE(store.irFrames(id).size(), 2 * 3600 / 300 + 1);
     const IrFrame frame = store.irFrame(store.irFrames(id).last().id);
@@ -122,6 +125,34 @@ void TestRigRecorder::bundleRoundTrip()
     QCOMPARE(store.irFrames(back).size(), store.irFrames(id).size());
     const QVector<IrFrame> fa = store.irFrames(id), fb = store.irFrames(back);
     QCOMPARE(store.irFrame(fb.last().id).pixels, store.irFrame(fa.last().id).pixels);
+}
+
+// Issue 35: a recording whose duration is a multiple of the laser interval used to end with a
+// one-point "run" (the run due at the end started and was cut off). Every run recorded must be
+// complete: as many points as targets; and a run that fits before the end is still recorded.
+void TestRigRecorder::noRunStartedThatCannotFinish()
+{
+    RigConfig c = RigConfigLoader::preset(QStringLiteral("baseline"));
+    c.infrared.enabled = false;
+    const int targets = c.interferometerTargets_mm().size();
+    const double runLength_s = (targets - 1) * c.interferometer.dwell_s; // first to last approach
+    for (const double duration : {3600.0, 3600.0 + runLength_s, 3600.0 + runLength_s - 1.0}) {
+        const QString db = m_dir.filePath(QStringLiteral("runs-%1.sqlite").arg(duration));
+        SimulatedRig rig(c);
+        SessionStore store(db);
+        RigRecorder recorder(store, rig);
+        const qint64 id = recorder.record(QStringLiteral("runs"), duration, {});
+        std::map<int, int> perRun;
+        for (const InterferometerPoint &p : store.interferometerPoints(id)) {
+            QVERIFY(p.t <= duration);
+            ++perRun[p.run];
+        }
+        // Runs start at 0, 1800 and 3600 s: the third fits only if its last approach is due by the end.
+        const int expected = duration >= 3600.0 + runLength_s ? 3 : 2;
+        QVERIFY2(int(perRun.size()) == expected, qPrintable(QStringLiteral("%1 runs in %2 s").arg(perRun.size()).arg(duration)));
+        for (const auto &r : perRun)
+            QVERIFY2(r.second == targets, qPrintable(QStringLiteral("run %1 has %2 of %3 points (%4 s)").arg(r.first).arg(r.second).arg(targets).arg(duration)));
+    }
 }
 
 QTEST_GUILESS_MAIN(TestRigRecorder)

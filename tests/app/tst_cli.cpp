@@ -33,6 +33,7 @@ private slots:
     void newBundleAndExampleImport();
     void guiExitCodesMatchCli();
     void recordStopsPromptlyOnAFullDisk();
+    void recordOnADiskFullAtStartLeavesNothing();
     void exportToAFullDiskLeavesNothing();
     void importOntoAFullDiskChangesNothing();
     void readOnlyMediaRefusedClearly();
@@ -520,6 +521,10 @@ void TestCli::readOnlyMediaRefusedClearly()
 
 // Issue 21: SIGTERM (and Ctrl-C) during a recording closes the session cleanly, on the fast
 // simulation path as on the device-thread path: complete, with an event saying where it stopped.
+// Issue 35: SIGTERM as soon as the recording announces itself (within its first second, while
+// it opens the database) closes the session cleanly. The handler used to be installed only once
+// the recording ran, so a SIGTERM during the set-up killed the process; the test waited 1.5 s and
+// failed only on a loaded machine. Now it signals right after the first progress line, every time.
 void TestCli::sigtermClosesTheSession()
 {
     for (const bool threaded : {false, true}) {
@@ -538,11 +543,18 @@ void TestCli::sigtermClosesTheSession()
         });
         p.start(QStringLiteral(DRIFTLAB_CLI), args);
         QVERIFY(p.waitForStarted());
-        QTest::qWait(1500);
-        QCOMPARE(p.state(), QProcess::Running); // 2000 h do not fit in 1.5 s either way
+        QByteArray err;
+        QElapsedTimer waited;
+        waited.start();
+        while (!err.contains("recording ") && waited.elapsed() < 30000 && p.state() == QProcess::Running) {
+            p.waitForReadyRead(50);
+            err += p.readAllStandardError();
+        }
+        QVERIFY2(err.contains("recording "), err.constData());
+        QCOMPARE(p.state(), QProcess::Running); // 2000 h do not fit in any time here
         p.terminate();
         QVERIFY(p.waitForFinished(30000));
-        const QByteArray err = p.readAllStandardError();
+        err += p.readAllStandardError();
         QCOMPARE(p.exitStatus(), QProcess::NormalExit);
         QVERIFY2(p.exitCode() == 0 && err.contains("interrupted at"), err.constData());
         const Result list = run({QStringLiteral("list"), QStringLiteral("--db"), db});
@@ -551,6 +563,37 @@ void TestCli::sigtermClosesTheSession()
         q.start(QStringLiteral("sqlite3"), {db, QStringLiteral("SELECT count(*) FROM events WHERE label = 'recording stopped by the operator'")});
         if (q.waitForFinished(10000) && q.exitStatus() == QProcess::NormalExit && q.exitCode() == 0)
             QCOMPARE(q.readAllStandardOutput().trimmed(), QByteArray("1"));
+    }
+}
+
+// Issue 35: a recording onto a disk that is full before it starts fails (exit 1, "disk full")
+// and leaves no file behind; it used to leave a 0-byte database and say only "cannot enable WAL (not
+// an SQLite database?)". Both paths: as fast as possible, and device threads (--speed).
+void TestCli::recordOnADiskFullAtStartLeavesNothing()
+{
+    const QString mountPoint = m_dir.filePath(QStringLiteral("full-at-start"));
+    const QString why = mountSmallTmpfs(mountPoint, QStringLiteral("1m"));
+    if (!why.isEmpty())
+        QSKIP(qPrintable(why));
+    const auto unmount = qScopeGuard([&] { QProcess::execute(QStringLiteral("umount"), {QStringLiteral("-l"), mountPoint}); });
+    {
+        QFile filler(mountPoint + QStringLiteral("/filler"));
+        QVERIFY(filler.open(QIODevice::WriteOnly));
+        const QByteArray chunk(4096, 'x');
+        for (int i = 0; i < 1024 && filler.write(chunk) == chunk.size() && filler.flush(); ++i) {
+        }
+    }
+    for (const bool threaded : {false, true}) {
+        const QString db = mountPoint + QStringLiteral("/lab.sqlite");
+        QStringList args{QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("1:00:00"),
+                         QStringLiteral("--out"), db};
+        if (threaded)
+            args << QStringLiteral("--speed") << QStringLiteral("2000");
+        const Result r = run(args);
+        QCOMPARE(r.code, 1);
+        QVERIFY2(r.err.contains("disk full") && r.err.contains("nothing is left behind"), r.err.constData());
+        const QStringList left = QDir(mountPoint).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot);
+        QVERIFY2(left == QStringList{QStringLiteral("filler")}, qPrintable(left.join(QLatin1Char(' '))));
     }
 }
 

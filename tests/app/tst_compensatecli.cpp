@@ -2,7 +2,8 @@
 // its compensation is written to an independent Modbus TCP server (libmodbus, modbus_peer
 // --log-writes). The value the controller ends with is checked against the model evaluated
 // here from its JSON on the session's last samples; a dry run writes nothing; the loop follows
-// a recording in progress; bad input exits 2 naming the option or field. The seed-000 physics
+// a recording in progress; bad input exits 2 naming the option or field, a model whose input
+// channel the session lacks too (issue 35: it ran with exit 0 and wrote nothing). The seed-000 physics
 // model ('fit --json') follows the same session through a compensation table (support points):
 // each pair ends at -trunc(E(x)) of FdmScrewModel stepped here over the session's axis position,
 // feed and ambient on the schedule of the exported C code.
@@ -36,6 +37,7 @@ private slots:
     void physicsModelWritesACompensationTable();
     void badInputExitsTwo_data();
     void badInputExitsTwo();
+    void modelInputMissingFromTheSessionExitsTwo();
 
 private:
     QStringList writes(testpeers::Peer &peer) const;
@@ -283,6 +285,37 @@ void TestCompensateCli::badInputExitsTwo()
     const clirunner::Result r = run(args);
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains(message.toUtf8()), r.err.constData());
+}
+
+void TestCompensateCli::modelInputMissingFromTheSessionExitsTwo()
+{
+    // The fitted model with its first input renamed to a channel the session does not have.
+    QFile f(m_model);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    QJsonObject model = QJsonDocument::fromJson(f.readAll()).object();
+    QJsonArray inputs = model.value(QStringLiteral("inputs")).toArray();
+    QVERIFY(!inputs.isEmpty());
+    QJsonObject first = inputs[0].toObject();
+    first.insert(QStringLiteral("channel"), QStringLiteral("T_nowhere"));
+    inputs[0] = first;
+    model.insert(QStringLiteral("inputs"), inputs);
+    const QString renamed = m_dir.filePath(QStringLiteral("renamed.json"));
+    QFile out(renamed);
+    QVERIFY(out.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    out.write(QJsonDocument(model).toJson());
+    out.close();
+
+    testpeers::Peer peer;
+    QVERIFY2(peer.start(QStringLiteral(MODBUS_PEER), {QStringLiteral("--tcp"), QStringLiteral("0"), QStringLiteral("--log-writes")}),
+             peer.errors().constData());
+    const QString json = m_dir.filePath(QStringLiteral("missing.json"));
+    const clirunner::Result r = run({QStringLiteral("compensate"), renamed, QStringLiteral("--modbus"), QStringLiteral("127.0.0.1:") + peer.ready(),
+                                     QStringLiteral("--db"), m_db, QStringLiteral("--session"), QStringLiteral("1"), QStringLiteral("--enable"),
+                                     QStringLiteral("--duration"), QStringLiteral("2"), QStringLiteral("--json"), json});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("session 1 has no channel 'T_nowhere', an input of the model"), r.err.constData());
+    QVERIFY(!QFile::exists(json)); // refused before any work: no result written
+    QVERIFY(writes(peer).isEmpty());
 }
 
 QTEST_GUILESS_MAIN(TestCompensateCli)

@@ -1,0 +1,138 @@
+// import-rtl and export stream (issue 35 item 6): their peak memory must not grow like their
+// input. Before, import-rtl peaked at about 10x its file's size (668 MB on a 64 MiB file: the
+// file held again as UTF-16 text, as a list of lines and as a vector of points) and export held
+// every sample of the session and the whole channels.csv (544 MB for 20 M samples). Each
+// command runs under /usr/bin/time (maximum resident set size) on a small and a larger input;
+// the growth of the peak between them is checked against the growth of the input.
+#include "../support/CliRunner.h"
+
+#include <QDir>
+#include <QFile>
+#include <QFileInfo>
+#include <QProcess>
+#include <QTemporaryDir>
+#include <QtTest>
+
+class TestStreamingCli : public QObject {
+    Q_OBJECT
+private slots:
+    void initTestCase();
+    void importRtlMemoryGrowsLessThanItsFile();
+    void exportMemoryStaysFlat();
+
+private:
+    // Peak RSS in KiB of driftlab-cli ARGS (0 if it failed; the test then fails with `err`).
+    qint64 peakKiB(const QStringList &args, QByteArray *err);
+    QString writeRtl(const QString &name, int runs, int targets);
+    QTemporaryDir m_dir;
+    QString m_db;
+};
+
+void TestStreamingCli::initTestCase()
+{
+    if (!QFileInfo(QStringLiteral("/usr/bin/time")).isExecutable())
+        QSKIP("/usr/bin/time is not installed (Debian package 'time')");
+    m_db = m_dir.filePath(QStringLiteral("lab.sqlite"));
+    const clirunner::Result r = clirunner::run({QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"),
+                                                QStringLiteral("1:00:00"), QStringLiteral("--out"), m_db});
+    QVERIFY2(r.code == 0, r.err.constData());
+}
+
+qint64 TestStreamingCli::peakKiB(const QStringList &args, QByteArray *err)
+{
+    const QString report = m_dir.filePath(QStringLiteral("time.txt"));
+    QFile::remove(report);
+    QProcess p;
+    p.start(QStringLiteral("/usr/bin/time"), QStringList{QStringLiteral("-f"), QStringLiteral("%M"), QStringLiteral("-o"), report,
+                                                         QStringLiteral(DRIFTLAB_CLI)} + args);
+    if (!p.waitForFinished(300000) || p.exitStatus() != QProcess::NormalExit || p.exitCode() != 0) {
+        *err = p.readAllStandardError();
+        return 0;
+    }
+    QFile f(report);
+    if (!f.open(QIODevice::ReadOnly))
+        return 0;
+    return f.readAll().trimmed().split('\n').last().toLongLong();
+}
+
+QString TestStreamingCli::writeRtl(const QString &name, int runs, int targets)
+{
+    const QString path = m_dir.filePath(name);
+    QFile f(path);
+    if (!f.open(QIODevice::WriteOnly))
+        return QString();
+    QByteArray head = "HEADER::\nFile type : rtl\nTARGET DATA::\nFiletype : 1\nTarget-count : " + QByteArray::number(targets) + "\nTargets :";
+    for (int t = 0; t < targets; ++t)
+        head += ' ' + QByteArray::number(t * 0.5, 'f', 3);
+    head += "\nFlags : 0 1 2 0\nUSER-TEXT::\nAxis : X\nRUNS::\nRun-count : " + QByteArray::number(runs) + "\nDEVIATIONS::\nRun Target Data:\n";
+    f.write(head);
+    QByteArray body;
+    for (int r = 1; r <= runs; ++r) {
+        for (int t = 1; t <= targets; ++t)
+            body += QByteArray::number(r) + ' ' + QByteArray::number(t) + ' ' + QByteArray::number(-1.234567 + 1e-4 * t + 1e-3 * r, 'f', 6) + '\n';
+        if (body.size() > (1 << 20)) {
+            f.write(body);
+            body.clear();
+        }
+    }
+    body += "EOF::\n";
+    f.write(body);
+    return path;
+}
+
+void TestStreamingCli::importRtlMemoryGrowsLessThanItsFile()
+{
+    // 1 MiB and 7 MiB files of the same layout (1000 targets, ~17 bytes a deviation line).
+    qint64 size[2] = {0, 0}, peak[2] = {0, 0};
+    const int runs[2] = {60, 420};
+    for (int k = 0; k < 2; ++k) {
+        const QString file = writeRtl(QStringLiteral("test%1.rtl").arg(k), runs[k], 1000);
+        QVERIFY(!file.isEmpty());
+        size[k] = QFileInfo(file).size();
+        QByteArray err;
+        peak[k] = peakKiB({QStringLiteral("import-rtl"), file, QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--time"),
+                           QStringLiteral("1"), QStringLiteral("--dwell"), QStringLiteral("0.001")},
+                          &err);
+        QVERIFY2(peak[k] > 0, err.constData());
+    }
+    const double slope = (peak[1] - peak[0]) * 1024.0 / static_cast<double>(size[1] - size[0]);
+    qInfo("import-rtl: %.1f MiB file -> peak %.1f MiB, %.1f MiB file -> peak %.1f MiB; %.2f bytes of peak per byte of file", size[0] / 1048576.0,
+          peak[0] / 1024.0, size[1] / 1048576.0, peak[1] / 1024.0, slope);
+    // Held: the file's bytes while parsing and its numbers (a deviation line of ~20 bytes
+    // becomes 24 bytes while parsing, 8 after): at most ~3 bytes per byte of file, so a 64 MiB
+    // file stays below 300 MB. It was ~10.
+    QVERIFY2(slope < 3.5, qPrintable(QString::number(slope)));
+}
+
+void TestStreamingCli::exportMemoryStaysFlat()
+{
+    // A 1 h and a 12 h simulated session: 12x the samples, the same peak within a few MiB.
+    // (not m_db: the import test adds up to 800 k interferometer points to it)
+    const QString dbs[2] = {m_dir.filePath(QStringLiteral("short.sqlite")), m_dir.filePath(QStringLiteral("long.sqlite"))};
+    const char *durations[2] = {"1:00:00", "12:00:00"};
+    for (int k = 0; k < 2; ++k) {
+        const clirunner::Result r = clirunner::run({QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"),
+                                                    QLatin1String(durations[k]), QStringLiteral("--out"), dbs[k]});
+        QVERIFY2(r.code == 0, r.err.constData());
+    }
+    qint64 peak[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+        for (const QString &out : {m_dir.filePath(QStringLiteral("out%1.bundle").arg(k)), m_dir.filePath(QStringLiteral("out%1.zip").arg(k))}) {
+            QByteArray err;
+            const qint64 kib = peakKiB({QStringLiteral("export"), QStringLiteral("1"), out, QStringLiteral("--db"), dbs[k]}, &err);
+            QVERIFY2(kib > 0, err.constData());
+            peak[k] = std::max(peak[k], kib);
+        }
+    }
+    const qint64 csv0 = QFileInfo(m_dir.filePath(QStringLiteral("out0.bundle/channels.csv"))).size();
+    const qint64 csv1 = QFileInfo(m_dir.filePath(QStringLiteral("out1.bundle/channels.csv"))).size();
+    qInfo("export: channels.csv %.1f MiB -> peak %.1f MiB, %.1f MiB -> peak %.1f MiB", csv0 / 1048576.0, peak[0] / 1024.0, csv1 / 1048576.0,
+          peak[1] / 1024.0);
+    QVERIFY(csv1 > 8 * csv0);
+    // Before, the peak grew by about twice the text written (samples + text held at once); the
+    // windows of 128 k samples (~4 MiB with their text) are full in both sessions now.
+    QVERIFY2(peak[1] - peak[0] < (csv1 - csv0) / 1024 / 2, qPrintable(QStringLiteral("%1 KiB -> %2 KiB").arg(peak[0]).arg(peak[1])));
+}
+
+QTEST_GUILESS_MAIN(TestStreamingCli)
+#include "tst_streamingcli.moc"
