@@ -1,6 +1,6 @@
 #include "SelectPointsCommand.h"
 
-#include "AnalysisPlots.h"
+#include "AnalysisResultKind.h"
 #include "CliSupport.h"
 #include "DataDrivenFit.h"
 #include "DataDrivenFitCommand.h"
@@ -62,7 +62,7 @@ int SelectPointsCommand::run(const QStringList &args)
     }
     QJsonObject result = DataDrivenFit::selectionJson(r);
     result.insert(QStringLiteral("session"), session);
-    store.addAnalysisResult(session, AnalysisPlots::selectionResultKind(), result);
+    store.addAnalysisResult(session, AnalysisResultKind::sensitivePoints(), result);
     if (p.isSet(json))
         CliSupport::writeJson(QJsonDocument(result), p.value(json));
     if (!p.isSet(json) || p.value(json) != QLatin1String("-")) {
