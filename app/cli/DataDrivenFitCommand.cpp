@@ -1,6 +1,7 @@
 #include "DataDrivenFitCommand.h"
 
 #include "CliSupport.h"
+#include "FitRequestCheck.h"
 #include "DataDrivenFit.h"
 #include "DataDrivenModelJson.h"
 #include "SessionStore.h"
@@ -148,6 +149,9 @@ int DataDrivenFitCommand::run(const QStringList &args)
             q.train = HourRange::parse(p.value(train), QStringLiteral("--train-range"));
         if (p.isSet(holdoutRange))
             q.holdoutRange = HourRange::parse(p.value(holdoutRange), QStringLiteral("--holdout-range"));
+        // Before any work: a target a model can predict, hours that lie in the session and do not overlap.
+        FitRequestCheck::checkTarget(store, q.session, q.target);
+        FitRequestCheck::checkRanges(store, q.session, q.train, q.holdoutRange);
         QString last;
         r = DataDrivenFit(store).fit(q, [&](double, const QString &stage) {
             if (stage != last)
