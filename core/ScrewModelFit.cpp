@@ -28,6 +28,8 @@ void ScrewModelFit::check(const SessionStore &store, const ScrewFitRequest &q)
 {
     if (q.sessions.empty())
         bad(QStringLiteral("name at least one session to fit"));
+    if (store.isReadOnly())
+        bad(QStringLiteral("%1 is read-only: the fitted model is stored with its sessions (open a writable copy)").arg(store.path()));
     if (!(q.dt_s > 0) || q.dt_s > 600)
         bad(QStringLiteral("--dt must be a time step in (0, 600] s, got %1").arg(q.dt_s));
     for (qint64 id : q.sessions)

@@ -6,7 +6,7 @@
 // (ParameterPlausibility), and stores the fitted model with every fitted session in one
 // transaction (FdmModelJson's record: the same bytes whichever face ran it).
 //
-// Bad requests (no session, a session the store lacks, a held-out session that is also
+// Bad requests (no session, a read-only store, a session the store lacks, a held-out session that is also
 // fitted, a time step outside (0, 600] s) throw std::invalid_argument naming the option
 // before any work; a cancelled fit throws IdentificationCancelled and stores nothing.
 // A SessionStore belongs to the thread that opened it: run() on the thread of `store`.

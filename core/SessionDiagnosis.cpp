@@ -81,6 +81,13 @@ SessionDiagnosis::SessionDiagnosis(const SessionStore &trainStore, const Diagnos
     m_options.identification.initial = first.defaultParameters();
 }
 
+void SessionDiagnosis::checkWritable(const SessionStore &store)
+{
+    if (store.isReadOnly())
+        bad(QStringLiteral("%1 is read-only: the diagnosis is stored with the training session (open a writable copy)")
+                .arg(store.path()));
+}
+
 DiagnosisReport SessionDiagnosis::run(const Progress &progress) const
 {
     DiagnosisEngine engine(m_geometry, m_options);

@@ -56,6 +56,9 @@ public:
     // The diagnosis; report.cancelled when progress returned false.
     DiagnosisReport run(const Progress &progress = {}) const;
 
+    // Throws std::invalid_argument when `store` cannot keep the answer (read-only): check
+    // before running.
+    static void checkWritable(const SessionStore &store);
     // Stores a (not cancelled) report with the training session; returns the result id.
     qint64 store(SessionStore &store, const DiagnosisReport &report) const;
 

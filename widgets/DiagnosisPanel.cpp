@@ -178,6 +178,7 @@ bool DiagnosisPanel::start(qint64 trainSession, qint64 validationSession)
     request.validateLabel = QString::number(validationSession); // stored as `diagnose --validate ID` stores it
     std::shared_ptr<const SessionDiagnosis> diagnosis;
     try {
+        SessionDiagnosis::checkWritable(*m_store);
         diagnosis = std::make_shared<const SessionDiagnosis>(*m_store, request);
     } catch (const std::exception &e) {
         m_lastError = QString::fromStdString(e.what());

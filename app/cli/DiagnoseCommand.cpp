@@ -121,6 +121,8 @@ int DiagnoseCommand::run(const QStringList &args)
     request.validate = b.second;
     std::unique_ptr<SessionDiagnosis> diagnosis;
     try { // reads both recordings and checks the request before any work
+        if (a.first == userStore.get())
+            SessionDiagnosis::checkWritable(*userStore);
         diagnosis = std::make_unique<SessionDiagnosis>(*a.first, request, *b.first);
     } catch (const std::invalid_argument &e) {
         throw UsageError(QStringLiteral("diagnose: %1").arg(QString::fromUtf8(e.what())));
