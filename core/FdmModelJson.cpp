@@ -19,10 +19,10 @@ struct ParameterKey {
 };
 
 const ParameterKey kParameters[] = {
-    {"k1", "k1", "k1, feed-dependent convection (W/(m^2 K) per mm/min)"},
+    {"k1", "k1", "k1, convection per feed, h = k1 v + k2 (W/(m^2 K)/(mm/min))"},
     {"k2", "k2", "k2, convection at rest (W/(m^2 K))"},
-    {"k3", "k3", "k3, fixed-bearing heat (W)"},
-    {"k4", "k4", "k4, nut heat per feed (W per mm/min)"},
+    {"k3", "k3", "k3, fixed-bearing heat per feed, Q_B = k3 v (W/(mm/min))"},
+    {"k4", "k4", "k4, nut heat per feed, Q_N = k4 v (W/(mm/min))"},
     {"lambda", "lambda_W_mK", "lambda, screw conductivity (W/(m K))"},
     {"P_f", "fixed_end_position_mm", "P_f, fixed-end position (mm)"},
 };
