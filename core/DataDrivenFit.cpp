@@ -1,4 +1,5 @@
 #include "DataDrivenFit.h"
+#include "FitRequestCheck.h"
 
 #include "DataDrivenAuto.h"
 #include "DataDrivenModelJson.h"
@@ -235,17 +236,8 @@ void DataDrivenFit::check(const DataDrivenFitRequest &q) const
     QString drive;
     for (qint64 id : all) {
         const DataDrivenSession s(m_store, id);
-        if (!laser) {
-            if (!s.hasChannel(q.target))
-                bad(QStringLiteral("--target: session %1 has no channel '%2'").arg(id).arg(q.target));
-            const QString kind = s.kindOf(q.target);
-            if (kind != QLatin1String("displacement"))
-                bad(QStringLiteral("--target: channel '%1' of session %2 is a %3 channel, not a displacement; a data-driven "
-                                   "model predicts a displacement (thermal error) from temperatures")
-                        .arg(q.target)
-                        .arg(id)
-                        .arg(kind.isEmpty() ? QStringLiteral("kind-less") : kind));
-        }
+        if (!laser) // one rule for what a target is (FitRequestCheck), every session
+            FitRequestCheck::checkTarget(m_store, id, q.target);
         for (const QString &p : q.points)
             if (!s.hasChannel(p))
                 bad(QStringLiteral("--points: session %1 has no channel '%2'").arg(id).arg(p));

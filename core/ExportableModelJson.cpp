@@ -1,6 +1,7 @@
 #include "ExportableModelJson.h"
 
 #include "DataDrivenModelJson.h"
+#include "FdmModelJson.h"
 #include "FdmScrewModel.h"
 
 #include <QFile>
@@ -49,24 +50,22 @@ ExportableModel ExportableModelJson::parse(const QByteArray &bytes, const QStrin
     }
     const QJsonValue kind = o.value(QStringLiteral("model"));
     if (kind.isUndefined())
-        fail(source, QStringLiteral("model"), QStringLiteral("missing (expected \"fdm-seed000\" or a \"format\": \"driftlab-model\" file)"));
-    if (kind.toString() != QLatin1String("fdm-seed000"))
+        fail(source, QStringLiteral("model"), QStringLiteral("missing (expected \"%1\" or a \"format\": \"driftlab-model\" file)")
+                                                  .arg(FdmModelJson::modelName()));
+    if (kind.toString() != FdmModelJson::modelName())
         fail(source, QStringLiteral("model"),
-             QStringLiteral("'%1' is not a model this DriftLab exports (fdm-seed000, or \"format\": \"driftlab-model\")")
-                 .arg(kind.toVariant().toString()));
+             QStringLiteral("'%1' is not a model this DriftLab exports (%2, or \"format\": \"driftlab-model\")")
+                 .arg(kind.toVariant().toString(), FdmModelJson::modelName()));
+    const QJsonValue version = o.value(QStringLiteral("schema_version"));
+    if (!version.isUndefined() && (!version.isDouble() || version.toDouble() > FdmModelJson::kSchemaVersion))
+        fail(source, QStringLiteral("schema_version"),
+             QStringLiteral("%1 is newer than this DriftLab reads (%2): update DriftLab")
+                 .arg(version.toVariant().toString())
+                 .arg(FdmModelJson::kSchemaVersion));
     m.physics = true;
     if (!o.value(QStringLiteral("parameters")).isObject())
         fail(source, QStringLiteral("parameters"), QStringLiteral("missing or not an object"));
-    const QJsonObject par = o.value(QStringLiteral("parameters")).toObject();
-    const QString pp = QStringLiteral("parameters");
-    m.parameters.k1 = number(par, source, pp, "k1", true, 0);
-    m.parameters.k2 = number(par, source, pp, "k2", true, 0);
-    m.parameters.k3 = number(par, source, pp, "k3", true, 0);
-    m.parameters.k4 = number(par, source, pp, "k4", true, 0);
-    m.parameters.conductivity_W_mK = number(par, source, pp, "lambda_W_mK", true, 0);
-    m.parameters.fixedEndPosition_mm = number(par, source, pp, "fixed_end_position_mm", true, 0);
-    if (!(m.parameters.conductivity_W_mK > 0))
-        fail(source, QStringLiteral("parameters.lambda_W_mK"), QStringLiteral("must be > 0"));
+    m.parameters = FdmModelJson::parameters(o.value(QStringLiteral("parameters")).toObject(), source, m.parameters, true);
     const QJsonObject screw = o.value(QStringLiteral("screw")).toObject();
     const QString sp = QStringLiteral("screw");
     ScrewGeometry &g = m.geometry;

@@ -1,6 +1,6 @@
 #pragma once
 // Reads a fitted model for export: a seed-000 screw model ('fit --model fdm --json',
-// "model": "fdm-seed000") or a data-driven model ("format": "driftlab-model", read by
+// "model": "fdm-seed000", its parameters read by FdmModelJson, the format's owner) or a data-driven model ("format": "driftlab-model", read by
 // DataDrivenModelJson, which refuses another version). Every failure throws
 // std::invalid_argument naming the file and the field.
 

@@ -1,11 +1,13 @@
 #include "ScrewTemperatureReader.h"
 
 #include "InfraredProfileExtractor.h"
+#include "SessionChannels.h"
 #include "SessionStore.h"
 
 #include <QJsonArray>
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 namespace driftlab {
@@ -50,26 +52,19 @@ std::vector<ScrewTemperatureSeries> ScrewTemperatureReader::read(int profilePoin
     const QVector<IrFrame> frames = m_store.irFrames(m_sessionId);
     if (!frames.isEmpty() && m_info.manifest.value(QStringLiteral("infrared")).isObject()) {
         TimeSeries position;
-        for (const ChannelInfo &c : m_channels) {
-            if (c.role == QLatin1String("axis_position")) {
-                const SampleBlock b = m_store.samples(c.id);
-                position.t.assign(b.t.begin(), b.t.end());
-                position.v.assign(b.v.begin(), b.v.end());
-                break;
-            }
-        }
+        if (const std::optional<ChannelInfo> c = SessionChannels::byRole(m_channels, QStringLiteral("axis_position")))
+            position = SessionChannels::series(m_store, c->id);
         const InfraredCalibration cal = calibration(m_info.manifest);
         const InfraredProfileExtractor extractor(cal);
         ScrewTemperatureSeries ir;
         ir.sensor = "infrared profile";
         for (const IrFrame &info : frames) {
             const IrFrame f = m_store.irFrame(info.id);
-            if (f.width <= 0 || f.pixels.size() != f.width * f.height) {
+            const cv::Mat temperature = SessionChannels::frameTemperature(f, cal);
+            if (temperature.empty()) {
                 ++bad;
                 continue;
             }
-            cv::Mat counts(f.height, f.width, CV_16UC1, const_cast<quint16 *>(f.pixels.constData()));
-            const cv::Mat temperature = InfraredFrame::countsToTemperature(counts, cal);
             // Without the axis position or P_f the nut cannot be masked: the frame is not used.
             if (position.empty() || !pfValue.isDouble()) {
                 ++bad;

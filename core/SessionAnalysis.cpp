@@ -2,6 +2,7 @@
 
 #include "InterferometerReadings.h"
 #include "ScrewTemperatureReader.h"
+#include "SessionChannels.h"
 #include "SessionStore.h"
 #include "ThermalErrorTable.h"
 
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 namespace driftlab {
@@ -59,15 +61,8 @@ FdmParameters SessionAnalysis::defaultParameters() const
 
 TimeSeries SessionAnalysis::channelByRole(const QString &role) const
 {
-    for (const ChannelInfo &c : m_channels) {
-        if (c.role == role) {
-            const SampleBlock b = m_store.samples(c.id);
-            TimeSeries s;
-            s.t.assign(b.t.begin(), b.t.end());
-            s.v.assign(b.v.begin(), b.v.end());
-            return s;
-        }
-    }
+    if (const std::optional<ChannelInfo> c = SessionChannels::byRole(m_channels, role))
+        return SessionChannels::series(m_store, c->id);
     throw std::runtime_error(QStringLiteral("session %1 has no channel with role '%2'")
                                  .arg(m_sessionId)
                                  .arg(role)

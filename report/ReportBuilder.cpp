@@ -1,8 +1,10 @@
 #include "ReportBuilder.h"
 
 #include "AnalysisPlots.h"
+#include "AnalysisResultKind.h"
 #include "DataDrivenFit.h"
 #include "DataDrivenModelJson.h"
+#include "FdmModelJson.h"
 #include "Iso230Report.h"
 #include "ReportTemplate.h"
 #include "ReviewWorkspace.h"
@@ -294,7 +296,7 @@ void ReportBuilder::iso230Section(ReportDocument &doc) const
 void ReportBuilder::sensitivePointSection(ReportDocument &doc) const
 {
     doc.heading(m_look.heading(QStringLiteral("sensitive_points")));
-    const QJsonObject sel = m_store.latestAnalysisResult(m_session, AnalysisPlots::selectionResultKind());
+    const QJsonObject sel = m_store.latestAnalysisResult(m_session, AnalysisResultKind::sensitivePoints());
     if (sel.isEmpty()) {
         doc.leftOut(QStringLiteral("no sensitive-point selection is stored with this session "
                                    "(driftlab-cli select-points %1 --target CHANNEL)").arg(m_session));
@@ -362,7 +364,10 @@ void ReportBuilder::modelSection(ReportDocument &doc) const
                 const QJsonObject p = it.value().toObject();
                 rows.push_back({it.key(), jsonText(p.value(QStringLiteral("value"))), jsonText(p.value(QStringLiteral("standard_error")))});
             }
-        } else { // physical: {name: value} with standard_errors {name: se or null = held}
+        } else if (m.model == FdmModelJson::modelName()) {
+            fdmSection(doc, m); // labels, held parameters and the flags `fit` gives, as FdmModelJson reads them
+            continue;
+        } else { // other physical: {name: value} with standard_errors {name: se or null = held}
             for (auto it = m.parameters.begin(); it != m.parameters.end(); ++it)
                 if (it.value().isDouble())
                     rows.push_back({it.key(), jsonText(it.value()),
@@ -376,10 +381,6 @@ void ReportBuilder::modelSection(ReportDocument &doc) const
         flatten(m.metrics, QString(), metrics);
         if (!metrics.isEmpty())
             doc.keyValues(metrics);
-        if (m.model == QLatin1String("fdm-seed000")) {
-            fdmFigure(doc, m);
-            continue;
-        }
         if (!m.model.startsWith(QLatin1String("driftlab-model/")))
             continue;
         // Data-driven: measured and predicted over this session.
@@ -398,18 +399,44 @@ void ReportBuilder::modelSection(ReportDocument &doc) const
     }
 }
 
+void ReportBuilder::fdmSection(ReportDocument &doc, const FittedModel &m) const
+{
+    // Parameters with a person's label and unit, the standard error or "held", and the flags
+    // `fit` printed (IMPLAUSIBLE, POORLY IDENTIFIED) with their reasons.
+    const QJsonObject errors = m.uncertainties.value(QStringLiteral("standard_errors")).toObject();
+    const QJsonObject plausibility = m.metrics.value(QStringLiteral("plausibility")).toObject();
+    QVector<QStringList> rows;
+    QStringList warnings;
+    for (auto it = m.parameters.begin(); it != m.parameters.end(); ++it) {
+        if (!it.value().isDouble())
+            continue;
+        const QJsonValue se = FdmModelJson::standardError(errors, it.key());
+        const QStringList flags = FdmModelJson::flags(plausibility, it.key(), &warnings);
+        rows.push_back({FdmModelJson::parameterLabel(it.key()), jsonText(it.value()),
+                        se.isDouble() ? jsonText(se) : QStringLiteral("held"),
+                        flags.isEmpty() ? QStringLiteral("ok") : flags.join(QStringLiteral(", "))});
+    }
+    if (rows.isEmpty())
+        doc.leftOut(QStringLiteral("model %1 stores no scalar parameters").arg(m.id));
+    else
+        doc.table({QStringLiteral("Parameter"), QStringLiteral("Value"), QStringLiteral("Standard error"), QStringLiteral("Check")},
+                  rows);
+    warnings.removeDuplicates();
+    for (const QString &w : warnings)
+        doc.paragraph(QStringLiteral("Warning: %1").arg(w));
+    const QVector<QPair<QString, QString>> metrics = FdmModelJson::metricRows(m.metrics);
+    if (!metrics.isEmpty())
+        doc.keyValues(metrics);
+    fdmFigure(doc, m);
+}
+
 void ReportBuilder::fdmFigure(ReportDocument &doc, const FittedModel &m) const
 {
     // The fitted seed-000 model run over this session against the screw-end probe.
     try {
         const SessionAnalysis session(m_store, m_session);
-        FdmParameters p = session.defaultParameters();
-        const std::pair<const char *, double *> fields[] = {{"k1", &p.k1}, {"k2", &p.k2}, {"k3", &p.k3}, {"k4", &p.k4},
-                                                            {"lambda_W_mK", &p.conductivity_W_mK},
-                                                            {"fixed_end_position_mm", &p.fixedEndPosition_mm}};
-        for (const auto &f : fields)
-            if (m.parameters.value(QLatin1String(f.first)).isDouble())
-                *f.second = m.parameters.value(QLatin1String(f.first)).toDouble();
+        const FdmParameters p = FdmModelJson::parameters(m.parameters, QStringLiteral("stored model %1").arg(m.id),
+                                                         session.defaultParameters(), false);
         TimeSeries probe;
         const std::vector<double> predicted = session.predictedElongation(p, probe);
         const std::size_t stride = std::max<std::size_t>(1, probe.t.size() / 4000);
@@ -441,7 +468,7 @@ void ReportBuilder::fdmFigure(ReportDocument &doc, const FittedModel &m) const
 void ReportBuilder::diagnosisSection(ReportDocument &doc) const
 {
     doc.heading(m_look.heading(QStringLiteral("diagnosis")));
-    const QJsonObject d = m_store.latestAnalysisResult(m_session, diagnosisResultKind());
+    const QJsonObject d = m_store.latestAnalysisResult(m_session, AnalysisResultKind::diagnosis());
     if (d.isEmpty()) {
         doc.leftOut(QStringLiteral("no diagnosis is stored with this session "
                                    "(driftlab-cli diagnose --train %1 --validate OTHER --db DB --json FILE)").arg(m_session));
@@ -493,7 +520,7 @@ void ReportBuilder::diagnosisSection(ReportDocument &doc) const
 void ReportBuilder::compensationSection(ReportDocument &doc) const
 {
     doc.heading(m_look.heading(QStringLiteral("compensation")));
-    const QJsonObject c = m_store.latestAnalysisResult(m_session, compensationResultKind());
+    const QJsonObject c = m_store.latestAnalysisResult(m_session, AnalysisResultKind::compensation());
     if (c.isEmpty()) {
         doc.leftOut(QStringLiteral("no compensation loop was run on this session"));
         return;

@@ -34,10 +34,6 @@ public:
 
     // A plot drawn into SVG at size_mm (text stays text, curves stay paths).
     static QByteArray svg(QwtPlot &plot, QSizeF size_mm);
-    // Kind of the analysis result `diagnose` stores with the training session.
-    static QString diagnosisResultKind() { return QStringLiteral("diagnosis"); }
-    // Kind of a compensation before/after result (none is produced yet by DriftLab itself).
-    static QString compensationResultKind() { return QStringLiteral("compensation"); }
 
 private:
     void sessionSection(ReportDocument &doc) const;
@@ -45,6 +41,7 @@ private:
     void iso230Section(ReportDocument &doc) const;
     void sensitivePointSection(ReportDocument &doc) const;
     void modelSection(ReportDocument &doc) const;
+    void fdmSection(ReportDocument &doc, const FittedModel &model) const;
     void fdmFigure(ReportDocument &doc, const FittedModel &model) const;
     void diagnosisSection(ReportDocument &doc) const;
     void compensationSection(ReportDocument &doc) const;

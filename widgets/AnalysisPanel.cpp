@@ -1,6 +1,7 @@
 #include "AnalysisPanel.h"
 
 #include "AnalysisPlots.h"
+#include "AnalysisResultKind.h"
 #include "DataDrivenModelJson.h"
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
@@ -376,7 +377,7 @@ bool AnalysisPanel::startSelection()
                 });
             result = DataDrivenFit::selectionJson(r);
             result.insert(QStringLiteral("session"), q.session);
-            store.addAnalysisResult(q.session, AnalysisPlots::selectionResultKind(), result);
+            store.addAnalysisResult(q.session, AnalysisResultKind::sensitivePoints(), result);
         } catch (const std::exception &e) {
             error = m_job.cancelled() ? tr("Cancelled: no selection was made") : QString::fromUtf8(e.what());
         }

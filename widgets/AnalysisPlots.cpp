@@ -1,5 +1,6 @@
 #include "AnalysisPlots.h"
 
+#include "AnalysisResultKind.h"
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
 
@@ -255,7 +256,7 @@ std::unique_ptr<QwtPlot> AnalysisPlots::selectionPlot(const QString &view, const
 
 QJsonObject AnalysisPlots::storedSelection(const SessionStore &store, qint64 session)
 {
-    const QJsonObject s = store.latestAnalysisResult(session, selectionResultKind());
+    const QJsonObject s = store.latestAnalysisResult(session, AnalysisResultKind::sensitivePoints());
     if (s.isEmpty())
         throw std::invalid_argument(QStringLiteral("session %1 has no stored sensitive-point selection; run "
                                                    "'driftlab-cli select-points %1 --target CHANNEL' first")

@@ -30,7 +30,6 @@ public:
     // The latest selection stored with a session (select-points); throws std::invalid_argument
     // naming the command to run when there is none.
     static QJsonObject storedSelection(const SessionStore &store, qint64 session);
-    static QString selectionResultKind() { return QStringLiteral("sensitive-points"); }
 
     // Measured and predicted over time (a marker where the held-out part starts) / residual.
     static void showPrediction(TimeSeriesPlot &plot, const ValidationSeries &training, const ValidationSeries *holdout);

@@ -1,9 +1,8 @@
 #include "DiagnosisPanel.h"
 
-#include "DiagnosisEngine.h"
+#include "SessionDiagnosis.h"
 #include "ErrorSurfacePlot.h"
 #include "ModelsPanel.h"
-#include "SessionAnalysis.h"
 #include "UnitLabels.h"
 #include "SessionStore.h"
 #include "Workbench.h"
@@ -19,6 +18,8 @@
 #include <QSignalBlocker>
 #include <QTableWidget>
 #include <QVBoxLayout>
+
+#include <memory>
 
 namespace driftlab {
 
@@ -175,27 +176,21 @@ bool DiagnosisPanel::start(qint64 trainSession, qint64 validationSession)
     }
     m_runTrain = trainSession;
     m_runValidate = validationSession;
-    DiagnosisRecording train, validate;
-    ScrewGeometry geometry;
-    DiagnosisOptions options;
+    // Reads both sessions here (a SessionStore belongs to the thread that opened it); the
+    // settings are those of `driftlab-cli diagnose` because it is the same use case.
+    DiagnosisRequest request;
+    request.train = trainSession;
+    request.validate = validationSession;
+    request.trainLabel = QStringLiteral("#%1").arg(trainSession);
+    request.validateLabel = QString::number(validationSession); // stored as `diagnose --validate ID` stores it
+    std::shared_ptr<const SessionDiagnosis> diagnosis;
     try {
-        SessionAnalysis a(*m_store, trainSession);
-        train = a.diagnosisRecording();
-        validate = SessionAnalysis(*m_store, validationSession).diagnosisRecording();
-        geometry = a.geometry();
-        options.identification.initial = a.defaultParameters();
+        SessionDiagnosis::checkWritable(*m_store);
+        diagnosis = std::make_shared<const SessionDiagnosis>(*m_store, request);
     } catch (const std::exception &e) {
         m_lastError = QString::fromStdString(e.what());
         return false;
     }
-    if (train.screw.interferometer.empty() || validate.screw.interferometer.empty()) {
-        m_lastError = tr("Both sessions need interferometer runs besides the reference run");
-        return false;
-    }
-    // The settings of `driftlab-cli diagnose` (fit step 20 s, drive sampled every second).
-    options.identification.simulator.grid.dt_s = 20.0;
-    options.identification.simulator.driveSample_s = 1.0;
-    options.identification.maxIterations = 60;
     // Cancel first, and the focus with it: a disabled focused button hands the focus down
     // the chain, and the dock's scroll area followed it away from progress and Cancel.
     m_cancel->setEnabled(true);
@@ -205,13 +200,12 @@ bool DiagnosisPanel::start(qint64 trainSession, qint64 validationSession)
     m_progress->setValue(0);
     m_answer->clear();
     m_candidates->setRowCount(0);
-    m_job.start([this, geometry, options, train = std::move(train), validate = std::move(validate)] {
+    m_job.start([this, diagnosis, path = m_store->path()] {
         DiagnosisReport report;
         QString error;
         bool ok = true;
         try {
-            DiagnosisEngine engine(geometry, options);
-            report = engine.run(train, validate, [this](double fraction, const std::string &stage) {
+            report = diagnosis->run([this](double fraction, const std::string &stage) {
                 const QString text = QString::fromStdString(stage);
                 QMetaObject::invokeMethod(this, [this, fraction, text] {
                     m_progress->setValue(static_cast<int>(100.0 * fraction));
@@ -222,6 +216,9 @@ bool DiagnosisPanel::start(qint64 trainSession, qint64 validationSession)
             if (report.cancelled) {
                 ok = false;
                 error = tr("Cancelled: no diagnosis was made");
+            } else {
+                SessionStore store(path); // this thread's own connection
+                diagnosis->store(store, report); // with the training session, for its test report
             }
         } catch (const std::exception &e) {
             ok = false;

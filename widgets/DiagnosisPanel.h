@@ -2,7 +2,9 @@
 // Diagnosis workspace: pick a training and a validation session, run the mismatch
 // diagnosis in the background (progress by stage, cancel), and see the answer with its
 // explanation and location, every candidate's evidence, the held-out RMS before and after,
-// and the validation residual maps of the baseline and the corrected model.
+// and the validation residual maps of the baseline and the corrected model. The diagnosis is
+// core/SessionDiagnosis (the one `driftlab-cli diagnose` runs): its answer is stored with the
+// training session, where the test report finds it.
 
 #include "DiagnosisTypes.h"
 

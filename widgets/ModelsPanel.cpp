@@ -1,11 +1,10 @@
 #include "ModelsPanel.h"
 
 #include "ErrorSurfacePlot.h"
-#include "ParameterPlausibility.h"
-#include "SessionAnalysis.h"
+#include "ScrewModelFit.h"
+#include "Workbench.h"
 #include "SessionStore.h"
 #include "UnitLabels.h"
-#include "Workbench.h"
 
 #include <QComboBox>
 #include <QHBoxLayout>
@@ -152,31 +151,20 @@ bool ModelsPanel::startFit(const QVector<qint64> &training, qint64 heldOut)
         m_sessions->item(i)->setCheckState(training.contains(m_sessions->item(i)->data(kIdRole).toLongLong()) ? Qt::Checked
                                                                                                              : Qt::Unchecked);
     m_heldOut->setCurrentIndex(std::max(0, m_heldOut->findData(heldOut)));
-    // Read the sessions here: a SessionStore belongs to the thread that opened it.
-    std::vector<ScrewRecording> recordings;
-    std::vector<ScrewRecording> validation;
-    ScrewGeometry geometry;
-    FdmParameters initial;
-    m_recordingNames.clear();
+    ScrewFitRequest request;
+    request.sessions.assign(training.begin(), training.end());
+    request.holdout = heldOut > 0 ? heldOut : 0;
     try {
-        for (qint64 id : training) {
-            SessionAnalysis a(*m_store, id);
-            recordings.push_back(a.recording());
-            m_recordingNames << tr("session %1 (training)").arg(id);
-            if (recordings.size() == 1) {
-                geometry = a.geometry();
-                initial = a.defaultParameters();
-                m_drawingFixedEnd_mm = a.drawingFixedEnd_mm();
-            }
-        }
-        if (heldOut > 0) {
-            validation.push_back(SessionAnalysis(*m_store, heldOut).recording());
-            m_recordingNames << tr("session %1 (held out)").arg(heldOut);
-        }
+        ScrewModelFit::check(*m_store, request);
     } catch (const std::exception &e) {
         m_lastError = QString::fromStdString(e.what());
         return false;
     }
+    m_recordingNames.clear();
+    for (qint64 id : training)
+        m_recordingNames << tr("session %1 (training)").arg(id);
+    if (request.holdout)
+        m_recordingNames << tr("session %1 (held out)").arg(heldOut);
     // Cancel first, and the focus with it: a disabled focused button hands the focus down
     // the chain, and the dock's scroll area followed it away from progress and Cancel.
     m_cancel->setEnabled(true);
@@ -185,10 +173,7 @@ bool ModelsPanel::startFit(const QVector<qint64> &training, qint64 heldOut)
     m_fit->setEnabled(false);
     m_progress->setRange(0, 0); // busy until the first iteration
     m_status->setText(tr("Simulating unit responses and fitting..."));
-    IdentificationOptions options;
-    options.initial = initial;
-    m_options = options;
-    options.progress = [this](int iteration, double cost) {
+    const auto progress = [this](int iteration, double cost) {
         QMetaObject::invokeMethod(this, [this, iteration, cost] {
             m_progress->setRange(0, 100);
             m_progress->setValue(std::min(100, iteration));
@@ -196,18 +181,13 @@ bool ModelsPanel::startFit(const QVector<qint64> &training, qint64 heldOut)
         }, Qt::QueuedConnection);
         return !m_job.cancelled();
     };
-    m_feedNote = QString::fromStdString(ParameterPlausibility::feedCoverageNote(recordings));
-    m_job.start([this, geometry, options, recordings = std::move(recordings),
-                            validation = std::move(validation)]() mutable {
-        IdentificationResult result;
-        FitStatistics held;
+    m_job.start([this, path = m_store->path(), request, progress] {
+        ScrewFitResult fit;
         QString error;
         bool ok = true;
         try {
-            ScrewModelIdentifier identifier(geometry, options);
-            result = identifier.fit(recordings);
-            if (!validation.empty())
-                held = identifier.predict(result, validation);
+            SessionStore store(path); // this thread's own connection: reads, and stores the model
+            fit = ScrewModelFit(store).run(request, progress);
         } catch (const IdentificationCancelled &) {
             ok = false;
             error = tr("Cancelled: no model was fitted");
@@ -215,9 +195,9 @@ bool ModelsPanel::startFit(const QVector<qint64> &training, qint64 heldOut)
             ok = false;
             error = QString::fromStdString(e.what());
         }
-        QMetaObject::invokeMethod(this, [this, ok, error, result, held] {
-            m_result = result;
-            m_validation = held;
+        QMetaObject::invokeMethod(this, [this, ok, error, fit] {
+            if (ok)
+                m_fitResult = fit;
             finish(ok, error);
         }, Qt::QueuedConnection);
     });
@@ -243,28 +223,29 @@ void ModelsPanel::finish(bool ok, const QString &error)
         emit fitFinished(false);
         return;
     }
-    const FitStatistics &f = m_result.fit;
+    const IdentificationResult &fitted = m_fitResult.identification;
+    const FitStatistics &held = m_fitResult.validation;
+    const FitStatistics &f = fitted.fit;
     QString text = tr("Fitted in %1 s (%2 iterations%3). Training: interferometer RMS %4 µm (P-V %5 µm), probe RMS %6 µm.")
-                       .arg(m_result.wallTime_s, 0, 'f', 2)
-                       .arg(m_result.iterations)
-                       .arg(m_result.converged ? tr(", converged") : tr(", NOT converged"))
+                       .arg(fitted.wallTime_s, 0, 'f', 2)
+                       .arg(fitted.iterations)
+                       .arg(fitted.converged ? tr(", converged") : tr(", NOT converged"))
                        .arg(f.interferometerRms_um, 0, 'f', 2)
                        .arg(f.interferometerPeakToValley_um, 0, 'f', 1)
                        .arg(f.elongationRms_um, 0, 'f', 2);
-    if (m_validation.interferometerPoints + m_validation.elongationPoints > 0)
+    if (held.interferometerPoints + held.elongationPoints > 0)
         text += tr(" Held out: interferometer RMS %1 µm (P-V %2 µm), probe RMS %3 µm.")
-                    .arg(m_validation.interferometerRms_um, 0, 'f', 2)
-                    .arg(m_validation.interferometerPeakToValley_um, 0, 'f', 1)
-                    .arg(m_validation.elongationRms_um, 0, 'f', 2);
+                    .arg(held.interferometerRms_um, 0, 'f', 2)
+                    .arg(held.interferometerPeakToValley_um, 0, 'f', 1)
+                    .arg(held.elongationRms_um, 0, 'f', 2);
     m_status->setText(text);
-    // The same plausibility rules as `fit` and the diagnosis (ParameterPlausibility).
-    const std::vector<PlausibilityFlag> implausible =
-        ParameterPlausibility::implausible(m_result, m_options, m_drawingFixedEnd_mm);
-    const std::vector<PlausibilityFlag> poorly = ParameterPlausibility::poorlyIdentified(m_result);
+    // The flags `fit` prints and stores (ParameterPlausibility, judged by ScrewModelFit).
+    const std::vector<PlausibilityFlag> &implausible = m_fitResult.implausible;
+    const std::vector<PlausibilityFlag> &poorly = m_fitResult.poorlyIdentified;
     int flagged = 0;
-    m_parameters->setRowCount(static_cast<int>(m_result.all.size()));
-    for (int r = 0; r < static_cast<int>(m_result.all.size()); ++r) {
-        const IdentifiedParameter &p = m_result.all[static_cast<size_t>(r)];
+    m_parameters->setRowCount(static_cast<int>(fitted.all.size()));
+    for (int r = 0; r < static_cast<int>(fitted.all.size()); ++r) {
+        const IdentifiedParameter &p = fitted.all[static_cast<size_t>(r)];
         m_parameters->setItem(r, 0, new QTableWidgetItem(QString::fromStdString(p.name)));
         m_parameters->setItem(r, 1, new QTableWidgetItem(QString::number(p.value, 'g', 5)));
         m_parameters->setItem(r, 2, new QTableWidgetItem(p.fitted ? QString::number(p.standardError, 'g', 3) : tr("fixed")));
@@ -300,8 +281,8 @@ void ModelsPanel::finish(bool ok, const QString &error)
         m_status->setText(m_status->text() +
                           tr(" %n parameter(s) flagged (implausible or poorly identified): see the table's check column.",
                              nullptr, flagged));
-    if (!m_feedNote.isEmpty())
-        m_status->setText(m_status->text() + tr(" Note: %1.").arg(m_feedNote));
+    if (!m_fitResult.feedNote.isEmpty())
+        m_status->setText(m_status->text() + tr(" Note: %1.").arg(m_fitResult.feedNote));
     m_show->blockSignals(true);
     m_show->clear();
     m_show->addItems(m_recordingNames);
@@ -355,9 +336,9 @@ void ModelsPanel::showRecording(int index)
 {
     if (index < 0)
         return;
-    const int trainingCount = m_recordingNames.size() - (m_validation.points.empty() ? 0 : 1);
+    const int trainingCount = m_recordingNames.size() - (m_fitResult.validation.points.empty() ? 0 : 1);
     const bool held = index >= trainingCount;
-    const std::vector<ObservationFit> &points = held ? m_validation.points : m_result.fit.points;
+    const std::vector<ObservationFit> &points = held ? m_fitResult.validation.points : m_fitResult.identification.fit.points;
     const int recording = held ? 0 : index;
     ErrorSurfacePlot *plots[] = {m_measured, m_predicted, m_residual};
     for (int which = 0; which < 3; ++which) {

@@ -2,8 +2,10 @@
 // Models workspace: choose training sessions and a held-out session, fit the seed-000
 // model (in a background thread, with progress and cancel), see the parameters with their
 // standard errors, and measured vs predicted thermal-error surfaces with the residual map.
+// The fit is core/ScrewModelFit (the one `driftlab-cli fit --model fdm` runs): it stores the
+// fitted model with every training session, where the test report finds it.
 
-#include "ScrewModelIdentifier.h"
+#include "ScrewFitTypes.h"
 
 #include "BackgroundJob.h"
 
@@ -21,10 +23,9 @@ class QTableWidget;
 
 namespace driftlab {
 
-class Workbench;
-
 class ErrorSurfacePlot;
 class SessionStore;
+class Workbench;
 
 class ModelsPanel : public QWidget {
     Q_OBJECT
@@ -42,8 +43,9 @@ public:
     void cancel();
     bool running() const { return m_job.running(); }
     QString lastError() const { return m_lastError; }
-    const IdentificationResult &result() const { return m_result; }
-    const FitStatistics &validation() const { return m_validation; }
+    const IdentificationResult &result() const { return m_fitResult.identification; }
+    const FitStatistics &validation() const { return m_fitResult.validation; }
+    const ScrewFitResult &fitResult() const { return m_fitResult; }
     QTableWidget *parameterTable() const { return m_parameters; }
     ErrorSurfacePlot *measuredSurface() const { return m_measured; }
     ErrorSurfacePlot *predictedSurface() const { return m_predicted; }
@@ -77,16 +79,12 @@ private:
     ErrorSurfacePlot *m_measured;
     ErrorSurfacePlot *m_predicted;
     ErrorSurfacePlot *m_residual;
-    QSplitter *m_results;
 
+    QSplitter *m_results;
     BackgroundJob m_job;
     QString m_lastError;
-    IdentificationResult m_result;
-    FitStatistics m_validation;
+    ScrewFitResult m_fitResult;
     QStringList m_recordingNames;
-    IdentificationOptions m_options;       // of the last fit (bounds for the plausibility check)
-    double m_drawingFixedEnd_mm = 0.0;      // the first training session's drawing P_f (NaN: none)
-    QString m_feedNote;                     // ParameterPlausibility::feedCoverageNote of the training sessions
 };
 
 } // namespace driftlab

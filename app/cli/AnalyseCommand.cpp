@@ -4,6 +4,8 @@
 #include "CliSupport.h"
 #include "OutputTarget.h"
 #include "SessionArgument.h"
+#include "AnalysisResultKind.h"
+#include "FdmModelJson.h"
 #include "SessionAnalysis.h"
 #include "SessionStore.h"
 
@@ -68,15 +70,9 @@ int AnalyseCommand::run(const QStringList &args)
     if (source != QLatin1String("default")) {
         const QVector<FittedModel> models = store.fittedModels(id);
         const auto fitted = std::find_if(models.rbegin(), models.rend(),
-                                         [](const FittedModel &m) { return m.model == QLatin1String("fdm-seed000"); });
+                                         [](const FittedModel &m) { return m.model == FdmModelJson::modelName(); });
         if (fitted != models.rend()) {
-            const QJsonObject q = fitted->parameters;
-            used.k1 = q.value(QStringLiteral("k1")).toDouble(used.k1);
-            used.k2 = q.value(QStringLiteral("k2")).toDouble(used.k2);
-            used.k3 = q.value(QStringLiteral("k3")).toDouble(used.k3);
-            used.k4 = q.value(QStringLiteral("k4")).toDouble(used.k4);
-            used.conductivity_W_mK = q.value(QStringLiteral("lambda_W_mK")).toDouble(used.conductivity_W_mK);
-            used.fixedEndPosition_mm = q.value(QStringLiteral("fixed_end_position_mm")).toDouble(used.fixedEndPosition_mm);
+            used = FdmModelJson::parameters(fitted->parameters, QStringLiteral("fitted model %1").arg(fitted->id), used, false);
             QStringList sessions;
             for (const QJsonValue &v : fitted->provenance.value(QStringLiteral("sessions")).toArray())
                 sessions << QString::number(v.toVariant().toLongLong());
@@ -95,7 +91,7 @@ int AnalyseCommand::run(const QStringList &args)
     const ElongationCheck check = analysis.checkElongation(used);
     QJsonObject result = SessionAnalysis::toJson(check);
     result.insert(QStringLiteral("parameters_source"), sourceJson);
-    store.addAnalysisResult(id, QStringLiteral("fdm-elongation-check"), result);
+    store.addAnalysisResult(id, AnalysisResultKind::fdmElongationCheck(), result);
     result.insert(QStringLiteral("session"), static_cast<double>(id));
     if (p.isSet(json)) {
         CliSupport::writeJson(QJsonDocument(result), p.value(json));

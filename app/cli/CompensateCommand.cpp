@@ -1,6 +1,7 @@
 #include "CompensateCommand.h"
 
 #include "CliOptions.h"
+#include "AnalysisResultKind.h"
 #include "CliSupport.h"
 #include "OutputTarget.h"
 #include "SessionArgument.h"
@@ -248,7 +249,7 @@ int CompensateCommand::run(const QStringList &args)
         summary.insert(QStringLiteral("max_rate_um_s"), o.limits.maxRate_um_s);
         summary.insert(QStringLiteral("rate_Hz"), o.rate_Hz);
         try {
-            SessionStore(path).addAnalysisResult(sessionId, QStringLiteral("compensation"), summary);
+            SessionStore(path).addAnalysisResult(sessionId, AnalysisResultKind::compensation(), summary);
         } catch (const StorageError &e) {
             CliSupport::progress(QStringLiteral("  the run's summary was not stored with the session: %1").arg(QString::fromUtf8(e.what())));
         }

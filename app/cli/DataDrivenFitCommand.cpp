@@ -4,6 +4,7 @@
 #include "CliSupport.h"
 #include "OutputTarget.h"
 #include "SessionArgument.h"
+#include "FitRequestCheck.h"
 #include "DataDrivenFit.h"
 #include "DataDrivenModelJson.h"
 #include "SessionStore.h"
@@ -170,6 +171,9 @@ int DataDrivenFitCommand::run(const QStringList &args)
             q.train = HourRange::parse(p.value(train), QStringLiteral("--train-range"));
         if (p.isSet(holdoutRange))
             q.holdoutRange = HourRange::parse(p.value(holdoutRange), QStringLiteral("--holdout-range"));
+        // Before any work: hours that lie in the session and do not overlap (the target is
+        // checked by DataDrivenFit for every session, for both faces).
+        FitRequestCheck::checkRanges(store, q.session, q.train, q.holdoutRange);
         QString last;
         r = DataDrivenFit(store).fit(q, [&](double, const QString &stage) {
             if (stage != last)

@@ -1,6 +1,6 @@
 #include "SelectPointsCommand.h"
 
-#include "AnalysisPlots.h"
+#include "AnalysisResultKind.h"
 #include "CliSupport.h"
 #include "CliOptions.h"
 #include "OutputTarget.h"
@@ -79,7 +79,7 @@ int SelectPointsCommand::run(const QStringList &args)
     for (qint64 id : sessions)
         ids.append(id);
     result.insert(QStringLiteral("sessions"), ids);
-    store.addAnalysisResult(session, AnalysisPlots::selectionResultKind(), result);
+    store.addAnalysisResult(session, AnalysisResultKind::sensitivePoints(), result);
     if (p.isSet(json))
         CliSupport::writeJson(QJsonDocument(result), p.value(json));
     if (!p.isSet(json) || p.value(json) != QLatin1String("-")) {

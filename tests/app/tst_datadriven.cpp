@@ -367,7 +367,7 @@ void TestDataDriven::badInputExitsTwo()
     // A data-driven target must be a displacement; a drive must be a drive (issue 32).
     expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("mlr"),
              QStringLiteral("--target"), QStringLiteral("A1"), QStringLiteral("--out"), out},
-            "channel 'A1' of session 1 is a temperature channel, not a displacement");
+            "--target 'A1' is a temperature channel of session 1");
     expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("exp"),
              QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--drive"), QStringLiteral("M1"), QStringLiteral("--out"), out},
             "channel 'M1' of session 1 is not a drive");
@@ -384,7 +384,7 @@ void TestDataDriven::badInputExitsTwo()
     expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("2"), QStringLiteral("--db"), m_db, QStringLiteral("--model"),
              QStringLiteral("ridge"), QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--holdout"), QStringLiteral("3"),
              QStringLiteral("--out"), out},
-            "session 3 has no channel");
+            "is not a channel of session 3");
     QVERIFY(!QFile::exists(out)); // nothing half-written
     // A model file of a newer format version, and a model whose input the session lacks.
     QFile m(m_dir.filePath(QStringLiteral("ridge.json")));

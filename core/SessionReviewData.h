@@ -1,7 +1,9 @@
 #pragma once
-// Reads what the review views need from a stored session and converts it to the
-// analysis/ types: thermal errors from the interferometer runs, infrared calibration and
-// frames, the nut position at a time, a channel as a TimeSeries.
+// Reads what the review views (widgets/ReviewWorkspace, InfraredPanel) need from a stored
+// session and converts it to the analysis/ types: thermal errors from the interferometer
+// runs, infrared calibration and frames, the nut position at a time, a channel as a
+// TimeSeries. No widget code: it lives in core/ and decodes frames and finds channels by role
+// through SessionChannels, as SessionAnalysis and ScrewTemperatureReader do.
 
 #include "InfraredFrame.h"
 #include "StorageTypes.h"

@@ -2,6 +2,7 @@
 
 #include "InterferometerReadings.h"
 #include "ScrewTemperatureReader.h"
+#include "SessionChannels.h"
 #include "SessionStore.h"
 
 #include <QJsonArray>
@@ -41,29 +42,20 @@ InfraredCalibration SessionReviewData::infraredCalibration() const
 
 cv::Mat SessionReviewData::frameTemperature(qint64 frameId) const
 {
-    const IrFrame f = m_store.irFrame(frameId);
-    if (f.pixels.size() != f.width * f.height || f.width <= 0)
+    const cv::Mat t = SessionChannels::frameTemperature(m_store.irFrame(frameId), infraredCalibration());
+    if (t.empty())
         throw std::runtime_error(QStringLiteral("infrared frame %1 has no pixels").arg(frameId).toStdString());
-    cv::Mat counts(f.height, f.width, CV_16UC1, const_cast<quint16 *>(f.pixels.constData()));
-    return InfraredFrame::countsToTemperature(counts, infraredCalibration());
+    return t;
 }
 
 std::optional<ChannelInfo> SessionReviewData::channelByRole(const QString &role) const
 {
-    for (const ChannelInfo &c : m_channels) {
-        if (c.role == role || c.key == role)
-            return c;
-    }
-    return std::nullopt;
+    return SessionChannels::byRole(m_channels, role, true);
 }
 
 TimeSeries SessionReviewData::series(qint64 channelId) const
 {
-    const SampleBlock b = m_store.samples(channelId);
-    TimeSeries s;
-    s.t.assign(b.t.begin(), b.t.end());
-    s.v.assign(b.v.begin(), b.v.end());
-    return s;
+    return SessionChannels::series(m_store, channelId);
 }
 
 std::optional<double> SessionReviewData::nutCentreAt(double t) const
