@@ -72,7 +72,7 @@ def machine(machine_seed):
         "h0": 11.0, "h1": 9.0,                   # h = h0 + h1 (v / 1 m/min)^0.8
         "motor_G": 0.9, "kF": 0.7e-3, "nl_a": 0.10, "lag_tau": 1200.0, "hold_W": 5.0,
         "s_off": 6.0, "s_c1": 9.0, "s_c0": -2.0, "cool_g": 9.0,
-        "lamp_W": 9.0, "bend_um_m2K": 7.0, "spring_kappa": 0.35,
+        "lamp_W": 3.0, "bend_um_m2K": 7.0, "spring_kappa": 0.35,
         "iair_um_mK": 1.0, "probe_um_K": 3.0, "pt_step_K": 0.6,
     }
     r = random.Random(machine_seed * 6271 + 29)
