@@ -6,7 +6,10 @@ session with scripts/thirdsim.py; `driftlab-cli diagnose` runs on the two bundle
 (written by the simulator OUTSIDE the bundles) is read only afterwards to score the answer.
 One diagnosis at a time, under nice (the machine is shared).
 
-    scripts/thirdsim-sweep.py BUILD_DIR OUT_DIR [--cases default|quick] [--only NAME]
+    scripts/thirdsim-sweep.py BUILD_DIR OUT_DIR [--only NAME] [--sim othersim] [--cli-args "--no-priors ..."]
+
+--sim othersim runs the same protocol on scripts/othersim.py --wide (the set the diagnosis may
+be tuned on): none x 2 and its four effects on spread machines.
 
 Prints one line per case and the score per class:
   clean    right = `none`
@@ -36,6 +39,11 @@ CASES = [
     ("pair", "heat_path_lag,screw_coolant"), ("pair", "nonlinear_feed_heat,structure_linear"),
     ("outside", "midspan_radiant"), ("outside", "bed_bending"), ("outside", "preload_spring"),
     ("sensor", "interferometer_air"), ("sensor", "probe_mount_drift"), ("sensor", "ambient_pt100_step"),
+]
+OTHER_CASES = [
+    ("clean", "none"), ("clean", "none"),
+    ("single", "structure_offset"), ("single", "free_end_bearing_heat"), ("single", "holding_heat"),
+    ("single", "screw_coolant"),
 ]
 LIBRARY = {"motor_heat_fixed_end", "free_end_bearing_heat", "nonlinear_feed_heat", "heat_path_lag", "holding_heat",
            "structure_offset", "structure_linear", "screw_coolant"}
@@ -75,6 +83,8 @@ def main(argv):
         return 2
     build, out = argv[0], argv[1]
     only = argv[argv.index("--only") + 1] if "--only" in argv else None
+    other = "--sim" in argv and argv[argv.index("--sim") + 1] == "othersim"
+    extra = argv[argv.index("--cli-args") + 1].split() if "--cli-args" in argv else []
     cli = os.path.join(build, "app", "driftlab-cli")
     if not os.path.exists(cli):
         cli = os.path.join(build, "bin", "driftlab-cli")
@@ -83,21 +93,42 @@ def main(argv):
         return 2
     os.makedirs(out, exist_ok=True)
     rows = []
-    for n, (kind, truth) in enumerate(CASES, start=1):
+    cases = list(enumerate(OTHER_CASES if other else CASES, start=1))
+    if not other:
+        # interleaved, so that a sweep cut short still has every class
+        order = [1, 17, 4, 14, 10, 18, 2, 5, 15, 11, 19, 3, 6, 16, 12, 7, 13, 8, 9]
+        cases = [cases[i - 1] for i in order]
+    for n, (kind, truth) in cases:
         if only and only not in truth:
             continue
         base = os.path.join(out, "case%02d" % n)
         for part, seed, hours in (("train", 10 * n + 1, 4), ("validate", 10 * n + 2, 3)):
-            subprocess.run(["nice", "-n", "5", sys.executable, SIM, "--effects", truth, "--seed", str(seed),
-                            "--machine-seed", str(n), "--hours", str(hours), "--out", "%s-%s.bundle" % (base, part),
-                            "--truth", "%s-%s.truth.json" % (base, part)], check=True, capture_output=True)
-        js = base + "-diagnosis.json"
-        if os.path.exists(js):
-            os.remove(js)
+            bundle = "%s-%s.bundle" % (base, part)
+            if os.path.exists(os.path.join(bundle, "manifest.json")):
+                continue  # the same case again (e.g. another --cli-args): same recordings
+            if other:
+                cmd = [os.path.join(HERE, "othersim.py"), "--effect", truth, "--seed", str(seed), "--machine-seed", str(n),
+                       "--wide", "--fixed-end", "positive" if n % 2 else "negative", "--hours", str(hours), "--out", bundle]
+            else:
+                cmd = [SIM, "--effects", truth, "--seed", str(seed), "--machine-seed", str(n), "--hours", str(hours),
+                       "--out", bundle, "--truth", "%s-%s.truth.json" % (base, part)]
+            subprocess.run(["nice", "-n", "5", sys.executable] + cmd, check=True, capture_output=True)
+        tag = "".join(extra).replace("-", "")
+        js = base + ("-%s" % tag if tag else "") + "-diagnosis.json"
+        resumed = os.path.exists(js + ".seconds")
         t0 = time.time()
-        p = subprocess.run(["nice", "-n", "5", cli, "diagnose", "--train", base + "-train.bundle", "--validate",
-                            base + "-validate.bundle", "--json", js], capture_output=True, text=True)
-        secs = time.time() - t0
+        if resumed:  # already diagnosed by an interrupted run of the same sweep: its answer
+            p = subprocess.CompletedProcess([], 0, "", "")
+            secs = float(open(js + ".seconds").read())
+        else:
+            if os.path.exists(js):
+                os.remove(js)
+            p = subprocess.run(["nice", "-n", "5", cli, "diagnose", "--train", base + "-train.bundle", "--validate",
+                                base + "-validate.bundle", "--json", js] + extra, capture_output=True, text=True)
+            secs = time.time() - t0
+            if p.returncode != 0:
+                open(js + ".stderr", "w").write(p.stderr)
+            open(js + ".seconds", "w").write("%.1f" % secs)
         answer, chain, bh, ch, note = "(exit %d)" % p.returncode, [], float("nan"), float("nan"), ""
         if p.returncode == 0 and os.path.exists(js):
             d = json.load(open(js))
@@ -107,14 +138,15 @@ def main(argv):
             ch = d.get("corrected", {}).get("heldout_rms_um", float("nan"))
             note = d.get("location", {}).get("summary", "")[:160]
         else:
-            note = (p.stderr.strip().splitlines() or [""])[-1][:160]
+            err = p.stderr if p.stderr else (open(js + ".stderr").read() if os.path.exists(js + ".stderr") else "")
+            note = (err.strip().splitlines() or [""])[-1][:160]
         verdict = score(kind, truth, answer, chain)
         rows.append({"case": n, "kind": kind, "truth": truth, "answer": answer, "verdict": verdict,
                      "baseline_heldout_um": bh, "corrected_heldout_um": ch, "seconds": round(secs, 1),
                      "chain": json.dumps(chain), "note": note})
         print("%2d %-8s %-42s %-40s %-8s %6.2f -> %6.2f um %6.1f s" % (n, kind, truth, answer, verdict, bh, ch, secs),
               flush=True)
-    with open(os.path.join(out, "sweep.csv"), "w", newline="") as fh:
+    with open(os.path.join(out, "sweep%s.csv" % ("-" + "".join(extra).replace("-", "") if extra else "")), "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0].keys()))
         w.writeheader()
         w.writerows(rows)

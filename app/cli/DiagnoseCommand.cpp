@@ -214,7 +214,28 @@ QJsonObject DiagnoseCommand::reportJson(const DiagnosisReport &r)
                                   {QStringLiteral("cv_rms_before_um"), number(dd.cvBefore_um)},
                                   {QStringLiteral("cv_rms_after_um"), number(dd.cvAfter_um)},
                                   {QStringLiteral("evidence"), ddReasons}};
+    QJsonArray notes, chain;
+    for (const std::string &n : r.notes)
+        notes.append(QString::fromStdString(n));
+    for (const SensorFinding &f : r.measurementChain) {
+        QJsonArray ev;
+        for (const std::string &e : f.evidence)
+            ev.append(QString::fromStdString(e));
+        chain.append(QJsonObject{{QStringLiteral("sensor"), QString::fromStdString(f.sensor)},
+                                 {QStringLiteral("role"), QString::fromStdString(f.role)},
+                                 {QStringLiteral("kind"), QString::fromStdString(f.kind)},
+                                 {QStringLiteral("driver"), QString::fromStdString(f.driver)},
+                                 {QStringLiteral("law"), QString::fromStdString(f.law)},
+                                 {QStringLiteral("coefficient"), number(f.coefficient)},
+                                 {QStringLiteral("standard_error"), number(f.standardError)},
+                                 {QStringLiteral("unit"), QString::fromStdString(f.unit)},
+                                 {QStringLiteral("time_s"), number(f.time_s)},
+                                 {QStringLiteral("recording"), QString::fromStdString(f.recording)},
+                                 {QStringLiteral("evidence"), ev}});
+    }
     return QJsonObject{{QStringLiteral("effect"), QString::fromStdString(r.effect)},
+                       {QStringLiteral("measurement_chain"), chain},
+                       {QStringLiteral("notes"), notes},
                        {QStringLiteral("effects"), steps},
                        {QStringLiteral("discrepancy"), discrepancy},
                        {QStringLiteral("selection_rounds"), rounds},
@@ -249,7 +270,13 @@ int DiagnoseCommand::run(const QStringList &args)
         QStringLiteral("fit-screw-temperatures"),
         QStringLiteral("Also fit the screw temperatures of A (infrared profile, surface PT100s; sigma 0.3 K). "
                        "Default: they are predicted and located, not fitted."));
-    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures});
+    const QCommandLineOption noPriors(
+        QStringLiteral("no-priors"),
+        QStringLiteral("Fit lambda and P_f without the priors from steel (45 +- 15 W/(m K)) and the drawing (+- 5 mm)."));
+    const QCommandLineOption noChain(QStringLiteral("no-measurement-chain"),
+                                     QStringLiteral("Do not check the sensors against each other (PT100 steps, interferometer vs "
+                                                    "air, probe vs interferometer)."));
+    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures, noPriors, noChain});
     if (!parse(p, args))
         return 0;
     if (!p.isSet(train) || !p.isSet(validate))
@@ -262,6 +289,8 @@ int DiagnoseCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("diagnose: --dt must be a time step in (0, 600] s, got '%1'").arg(p.value(dt)));
     DiagnosisOptions options;
     options.fitScrewTemperatures = p.isSet(fitTemperatures);
+    options.priors = !p.isSet(noPriors);
+    options.checkMeasurementChain = !p.isSet(noChain);
     if (p.isSet(effects)) {
         const std::vector<std::string> known = CandidateEffectLibrary::codes();
         for (const QString &e : p.value(effects).split(QLatin1Char(','), Qt::SkipEmptyParts)) {
@@ -364,6 +393,10 @@ int DiagnoseCommand::run(const QStringList &args)
               << QString::number(q.baseline_um, 'g', 9) << ',' << QString::number(q.corrected_um, 'g', 9) << '\n';
         }
     }
+    for (const std::string &n : report.notes)
+        CliSupport::progress(QStringLiteral("note: ") + QString::fromStdString(n));
+    for (const SensorFinding &f : report.measurementChain)
+        CliSupport::progress(QStringLiteral("measurement chain: ") + QString::fromStdString(f.law));
     CliSupport::progress(QStringLiteral("diagnosis: %1 (baseline held-out RMS %2 um, corrected %3 um) in %4 s")
                              .arg(QString::fromStdString(report.effect))
                              .arg(report.baseline.heldoutRms_um, 0, 'f', 3)
