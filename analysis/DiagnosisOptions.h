@@ -61,8 +61,9 @@ struct DiagnosisOptions {
     double fixedEndTolerance_mm = 40.0;
     // Priors from the drawing and the material in every fit of the diagnosis (issue 36):
     // lambda ~ steel (steelConductivity_W_mK) +- lambdaPriorSigma, P_f ~ the drawing +-
-    // fixedEndPriorSigma (when known), as penalty residuals (IdentificationOptions).
-    bool priors = true;
+    // fixedEndPriorSigma (when known), as penalty residuals (IdentificationOptions). Off by
+    // default: not yet measured on the rig and othersim sweeps (docs/diagnosis.md).
+    bool priors = false;
     double lambdaPriorSigma_W_mK = 15.0;
     double fixedEndPriorSigma_mm = 5.0;
     std::vector<std::string> effects;     // restrict the library (empty: all)

@@ -6,7 +6,7 @@ session with scripts/thirdsim.py; `driftlab-cli diagnose` runs on the two bundle
 (written by the simulator OUTSIDE the bundles) is read only afterwards to score the answer.
 One diagnosis at a time, under nice (the machine is shared).
 
-    scripts/thirdsim-sweep.py BUILD_DIR OUT_DIR [--only NAME] [--sim othersim] [--cli-args "--no-priors ..."]
+    scripts/thirdsim-sweep.py BUILD_DIR OUT_DIR [--only NAME] [--cases 17,18,1] [--sim othersim] [--cli-args "--priors ..."]
 
 --sim othersim runs the same protocol on scripts/othersim.py --wide (the set the diagnosis may
 be tuned on): none x 2 and its four effects on spread machines.
@@ -97,6 +97,8 @@ def main(argv):
     if not other:
         # interleaved, so that a sweep cut short still has every class
         order = [1, 17, 4, 14, 10, 18, 2, 5, 15, 11, 19, 3, 6, 16, 12, 7, 13, 8, 9]
+        if "--cases" in argv:  # a subset by case number, in the order given
+            order = [int(c) for c in argv[argv.index("--cases") + 1].split(",")]
         cases = [cases[i - 1] for i in order]
     for n, (kind, truth) in cases:
         if only and only not in truth:

@@ -270,13 +270,13 @@ int DiagnoseCommand::run(const QStringList &args)
         QStringLiteral("fit-screw-temperatures"),
         QStringLiteral("Also fit the screw temperatures of A (infrared profile, surface PT100s; sigma 0.3 K). "
                        "Default: they are predicted and located, not fitted."));
-    const QCommandLineOption noPriors(
-        QStringLiteral("no-priors"),
-        QStringLiteral("Fit lambda and P_f without the priors from steel (45 +- 15 W/(m K)) and the drawing (+- 5 mm)."));
+    const QCommandLineOption withPriors(
+        QStringLiteral("priors"),
+        QStringLiteral("Anchor lambda and P_f by priors from steel (45 +- 15 W/(m K)) and the drawing (+- 5 mm)."));
     const QCommandLineOption noChain(QStringLiteral("no-measurement-chain"),
                                      QStringLiteral("Do not check the sensors against each other (PT100 steps, interferometer vs "
                                                     "air, probe vs interferometer)."));
-    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures, noPriors, noChain});
+    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures, withPriors, noChain});
     if (!parse(p, args))
         return 0;
     if (!p.isSet(train) || !p.isSet(validate))
@@ -289,7 +289,7 @@ int DiagnoseCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("diagnose: --dt must be a time step in (0, 600] s, got '%1'").arg(p.value(dt)));
     DiagnosisOptions options;
     options.fitScrewTemperatures = p.isSet(fitTemperatures);
-    options.priors = !p.isSet(noPriors);
+    options.priors = p.isSet(withPriors);
     options.checkMeasurementChain = !p.isSet(noChain);
     if (p.isSet(effects)) {
         const std::vector<std::string> known = CandidateEffectLibrary::codes();
