@@ -340,8 +340,8 @@ std::vector<SensorFinding> MeasurementChainCheck::check(const DiagnosisRecording
                 y(k) = inter[i].measured_um - inter[i].predicted_um;
             }
             const Ols qi = ols(X, y);
-            const bool interQuiet = !qi.ok || std::fabs(qi.t(1)) < o.confirmT ||
-                                    std::fabs(qi.beta(1)) <= o.maxInterferometerShare * std::fabs(best.fit.beta(1));
+            // (by size, not significance: autocorrelated run residuals can hide a real share)
+            const bool interQuiet = !qi.ok || std::fabs(qi.beta(1)) <= o.maxInterferometerShare * std::fabs(best.fit.beta(1));
             const Ols qb = (best.driver == "time" || sB) ? driverRegression(probeB, sB, probeB.front().t_s) : Ols{};
             const bool confirmed = qb.ok && qb.beta(1) * best.fit.beta(1) > 0 && std::fabs(qb.t(1)) >= o.confirmT;
             if (interQuiet && confirmed) {
