@@ -32,7 +32,7 @@ public:
         double airLow_um_mK = 0.3, airHigh_um_mK = 3.0;
         double minProbeDrift_um = 1.0;      // the fitted drift's range over the recording
         double minProbeR2 = 0.5;
-        double maxInterferometerShare = 0.3; // interferometer's coefficient / the probe's (same driver)
+        double maxInterferometerShare = 0.1; // interferometer's coefficient / the probe's (same driver)
         double minStep_K = 0.2;
         double stepNoiseFactor = 12.0;      // step >= factor x robust spread of the step statistic
         double stepWindow_s = 300.0;
