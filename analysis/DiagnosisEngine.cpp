@@ -3,6 +3,8 @@
 #include "CandidateAcceptance.h"
 #include "DiscrepancyTerm.h"
 #include "FixedText.h"
+#include "MeasurementChainCheck.h"
+#include "RecordingSpan.h"
 #include "ResidualLocator.h"
 
 #include <algorithm>
@@ -289,18 +291,34 @@ IdentificationOptions DiagnosisEngine::baselineOptions(const DiagnosisRecording 
             opts.initial.fixedEndPosition_mm = train.drawingFixedEnd_mm;
         }
     }
+    if (m_options.priors) {
+        opts.lambdaPriorMean = m_options.steelConductivity_W_mK;
+        opts.lambdaPriorSigma = m_options.lambdaPriorSigma_W_mK;
+        if (std::isfinite(train.drawingFixedEnd_mm)) {
+            opts.fixedEndPriorMean_mm = train.drawingFixedEnd_mm;
+            opts.fixedEndPriorSigma_mm = m_options.fixedEndPriorSigma_mm;
+        }
+    }
     return opts;
 }
 
-DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const DiagnosisRecording &validate,
+DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const DiagnosisRecording &validateInput,
                                      const Progress &progress)
 {
     const auto start = std::chrono::steady_clock::now();
     DiagnosisReport report;
+    // Interferometer points outside a drive's time span are left out with a note (issue 36).
+    DiagnosisRecording validate = validateInput;
+    RecordingSpan::trimToDrive(validate, report.notes);
     // Screw temperatures (infrared profile, surface PT100s) join the fit when asked: they pin
     // the screw's own time constant and heat distribution, so an effect cannot hide in a
     // slower, cooler screw (a heat-path lag otherwise does, by lowering k2, k3 and k4).
     DiagnosisRecording train = trainInput;
+    RecordingSpan::trimToDrive(train, report.notes);
+    if (m_options.checkMeasurementChain) // PT100 steps, before anything uses the channels
+        for (DiagnosisRecording *r : {&train, &validate})
+            for (const SensorFinding &f : MeasurementChainCheck::correctSteps(*r))
+                report.measurementChain.push_back(f);
     if (m_options.fitScrewTemperatures && train.screw.drive.position_mm.size() >= 2) {
         const double t0 = train.screw.drive.position_mm.t.front(), t1 = train.screw.drive.position_mm.t.back();
         for (const ScrewTemperatureSeries &s : train.screwTemperatures)
@@ -340,7 +358,14 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
         effectiveN = std::max(10.0, ResidualLocator::effectiveSampleSize(first.fit.points));
         opts.initial = first.parameters; // later fits start here
     }
-    const CandidateFit base = evaluate({}, nullptr, train, validate, opts, effectiveN);
+    CandidateFit base = evaluate({}, nullptr, train, validate, opts, effectiveN);
+    if (m_options.checkMeasurementChain) { // a faulty sensor is corrected, not charged to the machine
+        const std::vector<SensorFinding> chain =
+            MeasurementChainCheck::examine(train, validate, m_geometry, opts, base.fit.fit.points, base.heldout.points);
+        report.measurementChain.insert(report.measurementChain.end(), chain.begin(), chain.end());
+        if (!chain.empty())
+            base = evaluate({}, nullptr, train, validate, opts, effectiveN);
+    }
     report.baseline = base.eval;
     report.location = ResidualLocator::locate(train, base.fit.fit.points);
     ResidualLocator::locateTemperatures(train, base.temperatures, m_geometry.length_m, report.location);
@@ -363,6 +388,8 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
     }
     report.location.implausibleRefits = chosen.implausibleRefits;
     assemble(report, chosen, base, train, validate);
+    for (auto f = report.measurementChain.rbegin(); f != report.measurementChain.rend(); ++f)
+        report.explanation = "Measurement chain: " + f->law + ". " + report.explanation;
     tick(1.0, "done");
     report.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return report;

@@ -54,8 +54,18 @@ struct DiagnosisOptions {
     // lambda in [5, 5000] a far-too-conductive screw makes every heat location alike and
     // hides where the heat enters.
     bool physicalBounds = true;
+    // Check the measurement chain (MeasurementChainCheck: PT100 steps, interferometer vs air,
+    // probe vs interferometer) and correct a faulty sensor before the selection (issue 36).
+    bool checkMeasurementChain = true;
     double lambdaLower_W_mK = 20.0, lambdaUpper_W_mK = 120.0;
     double fixedEndTolerance_mm = 40.0;
+    // Priors from the drawing and the material in every fit of the diagnosis (issue 36):
+    // lambda ~ steel (steelConductivity_W_mK) +- lambdaPriorSigma, P_f ~ the drawing +-
+    // fixedEndPriorSigma (when known), as penalty residuals (IdentificationOptions). Off by
+    // default: not yet measured on the rig and othersim sweeps (docs/diagnosis.md).
+    bool priors = false;
+    double lambdaPriorSigma_W_mK = 15.0;
+    double fixedEndPriorSigma_mm = 5.0;
     std::vector<std::string> effects;     // restrict the library (empty: all)
     // Forward selection: at most this many effects are accepted one after another, each
     // tested against the model extended by the ones before it with the same rules.

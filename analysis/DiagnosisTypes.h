@@ -173,6 +173,24 @@ struct DiagnosisDiscrepancy {
     std::vector<std::string> reasons;
 };
 
+// A sensor of the measurement chain whose reading disagrees with the others in a way that
+// follows a temperature or time (MeasurementChainCheck): named, corrected, not charged to the
+// machine.
+struct SensorFinding {
+    std::string sensor;      // "interferometer", "screw_elongation probe", "<role> PT100"
+    std::string role;        // "interferometer", "screw_elongation" or the channel's role
+    std::string kind;        // "air" (beam x air temperature), "drift" (follows a driver), "step"
+    std::string driver;      // "ambient", "<role>", "time"
+    std::string law;         // in words
+    double coefficient = 0.0;
+    double standardError = 0.0;
+    double intercept = 0.0;  // air: the position-independent part (um/K)
+    std::string unit;
+    double time_s = std::numeric_limits<double>::quiet_NaN(); // a step's moment
+    std::string recording;   // the recording it was found in
+    std::vector<std::string> evidence;
+};
+
 struct DiagnosisReport {
     // Accepted effect codes joined by '+' in the order of acceptance, "none" when none was,
     // "unexplained" for a located discrepancy no candidate explains.
@@ -188,6 +206,10 @@ struct DiagnosisReport {
     // Every round of the forward selection: its candidates against the model of that round.
     std::vector<std::vector<CandidateOutcome>> rounds;
     std::vector<DiagnosisPrediction> predictions;
+    // Notes on the input in words (e.g. interferometer points left out: outside the drive).
+    std::vector<std::string> notes;
+    // Sensors found at fault (corrected before the selection, never charged to the machine).
+    std::vector<SensorFinding> measurementChain;
     double wallTime_s = 0.0;
     bool cancelled = false;
 };

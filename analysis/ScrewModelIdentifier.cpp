@@ -37,6 +37,36 @@ private:
 
 constexpr int kBase = 4; // k1, k2, lambda, P_f
 
+// Gaussian priors on some of the optimiser's (scaled) variables: r = (u_k scale - mean) / sigma.
+class PriorCost : public ceres::CostFunction {
+public:
+    struct Term {
+        int k;
+        double mean, sigma, scale;
+    };
+    PriorCost(std::vector<Term> terms, int n) : m_terms(std::move(terms)), m_n(n)
+    {
+        set_num_residuals(static_cast<int>(m_terms.size()));
+        mutable_parameter_block_sizes()->push_back(n);
+    }
+    bool Evaluate(double const *const *u, double *r, double **jacobians) const override
+    {
+        for (size_t i = 0; i < m_terms.size(); ++i) {
+            const Term &t = m_terms[i];
+            r[i] = (u[0][t.k] * t.scale - t.mean) / t.sigma;
+            if (jacobians && jacobians[0]) {
+                std::fill(jacobians[0] + i * static_cast<size_t>(m_n), jacobians[0] + (i + 1) * static_cast<size_t>(m_n), 0.0);
+                jacobians[0][i * static_cast<size_t>(m_n) + static_cast<size_t>(t.k)] = t.scale / t.sigma;
+            }
+        }
+        return true;
+    }
+
+private:
+    std::vector<Term> m_terms;
+    int m_n;
+};
+
 // min |A a - z|^2 subject to lo <= a <= hi (simple active-set method for a handful of
 // columns). Columns are normalised first: unit amplitudes differ by orders of magnitude.
 Eigen::VectorXd boundedLeastSquares(const Eigen::MatrixXd &A, const Eigen::VectorXd &z, const Eigen::VectorXd &lo,
@@ -342,6 +372,16 @@ IdentificationResult ScrewModelIdentifier::fit(const std::vector<ScrewRecording>
     fn->AddParameterBlock(nFree);
     fn->SetNumResiduals(sim.rowCount());
     ceresProblem.AddResidualBlock(fn, nullptr, u.data());
+    std::vector<PriorCost::Term> priors;
+    for (int k = 0; k < nFree; ++k) {
+        const int i = freeIndex[static_cast<size_t>(k)];
+        if (i == 2 && o.lambdaPriorSigma > 0)
+            priors.push_back({k, o.lambdaPriorMean, o.lambdaPriorSigma, freeScale[static_cast<size_t>(k)]});
+        if (i == 3 && o.fixedEndPriorSigma_mm > 0)
+            priors.push_back({k, o.fixedEndPriorMean_mm, o.fixedEndPriorSigma_mm, freeScale[static_cast<size_t>(k)]});
+    }
+    if (!priors.empty())
+        ceresProblem.AddResidualBlock(new PriorCost(std::move(priors), nFree), nullptr, u.data());
     for (int k = 0; k < nFree; ++k) {
         const ParameterSpec &s = specs[static_cast<size_t>(freeIndex[static_cast<size_t>(k)])];
         if (std::isfinite(s.lower))

@@ -38,6 +38,12 @@ struct IdentificationOptions {
     double lambdaLower = 5.0, lambdaUpper = 5000.0; // W/(m K)
     double fixedEndLower_mm = -3000.0, fixedEndUpper_mm = 3000.0;
     bool fitFixedEnd = true;             // false: P_f held at initial (e.g. known from the machine)
+    // Priors from the drawing and the material (issue 36): Gaussian penalty residuals
+    // (value - mean) / sigma in the same weighted units as the data (sigma <= 0: none). They
+    // anchor lambda and P_f where the data cannot; weightedRms and the statistics are the
+    // data's alone.
+    double lambdaPriorMean = 45.0, lambdaPriorSigma = 0.0;          // W/(m K)
+    double fixedEndPriorMean_mm = 0.0, fixedEndPriorSigma_mm = 0.0;
     int maxIterations = 100;
     // Called after every solver iteration (from the fitting thread) with the iteration
     // number and the cost; return false to cancel: fit() then throws IdentificationCancelled.

@@ -183,8 +183,29 @@ QJsonObject DiagnosisResultJson::document(const DiagnosisReport &r)
                                   {QStringLiteral("cv_rms_before_um"), number(dd.cvBefore_um)},
                                   {QStringLiteral("cv_rms_after_um"), number(dd.cvAfter_um)},
                                   {QStringLiteral("evidence"), ddReasons}};
+    QJsonArray notes, chain;
+    for (const std::string &n : r.notes)
+        notes.append(QString::fromStdString(n));
+    for (const SensorFinding &f : r.measurementChain) {
+        QJsonArray ev;
+        for (const std::string &e : f.evidence)
+            ev.append(QString::fromStdString(e));
+        chain.append(QJsonObject{{QStringLiteral("sensor"), QString::fromStdString(f.sensor)},
+                                 {QStringLiteral("role"), QString::fromStdString(f.role)},
+                                 {QStringLiteral("kind"), QString::fromStdString(f.kind)},
+                                 {QStringLiteral("driver"), QString::fromStdString(f.driver)},
+                                 {QStringLiteral("law"), QString::fromStdString(f.law)},
+                                 {QStringLiteral("coefficient"), number(f.coefficient)},
+                                 {QStringLiteral("standard_error"), number(f.standardError)},
+                                 {QStringLiteral("unit"), QString::fromStdString(f.unit)},
+                                 {QStringLiteral("time_s"), number(f.time_s)},
+                                 {QStringLiteral("recording"), QString::fromStdString(f.recording)},
+                                 {QStringLiteral("evidence"), ev}});
+    }
     return QJsonObject{{QStringLiteral("schema_version"), kSchemaVersion},
                        {QStringLiteral("effect"), QString::fromStdString(r.effect)},
+                       {QStringLiteral("measurement_chain"), chain},
+                       {QStringLiteral("notes"), notes},
                        {QStringLiteral("effects"), steps},
                        {QStringLiteral("discrepancy"), discrepancy},
                        {QStringLiteral("selection_rounds"), rounds},

@@ -34,6 +34,8 @@ struct DiagnosisRequest {
     std::vector<std::string> effects; // candidate codes to try; empty: all
     bool fitScrewTemperatures = false;
     double dt_s = 20.0;               // implicit time step of the fits, (0, 600] s
+    bool priors = false;              // lambda and P_f anchored by steel and the drawing (issue 36)
+    bool checkMeasurementChain = true; // sensors checked against each other before the selection
 };
 
 class SessionDiagnosis {

@@ -61,7 +61,13 @@ int DiagnoseCommand::run(const QStringList &args)
         QStringLiteral("fit-screw-temperatures"),
         QStringLiteral("Also fit the screw temperatures of A (infrared profile, surface PT100s; sigma 0.3 K). "
                        "Default: they are predicted and located, not fitted."));
-    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures, force});
+    const QCommandLineOption withPriors(
+        QStringLiteral("priors"),
+        QStringLiteral("Anchor lambda and P_f by priors from steel (45 +- 15 W/(m K)) and the drawing (+- 5 mm)."));
+    const QCommandLineOption noChain(QStringLiteral("no-measurement-chain"),
+                                     QStringLiteral("Do not check the sensors against each other (PT100 steps, interferometer vs "
+                                                    "air, probe vs interferometer)."));
+    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures, withPriors, noChain, force});
     if (!parse(p, args))
         return 0;
     if (!p.isSet(train) || !p.isSet(validate))
@@ -78,6 +84,8 @@ int DiagnoseCommand::run(const QStringList &args)
     DiagnosisRequest request;
     request.fitScrewTemperatures = p.isSet(fitTemperatures);
     request.dt_s = step;
+    request.priors = p.isSet(withPriors);
+    request.checkMeasurementChain = !p.isSet(noChain);
     for (const QString &e : p.value(effects).split(QLatin1Char(','), Qt::SkipEmptyParts))
         request.effects.push_back(e.trimmed().toStdString());
     request.trainLabel = p.value(train);
@@ -153,6 +161,10 @@ int DiagnoseCommand::run(const QStringList &args)
         o.flush();
         OutputTarget::writeFile(p.value(predictions), csv.toUtf8());
     }
+    for (const std::string &n : report.notes)
+        CliSupport::progress(QStringLiteral("note: ") + QString::fromStdString(n));
+    for (const SensorFinding &f : report.measurementChain)
+        CliSupport::progress(QStringLiteral("measurement chain: ") + QString::fromStdString(f.law));
     CliSupport::progress(QStringLiteral("diagnosis: %1 (baseline held-out RMS %2 um, corrected %3 um) in %4 s")
                              .arg(QString::fromStdString(report.effect))
                              .arg(report.baseline.heldoutRms_um, 0, 'f', 3)

@@ -28,6 +28,7 @@ private slots:
     void housingHeatGoesWhereTheHousingIs();
     void empiricalProfilesAreLegendre();
     void empiricalHypothesisSaysWhere();
+    void leavesOutPointsOutsideTheDrive();
 
 private:
     static DiagnosisRecording make(bool validation, double drift_um_K);
@@ -312,6 +313,48 @@ void TestDiagnosisEngine::locatedMeansNotWhiteOrFollowingADriver()
     l.ljungBoxP = 0.015;
     QVERIFY(ResidualLocator::isLocated(l, &why));
     QCOMPARE(why, std::string("not white: lag-1 r = 0.80, Ljung-Box p = 0.015"));
+}
+
+
+void TestDiagnosisEngine::leavesOutPointsOutsideTheDrive()
+{
+    // Issue 36 item 6: a last interferometer run ending 22 s after the last position sample
+    // (and a stray point before the drive starts) is not a reason to refuse the recording.
+    // The points outside the drive are left out with a note; the diagnosis is the one of the
+    // recordings without them.
+    DiagnosisOptions o = options();
+    o.effects = {"structure_offset"};
+    const DiagnosisRecording a = make(false, 0.0), b = make(true, 0.0);
+    DiagnosisRecording a2 = a, b2 = b;
+    const double endB = std::max(b.screw.drive.position_mm.t.back(), b.screw.drive.feed_mm_min.t.back());
+    PositioningErrorPoint late = b2.screw.interferometer.back();
+    late.t_s = endB + 22.0;
+    b2.screw.interferometer.push_back(late);
+    late.t_s = endB + 30.0;
+    b2.screw.interferometer.push_back(late);
+    PositioningErrorPoint early = a2.screw.interferometer.front();
+    early.t_s = a.screw.drive.position_mm.t.front() - 5.0;
+    a2.screw.interferometer.insert(a2.screw.interferometer.begin(), early);
+    DiagnosisEngine engine(ScrewGeometry{}, o);
+    const DiagnosisReport ref = engine.run(a, b);
+    QVERIFY(ref.notes.empty());
+    DiagnosisReport r;
+    try {
+        r = engine.run(a2, b2);
+    } catch (const std::exception &e) {
+        QFAIL(e.what());
+    }
+    QCOMPARE(r.notes.size(), size_t(2));
+    const std::string &train = r.notes[0].find("'training'") == 0 ? r.notes[0] : r.notes[1];
+    const std::string &valid = r.notes[0].find("'validation'") == 0 ? r.notes[0] : r.notes[1];
+    QVERIFY2(train.find("'training': 1 interferometer point at t = -5 s left out") == 0, train.c_str());
+    QVERIFY2(valid.find("'validation': 2 interferometer points at t = ") == 0 &&
+                 valid.find("outside the drive") != std::string::npos,
+             valid.c_str());
+    QCOMPARE(r.effect, ref.effect);
+    QCOMPARE(r.baseline.trainRms_um, ref.baseline.trainRms_um);
+    QCOMPARE(r.baseline.heldoutRms_um, ref.baseline.heldoutRms_um);
+    QCOMPARE(r.predictions.size(), ref.predictions.size());
 }
 
 QTEST_GUILESS_MAIN(TestDiagnosisEngine)
