@@ -18,6 +18,8 @@
 
 namespace driftlab {
 
+namespace {
+
 QString statsLine(const FitStatistics &s)
 {
     QString line;
