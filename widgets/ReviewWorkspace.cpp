@@ -46,8 +46,12 @@ ReviewWorkspace::ReviewWorkspace(QWidget *parent)
     m_heading->setObjectName(QStringLiteral("SessionHeading"));
     m_heading->setTextInteractionFlags(Qt::TextSelectableByMouse);
     m_heading->setContentsMargins(4, 2, 4, 0);
+    m_heading->setWordWrap(true); // a long session name wraps instead of widening the compare view
     m_heading->setText(tr("No session"));
     layout->addWidget(m_heading);
+    // The tab pages' widest row (pickers, infrared plots) would otherwise set the minimum:
+    // two sessions compared side by side must fit beside the side docks at 1366 px.
+    m_tabs->setMinimumWidth(240);
     layout->addWidget(m_tabs);
     auto *tempLayout = new QVBoxLayout(m_temperaturePage);
     auto *pickers = new QHBoxLayout();

@@ -333,7 +333,9 @@ void TestCli::newBundleAndExampleImport()
     }
     // plot picks channels, time window, target and infrared frame; a wrong pick is bad input.
     const QString png = m_dir.filePath(QStringLiteral("pick.png"));
-    const QStringList base{QStringLiteral("plot"), QStringLiteral("2"), QStringLiteral("--db"), db, QStringLiteral("--out"), png};
+    // --force: each plot below replaces pick.png (an existing output is never replaced without it).
+    const QStringList base{QStringLiteral("plot"), QStringLiteral("2"), QStringLiteral("--db"), db, QStringLiteral("--out"), png,
+                           QStringLiteral("--force")};
     QCOMPARE(run(base + QStringList{QStringLiteral("--channels"), QStringLiteral("T_nut,S1"), QStringLiteral("--from"),
                                     QStringLiteral("0:30:00"), QStringLiteral("--to"), QStringLiteral("1:00:00")}).code, 0);
     QVERIFY(QFileInfo(png).size() > 1000);
