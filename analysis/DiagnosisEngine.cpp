@@ -309,12 +309,12 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
     DiagnosisReport report;
     // Interferometer points outside a drive's time span are left out with a note (issue 36).
     DiagnosisRecording validate = validateInput;
-    RecordingSpan::trimToDrive(validate, report.notes);
+    RecordingSpan::trimToDrive(validate, report.notes, m_options.identification.simulator.grid.dt_s);
     // Screw temperatures (infrared profile, surface PT100s) join the fit when asked: they pin
     // the screw's own time constant and heat distribution, so an effect cannot hide in a
     // slower, cooler screw (a heat-path lag otherwise does, by lowering k2, k3 and k4).
     DiagnosisRecording train = trainInput;
-    RecordingSpan::trimToDrive(train, report.notes);
+    RecordingSpan::trimToDrive(train, report.notes, m_options.identification.simulator.grid.dt_s);
     if (m_options.checkMeasurementChain) // PT100 steps, before anything uses the channels
         for (DiagnosisRecording *r : {&train, &validate})
             for (const SensorFinding &f : MeasurementChainCheck::correctSteps(*r))

@@ -7,14 +7,15 @@
 
 namespace driftlab {
 
-int RecordingSpan::trimToDrive(DiagnosisRecording &r, std::vector<std::string> &notes)
+int RecordingSpan::trimToDrive(DiagnosisRecording &r, std::vector<std::string> &notes, double endTolerance_s)
 {
     const ScrewDrive &d = r.screw.drive;
     if (d.position_mm.empty() || d.feed_mm_min.empty())
         return 0;
     const double t0 = d.position_mm.t.front();
     const double t1 = std::max(d.position_mm.t.back(), d.feed_mm_min.t.back());
-    auto outside = [&](double t) { return !(t >= t0 && t <= t1); };
+    // The same span the simulator accepts (ScrewResponseSimulator::prepare): one grid step past the end.
+    auto outside = [&](double t) { return !(t >= t0 - 1e-9 && t <= t1 + endTolerance_s); };
     std::vector<PositioningErrorPoint> kept;
     kept.reserve(r.screw.interferometer.size());
     int removed = 0;

@@ -17,7 +17,8 @@ public:
     // or feed sample]; returns how many were removed and appends one note per recording that
     // lost points to `notes` (name, count, times, the drive's span). A recording without a
     // drive is left alone (the identification refuses it with its own message).
-    static int trimToDrive(DiagnosisRecording &r, std::vector<std::string> &notes);
+    // Points up to `endTolerance_s` past the drive's end stay (the simulator's grid step).
+    static int trimToDrive(DiagnosisRecording &r, std::vector<std::string> &notes, double endTolerance_s = 0.0);
 };
 
 } // namespace driftlab

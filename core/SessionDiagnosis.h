@@ -35,7 +35,7 @@ struct DiagnosisRequest {
     bool fitScrewTemperatures = false;
     double dt_s = 20.0;               // implicit time step of the fits, (0, 600] s
     bool priors = false;              // lambda and P_f anchored by steel and the drawing (issue 36)
-    bool checkMeasurementChain = true; // sensors checked against each other before the selection
+    bool checkMeasurementChain = false; // sensors checked against each other before the selection (opt-in)
 };
 
 class SessionDiagnosis {

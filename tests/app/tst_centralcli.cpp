@@ -246,12 +246,12 @@ void TestCentralCli::badInput_data()
                                << 2 << QStringLiteral("--to must be a central store");
     QTest::newRow("no session") << QStringList{QStringLiteral("push"), QStringLiteral("9"), QStringLiteral("--db"), QStringLiteral("RIG"),
                                                QStringLiteral("--to"), QStringLiteral("URL")}
-                                << 2 << QStringLiteral("has no session '9'");
+                                << 2 << QStringLiteral("has no session 9");
     QTest::newRow("unreachable") << QStringList{QStringLiteral("list"), QStringLiteral("--db"), QStringLiteral("postgresql://driftlab@127.0.0.1:1/lab")}
                                  << 1 << QStringLiteral("cannot connect to the central store");
     QTest::newRow("pull unknown uuid") << QStringList{QStringLiteral("pull"), QStringLiteral("0b0e4b3e-0000-4000-8000-000000000000"),
                                                       QStringLiteral("--from"), QStringLiteral("URL"), QStringLiteral("--db"), QStringLiteral("DESK")}
-                                       << 2 << QStringLiteral("has no session '0b0e4b3e");
+                                       << 2 << QStringLiteral("has no session 0b0e4b3e");
 }
 
 void TestCentralCli::badInput()

@@ -264,7 +264,7 @@ void TestCompensateCli::badInputExitsTwo_data()
     QTest::newRow("overlap") << QStringList{QStringLiteral("--map"), QStringLiteral("OVERLAP")}
                              << QStringLiteral("axes[1].address: registers 101-102 of axis Y overlap registers 100-101 of axis X");
     QTest::newRow("axis") << QStringList{QStringLiteral("--axis"), QStringLiteral("W")} << QStringLiteral("the register map has no axis 'W'");
-    QTest::newRow("session") << QStringList{QStringLiteral("--session"), QStringLiteral("9")} << QStringLiteral("no session with id 9");
+    QTest::newRow("session") << QStringList{QStringLiteral("--session"), QStringLiteral("9")} << QStringLiteral("has no session 9");
     QTest::newRow("endpoint") << QStringList{QStringLiteral("--modbus"), QStringLiteral("nohost")} << QStringLiteral("--modbus must be HOST:PORT");
 }
 

@@ -359,7 +359,7 @@ void TestDataDriven::badInputExitsTwo()
             "Q7");
     expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("ridge"),
              QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--train-range"), QStringLiteral("50:60"), QStringLiteral("--out"), out},
-            "training samples");
+            "lies outside session 1");
     // The training session cannot be its own held-out data (issue 14: same rule as diagnose).
     expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"), QStringLiteral("mlr"),
              QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--holdout"), QStringLiteral("1"), QStringLiteral("--out"), out},
@@ -384,7 +384,7 @@ void TestDataDriven::badInputExitsTwo()
     expect2({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("2"), QStringLiteral("--db"), m_db, QStringLiteral("--model"),
              QStringLiteral("ridge"), QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--holdout"), QStringLiteral("3"),
              QStringLiteral("--out"), out},
-            "is not a channel of session 3");
+            "session 3 has no channel");
     QVERIFY(!QFile::exists(out)); // nothing half-written
     // A model file of a newer format version, and a model whose input the session lacks.
     QFile m(m_dir.filePath(QStringLiteral("ridge.json")));

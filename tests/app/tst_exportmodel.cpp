@@ -117,13 +117,13 @@ void TestExportModel::badInputWritesNothing_data()
     QTest::addColumn<QString>("message");
     const QByteArray good(kSynthetic);
     QByteArray newer = good;
-    newer.replace("\"version\": 1", "\"version\": 2");
+    newer.replace("\"version\": 1", "\"version\": 3");
     QByteArray missing = good;
     missing.replace("\"a\": 6.5, ", "");
     QTest::newRow("unknown target") << good << QStringList{QStringLiteral("--target"), QStringLiteral("haas")}
                                     << QStringLiteral("--target: unknown target 'haas' (known: 840d|fanuc|heidenhain|linuxcnc|twincat|m80|c|csv|json)");
     QTest::newRow("newer version") << newer << QStringList{QStringLiteral("--target"), QStringLiteral("csv")}
-                                   << QStringLiteral("version: version 2 is not readable");
+                                   << QStringLiteral("version: version 3 is not readable");
     QTest::newRow("missing field") << missing << QStringList{QStringLiteral("--target"), QStringLiteral("840d")}
                                    << QStringLiteral("synthetic.a: missing");
     QTest::newRow("physics missing k3")

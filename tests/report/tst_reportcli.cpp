@@ -313,7 +313,8 @@ void TestReportCli::badInputExitsTwoAndWritesNothing()
     QVERIFY(old.open(QIODevice::WriteOnly));
     old.write("old report");
     old.close();
-    r = report({QStringLiteral("1"), QStringLiteral("--template"), dir}, out);
+    // --force: even allowed to replace it, a bad template leaves the old report as it was.
+    r = report({QStringLiteral("1"), QStringLiteral("--template"), dir, QStringLiteral("--force")}, out);
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("template.json") && r.err.contains("'sensor'"), r.err.constData());
     QVERIFY(old.open(QIODevice::ReadOnly));
