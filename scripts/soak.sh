@@ -56,7 +56,7 @@ reads=0 failures=0
 until [ -f "$db" ]; do sleep 0.2; done
 sleep 2
 while kill -0 "$rec" 2>/dev/null; do
-  for args in "list" "info" "plot 1 --view timeseries --out $work/t.png" "plot 1 --view error-time --out $work/e.png"; do
+  for args in "list" "info" "plot 1 --view timeseries --out $work/t.png --force" "plot 1 --view error-time --out $work/e.png --force"; do
     # shellcheck disable=SC2086
     if ! "$cli" $args --db "$db" >/dev/null 2>"$work/reader.err"; then
       # Early in the run a view may have nothing to show yet: that is an answer, not a failure.

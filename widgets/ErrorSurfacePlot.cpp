@@ -101,7 +101,7 @@ QwtLinearColorMap *errorColourMap()
 ErrorSurfacePlot::ErrorSurfacePlot(QWidget *parent) : QwtPlot(parent), m_spectrogram(new ContourSpectrogram())
 {
     setTitle(tr("Thermal error over position and time"));
-    setMinimumSize(200, 140); // not the plot's size hint: windows must fit 1366 x 768 (three side by side)
+    setMinimumSize(260, 140); // not the plot's size hint: windows must fit 1366 x 768
     setAxisTitle(QwtPlot::xBottom, tr("axis position (mm)"));
     ElapsedTimeAxis::install(this, QwtPlot::yLeft, tr("elapsed time"));
     setAxisTitle(QwtPlot::yRight, tr("thermal error (µm)"));

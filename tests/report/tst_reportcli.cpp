@@ -319,7 +319,7 @@ void TestReportCli::badInputExitsTwoAndWritesNothing()
     QVERIFY2(r.err.contains("template.json") && r.err.contains("'sensor'"), r.err.constData());
     QVERIFY(old.open(QIODevice::ReadOnly));
     QCOMPARE(old.readAll(), QByteArray("old report"));
-    r = report({QStringLiteral("1"), QStringLiteral("--template"), m_dir.filePath(QStringLiteral("missing"))}, out);
+    r = report({QStringLiteral("1"), QStringLiteral("--template"), m_dir.filePath(QStringLiteral("missing")), QStringLiteral("--force")}, out);
     QCOMPARE(r.code, 2);
     QVERIFY(r.err.contains("does not exist"));
 }
