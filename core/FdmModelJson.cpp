@@ -105,6 +105,16 @@ QString FdmModelJson::metricLabel(const QString &key)
     return prefix + name;
 }
 
+QJsonObject FdmModelJson::parametersJson(const FdmParameters &p)
+{
+    return QJsonObject{{QStringLiteral("k1"), p.k1},
+                       {QStringLiteral("k2"), p.k2},
+                       {QStringLiteral("k3"), p.k3},
+                       {QStringLiteral("k4"), p.k4},
+                       {QStringLiteral("lambda_W_mK"), p.conductivity_W_mK},
+                       {QStringLiteral("fixed_end_position_mm"), p.fixedEndPosition_mm}};
+}
+
 QJsonObject FdmModelJson::document(const ScrewFitResult &fit)
 {
     const IdentificationResult &r = fit.identification;
@@ -130,12 +140,7 @@ QJsonObject FdmModelJson::document(const ScrewFitResult &fit)
         {QStringLiteral("model"), modelName()},
         {QStringLiteral("schema_version"), kSchemaVersion},
         {QStringLiteral("parameters"),
-         QJsonObject{{QStringLiteral("k1"), p.k1},
-                     {QStringLiteral("k2"), p.k2},
-                     {QStringLiteral("k3"), p.k3},
-                     {QStringLiteral("k4"), p.k4},
-                     {QStringLiteral("lambda_W_mK"), p.conductivity_W_mK},
-                     {QStringLiteral("fixed_end_position_mm"), p.fixedEndPosition_mm}}},
+         parametersJson(p)},
         {QStringLiteral("standard_errors"), stdErr},
         {QStringLiteral("correlation"), QJsonObject{{QStringLiteral("names"), names}, {QStringLiteral("matrix"), matrix}}},
         {QStringLiteral("screw"),

@@ -36,6 +36,8 @@ public:
     static QString metricLabel(const QString &key);
 
     // MODEL.json of a fit (without "database": the caller adds where the sessions came from).
+    // The "parameters" object of MODEL.json (the one key set, read back by parameters()).
+    static QJsonObject parametersJson(const FdmParameters &p);
     static QJsonObject document(const ScrewFitResult &fit);
     // The record stored with each fitted session, built from the document.
     static FittedModel storedModel(const QJsonObject &document);

@@ -1,4 +1,5 @@
 #include "SessionAnalysis.h"
+#include "FdmModelJson.h"
 
 #include "InterferometerReadings.h"
 #include "ScrewTemperatureReader.h"
@@ -115,14 +116,8 @@ QJsonObject SessionAnalysis::toJson(const ElongationCheck &check)
 {
     const FdmParameters &p = check.parameters;
     return QJsonObject{
-        {QStringLiteral("model"), QStringLiteral("fdm-seed000")},
-        {QStringLiteral("parameters"),
-         QJsonObject{{QStringLiteral("k1"), p.k1},
-                     {QStringLiteral("k2"), p.k2},
-                     {QStringLiteral("k3"), p.k3},
-                     {QStringLiteral("k4"), p.k4},
-                     {QStringLiteral("lambda_W_mK"), p.conductivity_W_mK},
-                     {QStringLiteral("fixed_end_position_mm"), p.fixedEndPosition_mm}}},
+        {QStringLiteral("model"), FdmModelJson::modelName()},
+        {QStringLiteral("parameters"), FdmModelJson::parametersJson(p)},
         {QStringLiteral("samples"), static_cast<double>(check.comparison.samples)},
         {QStringLiteral("duration_s"), check.duration_s},
         {QStringLiteral("elongation_rms_error_um"), check.comparison.rms_um},
