@@ -9,8 +9,8 @@ namespace driftlab {
 namespace {
 
 // The points of run r (0-based) in the order they were measured.
-QVector<InterferometerPoint> runPoints(const RtlFile &file, int r, int firstRun, double start_s, double dwell_s,
-                                       InterferometerImport::Direction direction)
+QVector<InterferometerPoint> runPoints(const RtlFile &file, int r, const QVector<double> &deviations_um, int firstRun, double start_s,
+                                       double dwell_s, InterferometerImport::Direction direction)
 {
     QString dir = file.direction(r + 1);
     if (direction == InterferometerImport::Direction::Unidirectional)
@@ -26,7 +26,7 @@ QVector<InterferometerPoint> runPoints(const RtlFile &file, int r, int firstRun,
         p.t = start_s + k * dwell_s;
         p.run = firstRun + r;
         p.position_mm = file.targets_mm[target];
-        p.error_um = file.deviations_um[r][target];
+        p.error_um = deviations_um[target];
         p.direction = dir;
         out.push_back(p);
     }
@@ -41,8 +41,9 @@ QVector<InterferometerPoint> InterferometerImport::points(const RtlFile &file, i
     if (runStart_s.size() != file.runCount)
         throw std::invalid_argument(QStringLiteral("%1 run start times for %2 runs").arg(runStart_s.size()).arg(file.runCount).toStdString());
     QVector<InterferometerPoint> out;
-    for (int r = 0; r < file.runCount; ++r)
-        out += runPoints(file, r, firstRun, runStart_s[r], dwell_s, direction);
+    file.forEachRun([&](int run, const QVector<double> &deviations) {
+        out += runPoints(file, run - 1, deviations, firstRun, runStart_s[run - 1], dwell_s, direction);
+    });
     return out;
 }
 
@@ -111,7 +112,8 @@ InterferometerImport::Result InterferometerImport::import(SessionStore &store, q
     int firstRun = 0;
     for (const InterferometerPoint &p : store.interferometerPoints(sessionId))
         firstRun = std::max(firstRun, p.run + 1);
-    // Run by run into one transaction: the points of the whole file are never held at once.
+    // Run by run into one transaction: the points of the whole file are never held at once (a
+    // file from RtlFile::read() is read again from its device, one run at a time).
     const int n = file.targets_mm.size();
     r.firstRun = firstRun;
     r.lastRun = firstRun + file.runCount - 1;
@@ -120,8 +122,9 @@ InterferometerImport::Result InterferometerImport::import(SessionStore &store, q
     r.lastTime_s = starts.back() + (n - 1) * o.dwell_s;
     store.begin();
     try {
-        for (int run = 0; run < file.runCount; ++run)
-            store.addInterferometerPoints(sessionId, runPoints(file, run, firstRun, starts[run], o.dwell_s, o.direction));
+        file.forEachRun([&](int run, const QVector<double> &deviations) {
+            store.addInterferometerPoints(sessionId, runPoints(file, run - 1, deviations, firstRun, starts[run - 1], o.dwell_s, o.direction));
+        });
         store.addEvent(sessionId, {r.firstTime_s, QStringLiteral("interferometer runs %1-%2 imported from %3 (times: %4)")
                                                       .arg(r.firstRun)
                                                       .arg(r.lastRun)

@@ -91,7 +91,7 @@ int ImportRtlCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("import-rtl: %1: cannot open: %2").arg(file, f.errorString()));
     RtlFile rtl;
     try {
-        rtl = RtlFile::parse(f.readAll(), file);
+        rtl = RtlFile::read(f, file); // checked whole, deviations left in the file (streamed below)
     } catch (const RtlError &e) {
         throw UsageError(QStringLiteral("import-rtl: %1 (nothing imported)").arg(QString::fromUtf8(e.what())));
     }
@@ -124,6 +124,8 @@ int ImportRtlCommand::run(const QStringList &args)
         r = InterferometerImport::import(store, session, rtl, options);
     } catch (const std::invalid_argument &e) {
         throw UsageError(QStringLiteral("import-rtl: %1 (nothing imported)").arg(QString::fromUtf8(e.what())));
+    } catch (const RtlError &e) { // the file changed after it was checked
+        throw std::runtime_error(QStringLiteral("import-rtl: %1 (nothing imported)").arg(QString::fromUtf8(e.what())).toStdString());
     }
     CliSupport::progress(QStringLiteral("imported %1: %2 runs x %3 targets, times from %4")
                              .arg(file)

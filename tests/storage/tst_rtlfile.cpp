@@ -7,6 +7,7 @@
 #include "RtlFile.h"
 #include "SessionStore.h"
 
+#include <QBuffer>
 #include <QFile>
 #include <QTemporaryDir>
 #include <QtTest>
@@ -46,6 +47,7 @@ private slots:
     void malformedFilesNameTheLine();
     void importsIntoASession();
     void refusedImportWritesNothing();
+    void readStreamsFromTheFile();
 };
 
 void TestRtlFile::parsesTheSample()
@@ -182,6 +184,40 @@ void TestRtlFile::refusedImportWritesNothing()
     } catch (const std::invalid_argument &e) {
         QVERIFY(QString::fromUtf8(e.what()).contains(QLatin1String("the file has no date")));
     }
+}
+
+void TestRtlFile::readStreamsFromTheFile()
+{
+    // read() checks the file without keeping its deviations; forEachRun() gives every run in
+    // order, from one more pass when the runs come one after the other and from windows of runs
+    // when they are interleaved: both equal what parse() holds.
+    const RtlFile whole = RtlFile::parse(sample(), QStringLiteral("x.rtl"));
+    QByteArray shuffled = sample();
+    shuffled.replace("2   1      0.4\r\n", "");
+    shuffled.replace("1   4      9.0\r\n", "2   1      0.4\r\n1   4      9.0\r\n"); // a line of run 2 among run 1's
+    const RtlFile interleaved = RtlFile::parse(shuffled, QStringLiteral("x.rtl"));
+    QCOMPARE(interleaved.deviations_um, whole.deviations_um);
+    for (const QByteArray &text : {sample(), shuffled}) {
+        QBuffer device;
+        device.setData(text);
+        QVERIFY(device.open(QIODevice::ReadOnly));
+        const RtlFile f = RtlFile::read(device, QStringLiteral("x.rtl"));
+        QVERIFY(f.deviations_um.isEmpty());
+        QCOMPARE(f.deviationCount, qint64(12));
+        QVector<QVector<double>> runs;
+        f.forEachRun([&](int run, const QVector<double> &d) {
+            QCOMPARE(run, runs.size() + 1);
+            runs.push_back(d);
+        });
+        QCOMPARE(runs, whole.deviations_um);
+        // A file cut short after it was checked is noticed, never imported in part.
+        device.buffer().chop(device.buffer().size() - device.buffer().indexOf("2   4"));
+        QVERIFY_EXCEPTION_THROWN(f.forEachRun([](int, const QVector<double> &) {}), RtlError);
+    }
+    // A line of more than 4 MiB (no line break) is refused without being held whole.
+    QByteArray endless = "HEADER::\nFile type : rtl\nTARGET DATA::\nTargets : ";
+    endless += QByteArray(5 * 1024 * 1024, '1');
+    QVERIFY(errorOf(endless).startsWith(QLatin1String("t.rtl: line 4: line longer than 4194304 bytes")));
 }
 
 QTEST_GUILESS_MAIN(TestRtlFile)
