@@ -2,9 +2,17 @@
 
 #include <qwt_plot.h>
 #include <qwt_plot_renderer.h>
+#include <qwt_text.h>
 
+#include <QBuffer>
 #include <QDir>
 #include <QFileInfo>
+#include <QImage>
+#include <QPainter>
+#include <QPageSize>
+#include <QPdfWriter>
+#include <QSaveFile>
+#include <QSvgGenerator>
 
 #include <stdexcept>
 
@@ -16,6 +24,61 @@ bool PlotExporter::supportedSuffix(const QString &path)
     return suffix == QLatin1String("png") || suffix == QLatin1String("svg") || suffix == QLatin1String("pdf");
 }
 
+QByteArray PlotExporter::render(QwtPlot &plot, const QString &format, QSizeF size_mm, int dpi)
+{
+    const QString fmt = format.toLower();
+    if (fmt != QLatin1String("png") && fmt != QLatin1String("svg") && fmt != QLatin1String("pdf"))
+        throw std::invalid_argument(QStringLiteral("unsupported format '%1' (use .png, .svg or .pdf)").arg(format).toStdString());
+    if (size_mm.isEmpty() || dpi <= 0)
+        throw std::invalid_argument("empty plot size or resolution");
+    // The geometry of QwtPlotRenderer::renderDocument (Qwt 6.1), into a buffer instead of a file.
+    QwtPlotRenderer renderer;
+    renderer.setDiscardFlag(QwtPlotRenderer::DiscardBackground, false);
+    QString title = plot.title().text();
+    if (title.isEmpty())
+        title = QStringLiteral("Plot Document");
+    const double mmToInch = 1.0 / 25.4;
+    const QSizeF size = size_mm * mmToInch * dpi;
+    const QRectF documentRect(0.0, 0.0, size.width(), size.height());
+    QBuffer buffer;
+    buffer.open(QIODevice::WriteOnly);
+    if (fmt == QLatin1String("pdf")) {
+        QPdfWriter writer(&buffer);
+        writer.setPageSize(QPageSize(size_mm, QPageSize::Millimeter));
+        writer.setTitle(title);
+        writer.setPageMargins(QMarginsF());
+        writer.setResolution(dpi);
+        QPainter painter(&writer);
+        renderer.render(&plot, &painter, documentRect);
+    } else if (fmt == QLatin1String("svg")) {
+        QSvgGenerator generator;
+        generator.setTitle(title);
+        generator.setOutputDevice(&buffer);
+        generator.setResolution(dpi);
+        generator.setViewBox(documentRect);
+        QPainter painter(&generator);
+        renderer.render(&plot, &painter, documentRect);
+    } else {
+        const QRect imageRect = documentRect.toRect();
+        const int dotsPerMeter = qRound(dpi * mmToInch * 1000.0);
+        QImage image(imageRect.size(), QImage::Format_ARGB32);
+        if (image.isNull())
+            throw std::runtime_error(QStringLiteral("cannot make a %1 x %2 pixel image").arg(imageRect.width()).arg(imageRect.height()).toStdString());
+        image.setDotsPerMeterX(dotsPerMeter);
+        image.setDotsPerMeterY(dotsPerMeter);
+        image.fill(QColor(Qt::white).rgb());
+        QPainter painter(&image);
+        renderer.render(&plot, &painter, imageRect);
+        painter.end();
+        if (!image.save(&buffer, "PNG"))
+            throw std::runtime_error("cannot encode the plot as PNG");
+    }
+    buffer.close();
+    if (buffer.data().isEmpty())
+        throw std::runtime_error(QStringLiteral("the plot could not be rendered as %1").arg(fmt).toStdString());
+    return buffer.data();
+}
+
 void PlotExporter::exportPlot(QwtPlot &plot, const QString &path, QSizeF size_mm, int dpi)
 {
     if (!supportedSuffix(path))
@@ -25,11 +88,10 @@ void PlotExporter::exportPlot(QwtPlot &plot, const QString &path, QSizeF size_mm
     const QFileInfo info(path);
     if (!info.absoluteDir().exists())
         throw std::runtime_error(QStringLiteral("%1: folder %2 does not exist").arg(path, info.absolutePath()).toStdString());
-    QwtPlotRenderer renderer;
-    renderer.setDiscardFlag(QwtPlotRenderer::DiscardBackground, false);
-    renderer.renderDocument(&plot, path, QFileInfo(path).suffix().toLower(), size_mm, dpi);
-    if (!QFileInfo(path).exists() || QFileInfo(path).size() == 0)
-        throw std::runtime_error(QStringLiteral("%1: the plot could not be written").arg(path).toStdString());
+    const QByteArray bytes = render(plot, info.suffix(), size_mm, dpi);
+    QSaveFile file(path); // atomic: a failed write leaves no partial file and the old one whole
+    if (!file.open(QIODevice::WriteOnly) || file.write(bytes) != bytes.size() || !file.commit())
+        throw std::runtime_error(QStringLiteral("%1: the plot could not be written: %2").arg(path, file.errorString()).toStdString());
 }
 
 } // namespace driftlab

@@ -155,9 +155,11 @@ private:
         p.start(QCoreApplication::applicationFilePath(), args);
         p.waitForFinished(-1);
         const QByteArray err = p.readAllStandardError();
-        QFile log(dir.filePath(s.log)); // the command, its output and its messages
-        if (log.open(QIODevice::WriteOnly | QIODevice::Truncate))
+        QSaveFile log(dir.filePath(s.log)); // the command, its output and its messages; never half-written
+        if (log.open(QIODevice::WriteOnly)) {
             log.write("$ driftlab-cli " + args.join(QLatin1Char(' ')).toUtf8() + '\n' + p.readAllStandardOutput() + err);
+            log.commit();
+        }
         s.seconds = timer.elapsed() / 1000.0;
         s.exitCode = p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
         s.status = s.exitCode == 0 ? QStringLiteral("ok") : QStringLiteral("failed");

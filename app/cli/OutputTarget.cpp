@@ -130,8 +130,14 @@ void OutputTarget::announceSize(qint64 bytes, bool force) const
     if (bytes > kSizeBound && !force)
         throw UsageError(QStringLiteral("%1 %2: about %3 would be written, more than %4 (use --force to write it)")
                              .arg(m_option, m_path, sizeText(bytes), sizeText(kSizeBound)));
-    if (bytes >= kAnnounceFrom)
-        CliSupport::progress(QStringLiteral("writing about %1 to %2").arg(sizeText(bytes), m_path));
+    announce(m_path, bytes);
+}
+
+void OutputTarget::announce(const QString &path, qint64 bytes, const QString &note)
+{
+    if (bytes >= kAnnounceFrom && path != QLatin1String("-"))
+        CliSupport::progress(QStringLiteral("writing about %1 to %2%3")
+                                 .arg(sizeText(bytes), path, note.isEmpty() ? QString() : QStringLiteral(" (%1)").arg(note)));
 }
 
 void OutputTarget::writeFile(const QString &path, const QByteArray &bytes)
@@ -141,9 +147,17 @@ void OutputTarget::writeFile(const QString &path, const QByteArray &bytes)
         std::fflush(stdout);
         return;
     }
+    announce(path, bytes.size());
     QSaveFile file(path); // atomic: never a half-written output
-    if (!file.open(QIODevice::WriteOnly) || file.write(bytes) != bytes.size() || !file.commit())
-        throw std::runtime_error(QStringLiteral("cannot write %1: %2").arg(path, file.errorString()).toStdString());
+    errno = 0;
+    if (!file.open(QIODevice::WriteOnly) || file.write(bytes) != bytes.size() || !file.commit()) {
+        // QSaveFile says "Unknown error" for a full disk: the system's reason is clearer.
+        const int why = errno;
+        QString reason = file.errorString();
+        if (why != 0 && (reason.isEmpty() || reason == QLatin1String("Unknown error")))
+            reason = QString::fromLocal8Bit(std::strerror(why));
+        throw std::runtime_error(QStringLiteral("cannot write %1: %2 (nothing was written)").arg(path, reason).toStdString());
+    }
 }
 
 } // namespace driftlab

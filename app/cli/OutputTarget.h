@@ -5,9 +5,11 @@
 // - an existing output is replaced only with --force;
 // - a file whose extension names no format the command writes is refused (so that
 //   `export 1 x.tar.gz` never writes a folder named x.tar.gz);
-// - a large output is announced on standard error before it is written, and refused above
-//   kSizeBound bytes without --force.
-// Files are written through QSaveFile (writeFile): never half-written.
+// - a large output (from kAnnounceFrom bytes) is announced on standard error before it is
+//   written, with one text: "writing about 146 MB to PATH"; an output whose size follows from
+//   the user's own grid or range (export-model's tables) is refused above kSizeBound bytes
+//   without --force, before any work.
+// Files are written through QSaveFile (writeFile, which announces them): never half-written.
 
 #include <QByteArray>
 #include <QString>
@@ -46,9 +48,13 @@ public:
     // Says on standard error how large the output will be (from kAnnounceFrom on) and refuses
     // it above kSizeBound without --force (UsageError naming the path and the size).
     void announceSize(qint64 bytes, bool force) const;
+    // The announcement alone (from kAnnounceFrom bytes; "note" is added in parentheses), for an
+    // output whose size is an estimate of what the user asked for (an export) or is known only
+    // once it is made (writeFile).
+    static void announce(const QString &path, qint64 bytes, const QString &note = QString());
 
-    // Writes bytes atomically (QSaveFile); "-" writes to standard output. Throws
-    // std::runtime_error naming the path.
+    // Writes bytes atomically (QSaveFile), announced from kAnnounceFrom bytes; "-" writes to
+    // standard output. Throws std::runtime_error naming the path.
     static void writeFile(const QString &path, const QByteArray &bytes);
     // "146 MB", "3.2 kB": a size for messages.
     static QString sizeText(qint64 bytes);

@@ -65,7 +65,8 @@ int PlotCommand::run(const QStringList &args)
     if (!p.isSet(out))
         throw UsageError(QStringLiteral("plot: --out FILE is required"));
     const QString file = p.value(out);
-    OutputTarget(file, QStringLiteral("--out")).formats({QStringLiteral("png"), QStringLiteral("svg"), QStringLiteral("pdf")}).check(p.isSet(force));
+    OutputTarget output(file, QStringLiteral("--out"));
+    output.formats({QStringLiteral("png"), QStringLiteral("svg"), QStringLiteral("pdf")}).check(p.isSet(force));
     const QString name = p.value(view);
     const bool selectionView = AnalysisPlots::selectionViews().contains(name);
     if (!selectionView && !ReviewWorkspace::viewNames().contains(name))
@@ -84,6 +85,19 @@ int PlotCommand::run(const QStringList &args)
     };
     const QSizeF size(number(width, 20, 2000), number(height, 20, 2000));
     const int resolution = static_cast<int>(number(dpi, 30, 1200));
+    // A PNG is drawn whole in memory (4 bytes a pixel): its size is an output size too.
+    if (output.format() == QLatin1String("png")) {
+        const double pixels = size.width() / 25.4 * resolution * (size.height() / 25.4 * resolution);
+        if (pixels * 4 > OutputTarget::kSizeBound && !p.isSet(force))
+            throw UsageError(QStringLiteral("plot: --out %1: %2 x %3 mm at %4 dpi is %5 million pixels, %6 to draw, more than %7 "
+                                            "(use --force to draw it, or a smaller --dpi, or .svg/.pdf)")
+                                 .arg(file)
+                                 .arg(size.width())
+                                 .arg(size.height())
+                                 .arg(resolution)
+                                 .arg(pixels / 1e6, 0, 'f', 0)
+                                 .arg(OutputTarget::sizeText(static_cast<qint64>(pixels * 4)), OutputTarget::sizeText(OutputTarget::kSizeBound)));
+    }
     const double t0 = p.isSet(from) ? CliSupport::parseDuration(p.value(from), QStringLiteral("from")) : -1.0;
     const double t1 = p.isSet(to) ? CliSupport::parseDuration(p.value(to), QStringLiteral("to")) : -1.0;
     if (t0 >= 0 && t1 >= 0 && t1 <= t0)
@@ -116,7 +130,8 @@ int PlotCommand::run(const QStringList &args)
             throw UsageError(QStringLiteral("plot: %1").arg(QString::fromUtf8(e.what())));
         }
         plot->resize(1600, 1000);
-        PlotExporter::exportPlot(*plot, file, size, resolution);
+        // Drawn in memory, then written atomically: a failure leaves no partial file.
+        OutputTarget::writeFile(file, PlotExporter::render(*plot, output.format(), size, resolution));
         CliSupport::progress(QStringLiteral("wrote %1 (%2 of session %3)").arg(QFileInfo(file).absoluteFilePath(), name).arg(session));
         return 0;
     }
@@ -162,7 +177,7 @@ int PlotCommand::run(const QStringList &args)
         plot->setAxisScale(QwtPlot::xBottom, t0 >= 0 ? t0 : shown.minValue(), t1 >= 0 ? t1 : shown.maxValue());
         plot->replot();
     }
-    PlotExporter::exportPlot(*plot, file, size, resolution);
+    OutputTarget::writeFile(file, PlotExporter::render(*plot, output.format(), size, resolution));
     CliSupport::progress(QStringLiteral("wrote %1 (%2 of session %3)").arg(QFileInfo(file).absoluteFilePath(), name).arg(session));
     return 0;
 }

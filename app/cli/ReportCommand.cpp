@@ -9,6 +9,7 @@
 #include "ReportWriter.h"
 #include "SessionStore.h"
 
+#include <QBuffer>
 #include <QCommandLineParser>
 #include <QElapsedTimer>
 #include <QFileInfo>
@@ -41,7 +42,8 @@ int ReportCommand::run(const QStringList &args)
     if (!p.isSet(out))
         throw UsageError(QStringLiteral("report: --out FILE.pdf|FILE.html is required"));
     const QString file = p.value(out);
-    OutputTarget(file, QStringLiteral("--out")).formats({QStringLiteral("pdf"), QStringLiteral("html"), QStringLiteral("htm")}, {QStringLiteral("pdf"), QStringLiteral("html")}).check(p.isSet(force));
+    OutputTarget target(file, QStringLiteral("--out"));
+    target.formats({QStringLiteral("pdf"), QStringLiteral("html"), QStringLiteral("htm")}, {QStringLiteral("pdf"), QStringLiteral("html")}).check(p.isSet(force));
     ReportTemplate tmpl;
     try {
         tmpl = ReportTemplate::load(p.value(look));
@@ -56,7 +58,17 @@ int ReportCommand::run(const QStringList &args)
     const ReportDocument doc = ReportBuilder(store, session, tmpl).build([](const QString &stage) {
         CliSupport::progress(QStringLiteral("report: %1...").arg(stage));
     });
-    ReportWriter(doc, tmpl).write(file);
+    // Made in memory, then written (and announced when large) like every output.
+    const ReportWriter writer(doc, tmpl);
+    QByteArray bytes;
+    if (target.format() == QLatin1String("pdf")) {
+        QBuffer buffer(&bytes);
+        buffer.open(QIODevice::WriteOnly);
+        writer.writePdf(&buffer);
+    } else {
+        bytes = writer.html();
+    }
+    OutputTarget::writeFile(file, bytes);
     CliSupport::progress(QStringLiteral("wrote %1 (report of session %2) in %3 s")
                              .arg(QFileInfo(file).absoluteFilePath())
                              .arg(session)

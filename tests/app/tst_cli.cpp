@@ -35,6 +35,7 @@ private slots:
     void recordStopsPromptlyOnAFullDisk();
     void recordOnADiskFullAtStartLeavesNothing();
     void exportToAFullDiskLeavesNothing();
+    void plotToAFullDiskLeavesNothing();
     void importOntoAFullDiskChangesNothing();
     void readOnlyMediaRefusedClearly();
     void sigtermClosesTheSession();
@@ -436,6 +437,41 @@ void TestCli::exportToAFullDiskLeavesNothing()
         QVERIFY2(QDir(mountPoint).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot).isEmpty(),
                  qPrintable(QDir(mountPoint).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot).join(QLatin1Char(' '))));
     }
+}
+
+// Issue 35: a plot that cannot be written whole leaves nothing behind and never damages the
+// file it was to replace. Before, QwtPlotRenderer wrote straight to the file: on a full disk a
+// PNG was left cut off at 8 kB with exit 0 ("wrote ..."), an SVG or PDF as an empty file.
+void TestCli::plotToAFullDiskLeavesNothing()
+{
+    const QString mountPoint = m_dir.filePath(QStringLiteral("plotfull"));
+    const QString why = mountSmallTmpfs(mountPoint, QStringLiteral("1m"));
+    if (!why.isEmpty())
+        QSKIP(qPrintable(why));
+    const auto unmount = qScopeGuard([&] { QProcess::execute(QStringLiteral("umount"), {QStringLiteral("-l"), mountPoint}); });
+    const QString db = m_dir.filePath(QStringLiteral("plot-full.sqlite"));
+    QVERIFY(!recordShort(db).isEmpty());
+    // Leave 16 kB free: less than any of the three documents (PNG ~100 kB, SVG, PDF larger).
+    {
+        QFile filler(mountPoint + QStringLiteral("/filler"));
+        QVERIFY(filler.open(QIODevice::WriteOnly));
+        filler.write(QByteArray(1024 * 1024 - 16 * 1024, 'x'));
+    }
+    QFile old(mountPoint + QStringLiteral("/old.png"));
+    QVERIFY(old.open(QIODevice::WriteOnly));
+    old.write("old plot");
+    old.close();
+    const QStringList before = QDir(mountPoint).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot, QDir::Name);
+    for (const char *name : {"new.png", "new.svg", "new.pdf", "old.png"}) {
+        const QString out = mountPoint + QLatin1Char('/') + QLatin1String(name);
+        const Result r = run({QStringLiteral("plot"), QStringLiteral("1"), QStringLiteral("--db"), db, QStringLiteral("--out"), out,
+                              QStringLiteral("--force")});
+        QCOMPARE(r.code, 1);
+        QVERIFY2(r.err.contains("cannot write " + out.toUtf8() + ": No space left on device (nothing was written)"), r.err.constData());
+        QCOMPARE(QDir(mountPoint).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot, QDir::Name), before);
+    }
+    QVERIFY(old.open(QIODevice::ReadOnly));
+    QCOMPARE(old.readAll(), QByteArray("old plot"));
 }
 
 // Issue 21: an import into a database on a full filesystem fails with the disk-full message,
