@@ -13,6 +13,8 @@
 #include "../support/CliRunner.h"
 
 #include <QDir>
+#include <QDirIterator>
+#include <QRegularExpression>
 #include <QFile>
 #include <QFileInfo>
 #include <QJsonArray>
@@ -64,6 +66,7 @@ private slots:
     void misspeltBatchOptionFoundBeforeTheImport();
     void exportWritesWhatTheNameSays();
     void largeExportAnnouncedAndBounded();
+    void largeOutputsAnnounced();
     void oneSessionArgumentParser();
     void missingBundleNamedOnce();
     void runnerKeepsTheUserFoldersPrivate();
@@ -425,6 +428,51 @@ void TestCliRules::largeExportAnnouncedAndBounded()
     QVERIFY2(r.err.contains(out.toUtf8() + ": about ") && r.err.contains("would be written, more than 100 MB (use --force to write it)"),
              r.err.constData());
     QVERIFY(!QFileInfo::exists(out));
+}
+
+void TestCliRules::largeOutputsAnnounced()
+{
+    // One text for every large output, said on standard error before it is written: a bundle
+    // (estimated from the session's samples and frames), a model's tables, and the whole-file
+    // outputs (plots, reports, JSON, CSV) through OutputTarget::writeFile. Small ones say nothing.
+    const QString db = path(QStringLiteral("seven-hours.sqlite"));
+    clirunner::Result r = run({QStringLiteral("record"), QStringLiteral("--sim"), QStringLiteral("--duration"), QStringLiteral("7:00:00"),
+                               QStringLiteral("--out"), db});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const QString bundle = path(QStringLiteral("seven.bundle"));
+    r = run({QStringLiteral("export"), QStringLiteral("1"), bundle, QStringLiteral("--db"), db});
+    QVERIFY2(r.code == 0, r.err.constData());
+    // 680 k samples and 85 frames: channels.csv and ir/ hold 11.5 MB; announced as 13 MB.
+    const QRegularExpression said(QStringLiteral("writing about (\\d+) MB to ") + QRegularExpression::escape(bundle) + QLatin1Char('\n'));
+    const QRegularExpressionMatch m = said.match(QString::fromUtf8(r.err));
+    QVERIFY2(m.hasMatch(), r.err.constData());
+    qint64 written = 0;
+    QDirIterator files(bundle, QDir::Files, QDirIterator::Subdirectories);
+    while (files.hasNext())
+        written += QFileInfo(files.next()).size();
+    QVERIFY2(m.captured(1).toDouble() > 0.7 * written / 1e6 && m.captured(1).toDouble() < 1.5 * written / 1e6,
+             qPrintable(QStringLiteral("announced %1 MB, wrote %2 bytes").arg(m.captured(1)).arg(written)));
+    const QString zip = path(QStringLiteral("seven.zip"));
+    r = run({QStringLiteral("export"), QStringLiteral("1"), zip, QStringLiteral("--db"), db});
+    QVERIFY2(r.code == 0 && r.err.contains("writing about ") && r.err.contains(" MB to " + zip.toUtf8() + " (before compression)\n"),
+             r.err.constData());
+    // The example session (1.5 h) is below 10 MB: nothing said.
+    r = run({QStringLiteral("export"), QStringLiteral("1"), path(QStringLiteral("small.zip")), QStringLiteral("--db"), m_db});
+    QVERIFY2(r.code == 0 && !r.err.contains("writing about"), r.err.constData());
+    // A model's tables of about 20 MB: announced, written.
+    const QString tables = path(QStringLiteral("tables-20mb"));
+    r = run({QStringLiteral("export-model"), m_ddModel, QStringLiteral("--target"), QStringLiteral("csv"), QStringLiteral("--positions"),
+             QStringLiteral("0:100:1"), QStringLiteral("--temperatures"), QStringLiteral("0:100:0.01"), QStringLiteral("--out"), tables});
+    QVERIFY2(r.code == 0 && r.err.contains("writing about ") && r.err.contains(" MB to " + tables.toUtf8()), r.err.constData());
+    // A PNG drawn whole in memory: 1000 x 1000 mm at 300 dpi is 558 MB to draw, refused before
+    // any work without --force.
+    const QString png = path(QStringLiteral("poster.png"));
+    r = run({QStringLiteral("plot"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--out"), png, QStringLiteral("--width-mm"),
+             QStringLiteral("1000"), QStringLiteral("--height-mm"), QStringLiteral("1000"), QStringLiteral("--dpi"), QStringLiteral("300")});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("plot: --out " + png.toUtf8() + ": 1000 x 1000 mm at 300 dpi is 140 million pixels, 558 MB to draw, more than 100 MB"),
+             r.err.constData());
+    QVERIFY(!QFileInfo::exists(png));
 }
 
 void TestCliRules::oneSessionArgumentParser()
