@@ -8,6 +8,8 @@
 #include "ModelExporterRegistry.h"
 
 #include <QCommandLineParser>
+#include <QFileInfo>
+#include <QDir>
 #include <QJsonArray>
 #include <QJsonObject>
 #include <QTextStream>
@@ -143,10 +145,14 @@ int ExportModelCommand::run(const QStringList &args)
         bytes += static_cast<qint64>(f.content.size());
     OutputTarget(dir, QStringLiteral("--out"), OutputTarget::Kind::Folder).announceSize(bytes, p.isSet(force));
     QStringList paths;
+    const bool existed = QFileInfo::exists(dir);
     try {
         paths = ModelExportWriter::write(result, dir);
     } catch (const std::runtime_error &e) {
-        throw std::runtime_error("export-model: " + std::string(e.what()));
+        // Each file is written whole (QSaveFile); a folder this run made is not left half-filled.
+        if (!existed)
+            QDir(dir).removeRecursively();
+        throw std::runtime_error(std::string(e.what()) + (existed ? "" : " (nothing was left)"));
     }
     QJsonArray files;
     for (int i = 0; i < paths.size(); ++i)

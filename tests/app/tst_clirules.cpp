@@ -13,6 +13,8 @@
 #include "../support/CliRunner.h"
 
 #include <QDir>
+#include <QScopeGuard>
+#include <QProcess>
 #include <QDirIterator>
 #include <QRegularExpression>
 #include <QFile>
@@ -67,6 +69,7 @@ private slots:
     void exportWritesWhatTheNameSays();
     void largeExportAnnouncedAndBounded();
     void largeOutputsAnnounced();
+    void exportModelOntoAFullDiskLeavesNothing();
     void oneSessionArgumentParser();
     void missingBundleNamedOnce();
     void runnerKeepsTheUserFoldersPrivate();
@@ -473,6 +476,27 @@ void TestCliRules::largeOutputsAnnounced()
     QVERIFY2(r.err.contains("plot: --out " + png.toUtf8() + ": 1000 x 1000 mm at 300 dpi is 140 million pixels, 558 MB to draw, more than 100 MB"),
              r.err.constData());
     QVERIFY(!QFileInfo::exists(png));
+}
+
+void TestCliRules::exportModelOntoAFullDiskLeavesNothing()
+{
+    // Tables of ~2 MB onto a 1 MB filesystem: the first files fit, a later one does not. Before,
+    // the folder was left with the files that fitted (each whole, the set not).
+    const QString mountPoint = path(QStringLiteral("tiny"));
+    QDir().mkpath(mountPoint);
+    QProcess mount;
+    mount.start(QStringLiteral("mount"), {QStringLiteral("-t"), QStringLiteral("tmpfs"), QStringLiteral("-o"), QStringLiteral("size=1m"),
+                                          QStringLiteral("tmpfs"), mountPoint});
+    if (!mount.waitForFinished(10000) || mount.exitStatus() != QProcess::NormalExit || mount.exitCode() != 0)
+        QSKIP("cannot mount a small tmpfs here (needs root and mount permission)");
+    const auto unmount = qScopeGuard([&] { QProcess::execute(QStringLiteral("umount"), {QStringLiteral("-l"), mountPoint}); });
+    const QString out = mountPoint + QStringLiteral("/tables");
+    const clirunner::Result r = run({QStringLiteral("export-model"), m_ddModel, QStringLiteral("--target"), QStringLiteral("csv"),
+                                     QStringLiteral("--positions"), QStringLiteral("0:100:1"), QStringLiteral("--temperatures"),
+                                     QStringLiteral("0:100:0.1"), QStringLiteral("--out"), out});
+    QCOMPARE(r.code, 1);
+    QCOMPARE(entries(mountPoint), QStringList());
+    QVERIFY2(r.err.contains("driftlab-cli export-model: cannot write " + out.toUtf8()) && r.err.contains("(nothing was left)"), r.err.constData());
 }
 
 void TestCliRules::oneSessionArgumentParser()
