@@ -33,24 +33,26 @@ double FitRequestCheck::sessionEnd_h(const SessionStore &store, qint64 session)
     return end_s / 3600.0;
 }
 
+void FitRequestCheck::checkRange(const SessionStore &store, qint64 session, const HourRange &r, const QString &option)
+{
+    if (r.all())
+        return;
+    const double end_h = sessionEnd_h(store, session);
+    if (r.from_h >= end_h || r.to_h <= 0.0)
+        bad(QStringLiteral("%1 %2 lies outside session %3, which covers hours 0 to %4").arg(option, rangeText(r)).arg(session).arg(end_h, 0, 'f', 2));
+}
+
 void FitRequestCheck::checkRanges(const SessionStore &store, qint64 session, const HourRange &train,
                                   const std::optional<HourRange> &holdout)
 {
     if (train.all() && !holdout)
         return;
-    const double end_h = sessionEnd_h(store, session);
-    const auto inside = [&](const HourRange &r, const char *option) {
-        if (r.from_h >= end_h || r.to_h <= 0.0)
-            bad(QStringLiteral("%1 %2 lies outside session %3, which covers hours 0 to %4")
-                    .arg(QLatin1String(option), rangeText(r))
-                    .arg(session)
-                    .arg(end_h, 0, 'f', 2));
-    };
     if (!train.all())
-        inside(train, "--train-range");
+        checkRange(store, session, train, QStringLiteral("--train-range"));
     if (!holdout)
         return;
-    inside(*holdout, "--holdout-range");
+    checkRange(store, session, *holdout, QStringLiteral("--holdout-range"));
+    const double end_h = sessionEnd_h(store, session);
     const double from = std::max(train.from_h, holdout->from_h), to = std::min(train.to_h, holdout->to_h);
     if (from < to)
         bad(QStringLiteral("--train-range %1 and --holdout-range %2 overlap (hours %3 to %4 would be fitted and held out): "

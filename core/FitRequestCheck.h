@@ -21,6 +21,8 @@ public:
     // --train-range and --holdout-range (either may be open-ended, all() = the whole session).
     static void checkRanges(const SessionStore &store, qint64 session, const HourRange &train,
                             const std::optional<HourRange> &holdout);
+    // One range option (`option` names it in the message) must overlap the session's hours.
+    static void checkRange(const SessionStore &store, qint64 session, const HourRange &range, const QString &option);
     // --target: a displacement (or unclassified) channel of the session, or "interferometer";
     // a temperature, position or feed channel, or no channel at all, is refused.
     static void checkTarget(const SessionStore &store, qint64 session, const QString &target);

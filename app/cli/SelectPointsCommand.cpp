@@ -3,6 +3,7 @@
 #include "AnalysisResultKind.h"
 #include "CliSupport.h"
 #include "CliOptions.h"
+#include "FitRequestCheck.h"
 #include "OutputTarget.h"
 #include "SessionArgument.h"
 #include "DataDrivenFit.h"
@@ -67,6 +68,11 @@ int SelectPointsCommand::run(const QStringList &args)
     SelectionResult r;
     try {
         const HourRange hours = p.isSet(range) ? HourRange::parse(p.value(range), QStringLiteral("--range")) : HourRange();
+        // The target and the range are checked as fit checks them, before any sample is read.
+        for (qint64 id : sessions) {
+            FitRequestCheck::checkTarget(store, id, p.value(target));
+            FitRequestCheck::checkRange(store, id, hours, QStringLiteral("--range"));
+        }
         CliSupport::progress(QStringLiteral("selecting sensitive points of session %1 for %2...").arg(session).arg(p.value(target)));
         r = DataDrivenFit(store).selectPoints(sessions, p.value(target), hours, kMin, kMax,
                                               p.value(channels).split(QLatin1Char(','), Qt::SkipEmptyParts));

@@ -2,6 +2,7 @@
 
 #include "CliSupport.h"
 #include "CliOptions.h"
+#include "FitRequestCheck.h"
 #include "OutputTarget.h"
 #include "SessionArgument.h"
 #include "DataDrivenFit.h"
@@ -58,6 +59,8 @@ int ValidateCommand::run(const QStringList &args)
     ValidationSet v;
     try {
         const HourRange hours = p.isSet(range) ? HourRange::parse(p.value(range), QStringLiteral("--range")) : HourRange();
+        for (qint64 id : sessions) // as fit checks its ranges, before any sample is read
+            FitRequestCheck::checkRange(store, id, hours, QStringLiteral("--range"));
         v = DataDrivenFit(store).validate(model, sessions, hours);
     } catch (const std::invalid_argument &e) {
         throw UsageError(QStringLiteral("%1: %2").arg(cmd, QString::fromUtf8(e.what())));

@@ -64,6 +64,7 @@ private slots:
     void existingOutputWithForce_data();
     void existingOutputWithForce();
     void plotWindowAfterTheSessionRefused();
+    void wrongTargetAndRangesRefusedAlike();
     void rtlRunsAfterTheSessionRefused();
     void misspeltBatchOptionFoundBeforeTheImport();
     void exportWritesWhatTheNameSays();
@@ -358,6 +359,63 @@ void TestCliRules::plotWindowAfterTheSessionRefused()
     r = run({QStringLiteral("plot"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--from"), QStringLiteral("1:00:00"),
              QStringLiteral("--out"), out});
     QVERIFY2(r.code == 0 && QFileInfo(out).size() > 0, r.err.constData());
+}
+
+void TestCliRules::wrongTargetAndRangesRefusedAlike()
+{
+    // Every command that takes a target or hours of a session answers the same mistake the same
+    // way: exit 2 before any work, one kind of message, nothing written. The example session
+    // covers hours 0 to 1.5; T_nut is a temperature, X the axis position, S1 the displacement.
+    const QString json = path(QStringLiteral("never.json"));
+    const QStringList fitMlr = {QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"),
+                                QStringLiteral("mlr"), QStringLiteral("--out"), json};
+    const QStringList fitSynthetic = {QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"),
+                                      QStringLiteral("synthetic"), QStringLiteral("--out"), json};
+    const QStringList select = {QStringLiteral("select-points"), QStringLiteral("1"), QStringLiteral("--db"), m_db,
+                                QStringLiteral("--json"), json};
+    const QStringList validate = {QStringLiteral("validate"), m_ddModel, QStringLiteral("1"), QStringLiteral("--db"), m_db,
+                                  QStringLiteral("--json"), json};
+    const QString targetText = QStringLiteral(": a target is the thermal displacement the model predicts, a displacement channel (here: S1)");
+    struct Mistake {
+        QStringList args;
+        QString expected;
+    };
+    const QVector<Mistake> mistakes = {
+        // a target that is not a displacement
+        {fitMlr + QStringList{QStringLiteral("--target"), QStringLiteral("T_nut")}, QStringLiteral("fit: --target 'T_nut' is a temperature channel of session 1") + targetText},
+        {fitMlr + QStringList{QStringLiteral("--target"), QStringLiteral("X")}, QStringLiteral("fit: --target 'X' is a position channel of session 1") + targetText},
+        {fitSynthetic + QStringList{QStringLiteral("--target"), QStringLiteral("X")}, QStringLiteral("fit: --target 'X' is a position channel of session 1") + targetText},
+        {select + QStringList{QStringLiteral("--target"), QStringLiteral("T_nut")},
+         QStringLiteral("select-points: --target 'T_nut' is a temperature channel of session 1") + targetText},
+        {select + QStringList{QStringLiteral("--target"), QStringLiteral("X")}, QStringLiteral("select-points: --target 'X' is a position channel of session 1") + targetText},
+        {select + QStringList{QStringLiteral("--target"), QStringLiteral("Q9")}, QStringLiteral("select-points: --target 'Q9' is not a channel of session 1") + targetText},
+        // hours outside the session
+        {fitMlr + QStringList{QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--train-range"), QStringLiteral("5:9")},
+         QStringLiteral("fit: --train-range 5:9 lies outside session 1, which covers hours 0 to 1.50")},
+        {fitMlr + QStringList{QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--holdout-range"), QStringLiteral("5:9")},
+         QStringLiteral("fit: --holdout-range 5:9 lies outside session 1, which covers hours 0 to 1.50")},
+        {select + QStringList{QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--range"), QStringLiteral("5:9")},
+         QStringLiteral("select-points: --range 5:9 lies outside session 1, which covers hours 0 to 1.50")},
+        {validate + QStringList{QStringLiteral("--range"), QStringLiteral("5:9")},
+         QStringLiteral("validate: --range 5:9 lies outside session 1, which covers hours 0 to 1.50")},
+        // overlapping ranges (fit is the one command that takes two)
+        {fitMlr + QStringList{QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--train-range"), QStringLiteral("0:1"),
+                              QStringLiteral("--holdout-range"), QStringLiteral("0.5:1.5")},
+         QStringLiteral("fit: --train-range 0:1 and --holdout-range 0.5:1.5 overlap (hours 0.5 to 1 would be fitted and held out)")},
+        // a range the wrong way round
+        {select + QStringList{QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--range"), QStringLiteral("1:0.5")},
+         QStringLiteral("select-points: --range: expected H:H with the first below the second, got '1:0.5'")},
+        {validate + QStringList{QStringLiteral("--range"), QStringLiteral("1:0.5")},
+         QStringLiteral("validate: --range: expected H:H with the first below the second, got '1:0.5'")},
+    };
+    for (const Mistake &m : mistakes) {
+        const clirunner::Result r = run(m.args, 60000);
+        QVERIFY2(r.code == 2, qPrintable(QStringLiteral("%1: exit %2: %3").arg(m.args.join(QLatin1Char(' '))).arg(r.code).arg(QString::fromUtf8(r.err))));
+        QVERIFY2(QString::fromUtf8(r.err).contains(QStringLiteral("driftlab-cli: ") + m.expected),
+                 qPrintable(QStringLiteral("%1: %2").arg(m.args.join(QLatin1Char(' ')), QString::fromUtf8(r.err))));
+        QVERIFY2(!r.err.contains("selecting") && !r.err.contains("reading session"), r.err.constData()); // no work began
+        QVERIFY(!QFileInfo::exists(json));
+    }
 }
 
 void TestCliRules::rtlRunsAfterTheSessionRefused()
