@@ -4,8 +4,10 @@
 // the same kind of message naming the path ("folder ... does not exist", "... already
 // exists"), and leaves nothing behind; --force replaces the output. Then the input errors that
 // must be refused before any work: a plot window after the session, laser runs after it, a
-// misspelt batch option, an unknown bundle extension, an oversized export; and the one session
-// argument parser (id, range, UUID, the same text everywhere).
+// misspelt batch option, an unknown bundle extension, an oversized export, a target that is not
+// a displacement and hours outside the session or overlapping (fit, select-points, validate);
+// large outputs announced with one text; outputs on a full disk leave nothing; and the one
+// session argument parser (id, range, UUID, the same text everywhere).
 //
 // DRIFTLAB_CLI_UNDER_TEST (environment) runs the sweep against another driftlab-cli, e.g. the
 // one before this rule, to see which cases it failed.
