@@ -1,5 +1,6 @@
 #include "DataDrivenPredictor.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -67,8 +68,21 @@ std::vector<double> DataDrivenPredictor::lagSeries(const std::vector<double> &t,
                                                   double tau_s)
 {
     std::vector<double> x(u.size());
-    for (std::size_t k = 0; k < u.size(); ++k)
-        x[k] = k == 0 ? u[0] : lagStep(x[k - 1], u[k], t[k] - t[k - 1], tau_s);
+    if (tau_s <= 0 || u.empty()) {
+        std::copy(u.begin(), u.end(), x.begin());
+        return x;
+    }
+    // lagStep's update with its factor reused while the step repeats (a regular grid).
+    double dt = std::numeric_limits<double>::quiet_NaN(), gain = 0.0;
+    x[0] = u[0];
+    for (std::size_t k = 1; k < u.size(); ++k) {
+        const double step = t[k] - t[k - 1];
+        if (step != dt) {
+            dt = step;
+            gain = 1.0 - std::exp(-dt / tau_s);
+        }
+        x[k] = x[k - 1] + gain * (u[k] - x[k - 1]);
+    }
     return x;
 }
 

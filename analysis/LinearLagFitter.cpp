@@ -1,5 +1,6 @@
 #include "LinearLagFitter.h"
 
+#include "BlockGram.h"
 #include "DataDrivenPredictor.h"
 #include "NonlinearUncertainty.h"
 
@@ -39,40 +40,7 @@ std::vector<double> held(const std::vector<double> &v)
     return out;
 }
 
-struct Sums {
-    double n = 0.0;
-    VectorXd s;
-    MatrixXd S;
-    double sy = 0.0;
-    VectorXd sxy;
-};
-
-Sums sums(const MatrixXd &X, const VectorXd &y, Index begin, Index end)
-{
-    Sums r;
-    const Index p = X.cols();
-    r.n = static_cast<double>(end - begin);
-    const auto Xb = X.middleRows(begin, end - begin);
-    const auto yb = y.segment(begin, end - begin);
-    r.s = Xb.colwise().sum().transpose();
-    r.S = MatrixXd::Zero(p, p);
-    r.S.selfadjointView<Eigen::Lower>().rankUpdate(Xb.transpose());
-    r.S = r.S.selfadjointView<Eigen::Lower>();
-    r.sy = yb.sum();
-    r.sxy = Xb.transpose() * yb;
-    return r;
-}
-
-Sums minus(const Sums &a, const Sums &b)
-{
-    Sums r;
-    r.n = a.n - b.n;
-    r.s = a.s - b.s;
-    r.S = a.S - b.S;
-    r.sy = a.sy - b.sy;
-    r.sxy = a.sxy - b.sxy;
-    return r;
-}
+using Sums = DesignSums;
 
 struct Solution {
     VectorXd c;          // coefficients on the raw features
@@ -149,6 +117,32 @@ std::vector<TimeBlockedFold> LinearLagFitter::folds(const std::vector<std::size_
         out.push_back(f);
     }
     return out;
+}
+
+double LinearLagFitter::nestedCv(const std::vector<std::vector<double>> &candidateFoldSse,
+                                 const std::vector<double> &foldLength, std::vector<double> &foldRmse)
+{
+    foldRmse.clear();
+    double sse = 0.0, count = 0.0;
+    for (std::size_t fi = 0; fi < foldLength.size(); ++fi) {
+        std::size_t pick = 0;
+        double lowest = std::numeric_limits<double>::infinity();
+        for (std::size_t ci = 0; ci < candidateFoldSse.size(); ++ci) {
+            double other = 0.0;
+            for (std::size_t fj = 0; fj < foldLength.size(); ++fj)
+                if (fj != fi)
+                    other += candidateFoldSse[ci][fj];
+            if (other < lowest) {
+                lowest = other;
+                pick = ci;
+            }
+        }
+        const double e = candidateFoldSse.empty() ? std::numeric_limits<double>::quiet_NaN() : candidateFoldSse[pick][fi];
+        foldRmse.push_back(std::sqrt(e / foldLength[fi]));
+        sse += e;
+        count += foldLength[fi];
+    }
+    return std::sqrt(sse / count);
 }
 
 LinearLagFit LinearLagFitter::fit(const SignalTable &table, const LinearLagOptions &o,
@@ -388,26 +382,62 @@ LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const L
             throw std::invalid_argument(o.kind + ": penalties must be >= 0");
 
     auto design = [&](const Structure &s) {
-        std::vector<VectorXd> cols;
+        const Index perLag = s.components == 0 ? nT : s.components;
+        const Index p = static_cast<Index>(s.temperatureLags.size()) * perLag + 2 * static_cast<Index>(s.driveLags.size());
+        MatrixXd X(n, p);
+        Index j = 0;
         for (double tau : s.temperatureLags) {
             const MatrixXd &L = laggedZ(s.reference, tau);
-            if (s.components == 0) {
-                for (Index i = 0; i < nT; ++i)
-                    cols.push_back(L.col(i));
-            } else {
-                const MatrixXd P = L * prepared[s.reference].W.topRows(s.components).transpose();
-                for (Index k = 0; k < P.cols(); ++k)
-                    cols.push_back(P.col(k));
-            }
+            if (s.components == 0)
+                X.middleCols(j, nT) = L;
+            else
+                X.middleCols(j, perLag).noalias() = L * prepared[s.reference].W.topRows(s.components).transpose();
+            j += perLag;
         }
         for (int power : {1, 2})
             for (double tau : s.driveLags)
-                cols.push_back(driveFeature(power, tau));
-        MatrixXd X(n, static_cast<Index>(cols.size()));
-        for (std::size_t j = 0; j < cols.size(); ++j)
-            X.col(static_cast<Index>(j)) = cols[j];
+                X.col(j++) = driveFeature(power, tau);
         return X;
     };
+
+    // The same design as blocks for BlockGram: lagged temperatures (projected on the components)
+    // and a selection of the drive features, which are columns of one matrix.
+    MatrixXd driveMatrix;
+    std::map<std::pair<int, double>, Index> driveColumn;
+    if (hasDrive) {
+        std::set<double> taus;
+        for (const std::vector<double> &bank : o.driveLags)
+            taus.insert(bank.begin(), bank.end());
+        driveMatrix.resize(n, 2 * static_cast<Index>(taus.size()));
+        Index j = 0;
+        for (int power : {1, 2})
+            for (double tau : taus) {
+                driveMatrix.col(j) = driveFeature(power, tau);
+                driveColumn[{power, tau}] = j++;
+            }
+    }
+    auto designBlocks = [&](const Structure &s) {
+        std::vector<BlockGram::Block> blocks;
+        for (double tau : s.temperatureLags) {
+            BlockGram::Block b;
+            b.matrix = &laggedZ(s.reference, tau);
+            if (s.components > 0)
+                b.projection = prepared[s.reference].W.topRows(s.components).transpose();
+            blocks.push_back(std::move(b));
+        }
+        if (!s.driveLags.empty()) {
+            BlockGram::Block b;
+            b.matrix = &driveMatrix;
+            b.projection = MatrixXd::Zero(driveMatrix.cols(), 2 * static_cast<Index>(s.driveLags.size()));
+            Index j = 0;
+            for (int power : {1, 2})
+                for (double tau : s.driveLags)
+                    b.projection(driveColumn.at({power, tau}), j++) = 1.0;
+            blocks.push_back(std::move(b));
+        }
+        return blocks;
+    };
+    BlockGram gram(y);
 
     // Scales of the features in the ridge penalty: 0 = the feature's own standard deviation.
     auto priorScale = [&](const Structure &s, Index columns) {
@@ -424,6 +454,10 @@ LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const L
     const std::vector<TimeBlockedFold> folds =
         LinearLagFitter::folds(rowCounts, times, o.folds, fit.gap_s, o.maxRunFolds, fit.foldRule);
     fit.folds = static_cast<int>(folds.size());
+    bool partition = !folds.empty() && folds.front().begin == 0 && folds.back().end == rows.size();
+    for (std::size_t fi = 0; fi < folds.size(); ++fi)
+        partition = partition && folds[fi].excludeBegin == folds[fi].begin && folds[fi].excludeEnd == folds[fi].end &&
+                    (fi == 0 || folds[fi].begin == folds[fi - 1].end);
 
     // The training mean on the same folds.
     {
@@ -450,14 +484,32 @@ LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const L
     CvCandidate best;
     best.cvRmse = std::numeric_limits<double>::infinity();
     Structure bestStructure;
+    // Every candidate's squared error per fold, for the nested estimate below.
+    std::vector<std::vector<double>> candidateFoldSse;
     for (std::size_t si = 0; si < structures.size(); ++si) {
         const Structure &s = structures[si];
-        const MatrixXd X = design(s);
-        const VectorXd prior = priorScale(s, X.cols());
-        const Sums total = sums(X, y, 0, n);
-        std::vector<Sums> train;
+        const std::vector<BlockGram::Block> blocks = designBlocks(s);
+        Index columns = 0;
+        for (const BlockGram::Block &b : blocks)
+            columns += b.projection.size() == 0 ? b.matrix->cols() : b.projection.cols();
+        const VectorXd prior = priorScale(s, columns);
+        // Leave-runs-out folds partition the rows: each fold's sums give both its training sums
+        // (total minus it) and its squared error. Time-blocked folds leave a gap: the training
+        // sums are the total minus the excluded range, the error from the fold's own sums.
+        std::vector<Sums> train, held;
         for (const TimeBlockedFold &f : folds)
-            train.push_back(minus(total, sums(X, y, static_cast<Index>(f.excludeBegin), static_cast<Index>(f.excludeEnd))));
+            held.push_back(gram.sums(blocks, static_cast<Index>(f.begin), static_cast<Index>(f.end)));
+        if (partition) {
+            Sums total = held.front();
+            for (std::size_t fi = 1; fi < held.size(); ++fi)
+                total = total + held[fi];
+            for (const Sums &h : held)
+                train.push_back(total - h);
+        } else {
+            const Sums total = gram.sums(blocks, 0, n);
+            for (const TimeBlockedFold &f : folds)
+                train.push_back(total - gram.sums(blocks, static_cast<Index>(f.excludeBegin), static_cast<Index>(f.excludeEnd)));
+        }
         CvCandidate structureBest;
         structureBest.cvRmse = std::numeric_limits<double>::infinity();
         for (double lambda : lambdas) {
@@ -467,22 +519,24 @@ LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const L
             c.driveLags_s = s.driveLags;
             c.reference = o.references[s.reference];
             c.lambda = lambda;
-            c.features = static_cast<std::size_t>(X.cols());
+            c.features = static_cast<std::size_t>(columns);
             double sse = 0.0, count = 0.0;
             for (std::size_t fi = 0; fi < folds.size(); ++fi) {
                 const TimeBlockedFold &f = folds[fi];
                 const Solution sol = solve(train[fi], lambda, prior);
-                const Index b = static_cast<Index>(f.begin), len = static_cast<Index>(f.end - f.begin);
-                const VectorXd e = y.segment(b, len) - (X.middleRows(b, len) * sol.c).array().matrix() -
-                                   VectorXd::Constant(len, sol.intercept);
-                const double foldSse = e.squaredNorm();
-                c.foldRmse.push_back(std::sqrt(foldSse / static_cast<double>(len)));
+                const double len = static_cast<double>(f.end - f.begin);
+                const double foldSse = held[fi].squaredError(sol.c, sol.intercept);
+                c.foldRmse.push_back(std::sqrt(foldSse / len));
                 sse += foldSse;
                 count += static_cast<double>(len);
             }
             c.cvRmse = std::sqrt(sse / count);
             if (!std::isfinite(c.cvRmse))
                 continue;
+            std::vector<double> foldSse;
+            for (std::size_t fi = 0; fi < folds.size(); ++fi)
+                foldSse.push_back(c.foldRmse[fi] * c.foldRmse[fi] * static_cast<double>(folds[fi].end - folds[fi].begin));
+            candidateFoldSse.push_back(std::move(foldSse));
             if (c.cvRmse < structureBest.cvRmse)
                 structureBest = c;
         }
@@ -499,13 +553,22 @@ LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const L
     if (!std::isfinite(best.cvRmse))
         throw std::invalid_argument(o.kind + ": no candidate gave a finite cross-validation error");
     fit.chosen = best;
+    // The family's own search scored honestly: each fold is predicted by the candidate that the
+    // other folds choose (lowest squared error over them), so a larger search is not rewarded
+    // for the luck of its best candidate on these folds.
+    {
+        std::vector<double> lengths;
+        for (const TimeBlockedFold &f : folds)
+            lengths.push_back(static_cast<double>(f.end - f.begin));
+        fit.nestedCvRmse = nestedCv(candidateFoldSse, lengths, fit.nestedFoldRmse);
+    }
     const Prepared &chosenInputs = prepared[bestStructure.reference];
     fit.componentVariance = chosenInputs.componentVariance;
     const MatrixXd &W = chosenInputs.W;
 
     // Final fit on every training sample.
     const MatrixXd X = design(bestStructure);
-    const Sums total = sums(X, y, 0, n);
+    const Sums total = Sums::of(X, y, 0, n);
     const Solution sol = solve(total, best.lambda, priorScale(bestStructure, X.cols()));
     const VectorXd residual = y - X * sol.c - VectorXd::Constant(n, sol.intercept);
     // Degrees of freedom and the sandwich covariance of the standardised coefficients.

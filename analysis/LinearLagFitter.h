@@ -82,6 +82,11 @@ struct LinearLagFit {
     DataDrivenModel model;
     CvCandidate chosen;
     std::vector<CvCandidate> structures; // every structure searched, with its best penalty
+    // Nested (selection-honest) CV: fold f scored with the candidate (structure, reference,
+    // penalty) of lowest error on the other folds. chosen.cvRmse is optimistic by the search;
+    // this is not, so families with searches of different size compare fairly.
+    double nestedCvRmse = 0.0;
+    std::vector<double> nestedFoldRmse;
     ErrorMetrics training;
     std::size_t trainingRows = 0;
     int folds = 0;
@@ -109,6 +114,11 @@ public:
                             const std::function<bool(double)> &progress = {});
     // The folds over the stacked training rows of runs with rowCounts rows each (times: the
     // rows' times, used with one run only). Sets rule to the fold rule's name.
+    // Nested CV over candidates' squared errors per fold (candidateFoldSse[c][f]): fold f is
+    // scored with the candidate of lowest squared error summed over the other folds (ties: the
+    // first); returns the pooled RMSE and sets foldRmse.
+    static double nestedCv(const std::vector<std::vector<double>> &candidateFoldSse, const std::vector<double> &foldLength,
+                           std::vector<double> &foldRmse);
     static std::vector<TimeBlockedFold> folds(const std::vector<std::size_t> &rowCounts, const std::vector<double> &times,
                                               int timeFolds, double gap_s, int maxRunFolds, std::string &rule);
 };

@@ -13,6 +13,60 @@ const char *SelectionRuling::rule()
            "fitted parameters (ties: lower CV RMSE); held-out data never enters the choice";
 }
 
+const char *SelectionRuling::referencesFirstRule()
+{
+    return "paired one-standard-error rule on nested cross-validation, plain references first: every family is scored "
+           "by nested CV (each fold predicted with the hyperparameters the other folds choose); a family is as good as "
+           "the lowest when its CV RMSE is at most the lowest plus the standard error of their per-fold RMSE "
+           "differences (sd / sqrt(folds); the lowest's own standard error when the folds differ); among those a plain "
+           "reference (training mean, lagridge) is chosen first, else the fewest fitted parameters (ties: lower CV "
+           "RMSE); held-out data never enters the choice";
+}
+
+double ModelSelection::pairedStandardError(const std::vector<double> &a, const std::vector<double> &b)
+{
+    if (a.size() != b.size() || a.size() < 2)
+        return std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> d(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i)
+        d[i] = a[i] - b[i];
+    return standardError(d);
+}
+
+SelectionRuling ModelSelection::referencesFirst(const std::vector<FamilyScore> &scores)
+{
+    SelectionRuling r = oneStandardError(scores); // the lowest, its SE and threshold
+    const FamilyScore &low = scores[r.lowest];
+    r.pairedStandardError.assign(scores.size(), std::numeric_limits<double>::quiet_NaN());
+    std::vector<char> within(scores.size(), 0);
+    for (std::size_t i = 0; i < scores.size(); ++i) {
+        const FamilyScore &s = scores[i];
+        if (!s.fitted || !std::isfinite(s.cvRmse))
+            continue;
+        double se = i == r.lowest ? 0.0 : pairedStandardError(s.foldRmse, low.foldRmse);
+        if (!std::isfinite(se))
+            se = r.standardError;
+        r.pairedStandardError[i] = se;
+        within[i] = s.cvRmse <= low.cvRmse + se;
+    }
+    bool reference = false;
+    r.chosen = r.lowest;
+    for (std::size_t i = 0; i < scores.size(); ++i)
+        if (within[i] && scores[i].plainReference && (!reference || scores[i].cvRmse < scores[r.chosen].cvRmse)) {
+            r.chosen = i;
+            reference = true;
+        }
+    if (!reference)
+        for (std::size_t i = 0; i < scores.size(); ++i) {
+            if (!within[i])
+                continue;
+            const FamilyScore &s = scores[i], &c = scores[r.chosen];
+            if (s.parameters < c.parameters || (s.parameters == c.parameters && s.cvRmse < c.cvRmse))
+                r.chosen = i;
+        }
+    return r;
+}
+
 double ModelSelection::standardError(const std::vector<double> &f)
 {
     if (f.size() < 2)

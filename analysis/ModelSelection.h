@@ -17,6 +17,7 @@ struct FamilyScore {
     std::vector<double> foldRmse;
     int parameters = 0; // fitted coefficients (features + intercept; nonlinear parameters)
     bool fitted = true; // false: the family could not be fitted (left out)
+    bool plainReference = false; // a plain reference (training mean, lagridge): preferred when as good
 };
 
 struct SelectionRuling {
@@ -24,7 +25,11 @@ struct SelectionRuling {
     std::size_t lowest = 0;  // the family with the lowest CV RMSE
     double standardError = 0.0;
     double threshold = 0.0;  // lowest CV RMSE + standardError
+    // referencesFirst: per family the standard error of its fold RMSEs minus the lowest
+    // family's (paired over the same folds; the lowest's own SE when the folds differ).
+    std::vector<double> pairedStandardError;
     static const char *rule();
+    static const char *referencesFirstRule();
 };
 
 class ModelSelection {
@@ -32,6 +37,14 @@ public:
     // Throws std::invalid_argument when no family was fitted.
     static SelectionRuling oneStandardError(const std::vector<FamilyScore> &scores);
     static double standardError(const std::vector<double> &foldRmse);
+    // The rule `fit --model auto` uses (scores: nested CV RMSE per family and fold): a family is
+    // as good as the lowest when its CV RMSE is within one paired standard error of it (the sd of
+    // the per-fold differences / sqrt(folds): the noise of that comparison, folds being shared);
+    // among those a plain reference is chosen first (the lower CV of them), else the fewest
+    // parameters (ties: lower CV RMSE). A family beyond the references must beat the better
+    // reference by more than the CV noise. Throws std::invalid_argument when none was fitted.
+    static SelectionRuling referencesFirst(const std::vector<FamilyScore> &scores);
+    static double pairedStandardError(const std::vector<double> &a, const std::vector<double> &b);
 };
 
 } // namespace driftlab

@@ -80,9 +80,9 @@ int main(int argc, char **argv)
             const DataDrivenFitResult r = fit.fit(q);
             std::printf("%s, session %lld, train %s h, held out %s h (auto %.1f s)\n", qPrintable(target),
                         static_cast<long long>(q.session), qPrintable(trainRange), qPrintable(holdoutRange), seconds(t0));
-            std::printf("  %-9s %9s %9s %9s %7s\n", "family", "CV RMSE", "held RMSE", "held MAE", "params");
+            std::printf("  %-9s %9s %9s %9s %9s %7s\n", "family", "CV RMSE", "nested CV", "held RMSE", "held MAE", "params");
             for (const FamilyComparison &c : r.comparison)
-                std::printf("%s %-9s %9.3f %9.3f %9.3f %7d%s\n", c.chosen ? "*" : " ", qPrintable(c.model), c.cvRmse,
+                std::printf("%s %-9s %9.3f %9.3f %9.3f %9.3f %7d%s\n", c.chosen ? "*" : " ", qPrintable(c.model), c.cvRmse, c.nestedCvRmse,
                             c.holdout ? c.holdout->rmse : NAN, c.holdout ? c.holdout->mae : NAN, c.parameters,
                             c.error.isEmpty() ? "" : qPrintable(QStringLiteral("  (%1)").arg(c.error)));
             return 0;
@@ -129,6 +129,9 @@ int main(int argc, char **argv)
                     autoN += static_cast<double>(c.holdout->n);
                 }
             }
+            std::printf("\n    nested CV (+- paired SE):");
+            for (const FamilyComparison &c : r.comparison)
+                std::printf("  %s %.3f+-%.3f", qPrintable(c.model), c.nestedCvRmse, c.pairedStandardError);
             std::printf("\n");
             ++choices[chosen];
             const double a = rmse[chosen];
@@ -139,7 +142,11 @@ int main(int argc, char **argv)
         std::printf("  pooled held-out RMSE:");
         for (const auto &e : sse)
             std::printf("  %s %.3f", qPrintable(e.first), std::sqrt(e.second / count[e.first]));
-        std::printf("  | auto %.3f\n  auto chose:", std::sqrt(autoSse / autoN));
+        const double pooledAuto = std::sqrt(autoSse / autoN);
+        const double pooledRef = std::min(std::sqrt(sse[QStringLiteral("mean")] / count[QStringLiteral("mean")]),
+                                          std::sqrt(sse[QStringLiteral("lagridge")] / count[QStringLiteral("lagridge")]));
+        std::printf("  | auto %.3f (%s the better reference, %.3f)\n  auto chose:", pooledAuto,
+                    pooledAuto <= pooledRef ? "not worse than" : "WORSE than", pooledRef);
         for (const auto &e : choices)
             std::printf(" %s x%d", qPrintable(e.first), e.second);
         std::printf("\n  auto loses to the training mean in %d of %d, to lagridge in %d of %d; beats both in %d\n",

@@ -19,6 +19,11 @@ QStringList DataDrivenAuto::families(bool withDrive)
     return f;
 }
 
+bool DataDrivenAuto::isPlainReference(const QString &family)
+{
+    return family == QLatin1String("mean") || family == QLatin1String("lagridge");
+}
+
 DataDrivenFitResult DataDrivenAuto::fit(const DataDrivenFitRequest &q, const DataDrivenFit::Progress &progress) const
 {
     const auto started = std::chrono::steady_clock::now();
@@ -54,6 +59,7 @@ DataDrivenFitResult DataDrivenAuto::fit(const DataDrivenFitRequest &q, const Dat
         row.model = names[i];
         FamilyScore score;
         score.family = names[i].toStdString();
+        score.plainReference = row.plainReference = isPlainReference(names[i]);
         const double lo = static_cast<double>(i) / static_cast<double>(names.size());
         const double hi = static_cast<double>(i + 1) / static_cast<double>(names.size());
         try {
@@ -63,15 +69,16 @@ DataDrivenFitResult DataDrivenAuto::fit(const DataDrivenFitRequest &q, const Dat
             const DataDrivenFitResult &f = results[static_cast<std::size_t>(i)];
             row.cvRmse = f.cvRmse;
             row.cvStandardError = ModelSelection::standardError(f.foldRmse);
+            row.nestedCvRmse = f.nestedCvRmse;
             row.parameters = f.parameters;
             row.reference = f.model.usesRises() ? QString::fromStdString(f.model.reference.label())
                                                 : QStringLiteral("absolute");
             if (f.holdout)
                 row.holdout = f.holdout->metrics;
-            score.cvRmse = f.cvRmse;
-            score.foldRmse = f.foldRmse;
+            score.cvRmse = f.nestedCvRmse;
+            score.foldRmse = f.nestedFoldRmse;
             score.parameters = f.parameters;
-            score.fitted = std::isfinite(f.cvRmse);
+            score.fitted = std::isfinite(f.nestedCvRmse);
         } catch (const std::invalid_argument &e) {
             row.error = QString::fromUtf8(e.what());
             errors << QStringLiteral("%1: %2").arg(names[i], row.error);
@@ -82,12 +89,14 @@ DataDrivenFitResult DataDrivenAuto::fit(const DataDrivenFitRequest &q, const Dat
     }
     SelectionRuling ruling;
     try {
-        ruling = ModelSelection::oneStandardError(scores);
+        ruling = ModelSelection::referencesFirst(scores);
     } catch (const std::invalid_argument &) {
         throw std::invalid_argument(QStringLiteral("--model auto: no family could be fitted (%1)")
                                         .arg(errors.join(QStringLiteral("; ")))
                                         .toStdString());
     }
+    for (std::size_t i = 0; i < table.size(); ++i)
+        table[i].pairedStandardError = ruling.pairedStandardError[i];
     table[ruling.chosen].chosen = true;
     DataDrivenFitResult result = results[ruling.chosen];
     result.comparison = table;

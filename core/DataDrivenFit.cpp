@@ -130,6 +130,10 @@ QJsonObject DataDrivenFit::comparisonJson(const std::vector<FamilyComparison> &c
                         {QStringLiteral("cross_validation_rmse_um"), std::isfinite(c.cvRmse) ? QJsonValue(c.cvRmse) : QJsonValue()},
                         {QStringLiteral("cv_standard_error_um"),
                          std::isfinite(c.cvStandardError) ? QJsonValue(c.cvStandardError) : QJsonValue()},
+                        {QStringLiteral("nested_cv_rmse_um"), std::isfinite(c.nestedCvRmse) ? QJsonValue(c.nestedCvRmse) : QJsonValue()},
+                        {QStringLiteral("paired_standard_error_um"),
+                         std::isfinite(c.pairedStandardError) ? QJsonValue(c.pairedStandardError) : QJsonValue()},
+                        {QStringLiteral("plain_reference"), c.plainReference},
                         {QStringLiteral("parameters"), c.parameters},
                         {QStringLiteral("reference"), c.reference},
                         {QStringLiteral("chosen"), c.chosen}};
@@ -141,7 +145,7 @@ QJsonObject DataDrivenFit::comparisonJson(const std::vector<FamilyComparison> &c
             chosen = c.model;
         rows.append(row);
     }
-    return QJsonObject{{QStringLiteral("rule"), QString::fromLatin1(SelectionRuling::rule())},
+    return QJsonObject{{QStringLiteral("rule"), QString::fromLatin1(SelectionRuling::referencesFirstRule())},
                        {QStringLiteral("chosen"), chosen},
                        {QStringLiteral("families"), rows}};
 }
@@ -383,6 +387,8 @@ DataDrivenFitResult DataDrivenFit::fitFamily(const DataDrivenFitRequest &q, cons
             sse += e;
         }
         result.cvRmse = std::sqrt(sse / static_cast<double>(y.size()));
+        result.nestedCvRmse = result.cvRmse;
+        result.nestedFoldRmse = result.foldRmse;
         result.foldRule = QString::fromStdString(rule);
         result.parameters = 1;
         const SignalColumn &t = tables.front().column(q.target.toStdString());
@@ -421,6 +427,8 @@ DataDrivenFitResult DataDrivenFit::fitFamily(const DataDrivenFitRequest &q, cons
         result.model = f.model;
         result.cvRmse = f.chosen.cvRmse;
         result.foldRmse = f.chosen.foldRmse;
+        result.nestedCvRmse = f.nestedCvRmse;
+        result.nestedFoldRmse = f.nestedFoldRmse;
         result.foldRule = QString::fromStdString(f.foldRule);
         result.parameters = linearParameters(f.chosen);
         hyper = QJsonObject{{QStringLiteral("folds"), f.folds},
@@ -428,7 +436,9 @@ DataDrivenFitResult DataDrivenFit::fitFamily(const DataDrivenFitRequest &q, cons
                             {QStringLiteral("gap_s"), f.gap_s},
                             {QStringLiteral("scale_floor"), o.scaleFloor},
                             {QStringLiteral("reference"), QString::fromStdString(f.chosen.reference.label())},
-                            {QStringLiteral("chosen"), candidateJson(f.chosen)}};
+                            {QStringLiteral("chosen"), candidateJson(f.chosen)},
+                            {QStringLiteral("nested_cv_rmse"), f.nestedCvRmse},
+                            {QStringLiteral("nested_fold_rmse"), DataDrivenModelJson::numbers(f.nestedFoldRmse)}};
         if (q.model == QLatin1String("dynamic") || q.model == QLatin1String("lagridge") || o.references.size() > 1) {
             QJsonArray searched;
             for (const CvCandidate &c : f.structures)
@@ -465,6 +475,8 @@ DataDrivenFitResult DataDrivenFit::fitFamily(const DataDrivenFitRequest &q, cons
         result.model = f.model;
         result.cvRmse = f.cvRmse;
         result.foldRmse = f.foldRmse;
+        result.nestedCvRmse = f.cvRmse; // every fold refits every parameter: nothing is chosen outside it
+        result.nestedFoldRmse = f.foldRmse;
         result.foldRule = QStringLiteral("time-blocked");
         result.parameters = static_cast<int>(f.values.size());
         hyper = QJsonObject{{QStringLiteral("folds"), q.folds},

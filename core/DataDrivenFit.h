@@ -90,6 +90,11 @@ struct FamilyComparison {
     QString model;
     double cvRmse = std::numeric_limits<double>::quiet_NaN();
     double cvStandardError = std::numeric_limits<double>::quiet_NaN();
+    // Nested CV (each fold scored by the hyperparameters the other folds choose): what auto's
+    // rule compares; equal to cvRmse for families without a search (mean, exp).
+    double nestedCvRmse = std::numeric_limits<double>::quiet_NaN();
+    double pairedStandardError = std::numeric_limits<double>::quiet_NaN(); // against the lowest
+    bool plainReference = false; // mean, lagridge
     int parameters = 0;
     QString reference;
     std::optional<ErrorMetrics> holdout; // shown, never used to choose
@@ -106,6 +111,9 @@ struct DataDrivenFitResult {
     std::vector<ValidationSeries> holdoutSessions;
     double cvRmse = std::numeric_limits<double>::quiet_NaN();
     std::vector<double> foldRmse;
+    // Nested CV of the family's search (LinearLagFit::nestedCvRmse); = cvRmse without a search.
+    double nestedCvRmse = std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> nestedFoldRmse;
     QString foldRule;                       // time-blocked | leave-runs-out
     int parameters = 0;
     std::vector<FamilyComparison> comparison; // auto only

@@ -72,6 +72,8 @@ private slots:
     void predictorReadsRises();
     void leaveRunsOutFolds();
     void oneStandardErrorRule();
+    void referencesFirstRule();
+    void nestedCvByHand();
     void risesCarryOverToANewAmbient();
     void oneRunEqualsTheSingleTableFit();
 };
@@ -151,6 +153,54 @@ void TestMultiRunFit::oneStandardErrorRule()
     t[0].foldRmse = {1.0, 1.0, 1.0, 1.0};
     QCOMPARE(ModelSelection::oneStandardError(t).chosen, std::size_t(0));
     QVERIFY_EXCEPTION_THROWN(ModelSelection::oneStandardError({{"D", 0.5, {}, 1, false}}), std::invalid_argument);
+}
+
+void TestMultiRunFit::referencesFirstRule()
+{
+    // A (dynamic): lowest CV 1.0, folds 0.9 1.1 1.0 1.0, 20 parameters.
+    // R (lagridge, a plain reference): 1.05, folds 1.0 1.1 1.1 1.0: differences to A 0.1 0 0.1 0,
+    // sd sqrt(0.01 / 3), paired SE 0.028868: 1.05 > 1.0289, not as good -> A.
+    std::vector<FamilyScore> s{{"A", 1.0, {0.9, 1.1, 1.0, 1.0}, 20, true, false},
+                               {"R", 1.05, {1.0, 1.1, 1.1, 1.0}, 49, true, true},
+                               {"M", 3.0, {3.0, 3.0, 3.0, 3.0}, 1, true, true}};
+    SelectionRuling r = ModelSelection::referencesFirst(s);
+    QCOMPARE(r.lowest, std::size_t(0));
+    QCOMPARE(r.chosen, std::size_t(0));
+    QVERIFY(std::fabs(r.pairedStandardError[1] - std::sqrt(0.01 / 3.0) / 2.0) < 1e-12);
+    QCOMPARE(r.pairedStandardError[0], 0.0);
+    // R with folds 0.8 1.4 1.0 1.0: differences -0.1 0.3 0 0, sd sqrt(0.03), SE 0.086603: 1.05 is
+    // within the noise of the comparison, and R, a plain reference, is chosen although A has
+    // fewer parameters. (The unpaired rule, A's own SE 0.040825, would not admit R.)
+    s[1].foldRmse = {0.8, 1.4, 1.0, 1.0};
+    r = ModelSelection::referencesFirst(s);
+    QCOMPARE(r.chosen, std::size_t(1));
+    QVERIFY(std::fabs(r.pairedStandardError[1] - std::sqrt(0.03) / 2.0) < 1e-12);
+    QCOMPARE(ModelSelection::oneStandardError(s).chosen, std::size_t(0));
+    // Not a reference: then the fewest parameters among those within, as the one-SE rule.
+    s[1].plainReference = false;
+    s[1].parameters = 5;
+    QCOMPARE(ModelSelection::referencesFirst(s).chosen, std::size_t(1));
+    // Folds that differ (exp's time-blocked folds): the lowest's own SE, 0.040825.
+    s[1] = {"E", 1.03, {1.0, 1.06}, 5, true, false};
+    r = ModelSelection::referencesFirst(s);
+    QVERIFY(std::fabs(r.pairedStandardError[1] - std::sqrt(0.02 / 3.0) / 2.0) < 1e-12);
+    QCOMPARE(r.chosen, std::size_t(1));
+    QVERIFY_EXCEPTION_THROWN(ModelSelection::referencesFirst({{"D", 0.5, {}, 1, false, true}}), std::invalid_argument);
+}
+
+void TestMultiRunFit::nestedCvByHand()
+{
+    // Candidate 0: squared errors 1, 1, 10 on three folds of one sample; candidate 1: 2, 2, 2.
+    // Plain CV picks candidate 1 (6 < 12). Nested: folds 0 and 1 pick candidate 1 (other folds
+    // 4 < 11) and score 2 each; fold 2 picks candidate 0 (2 < 4) and scores 10.
+    std::vector<double> folds;
+    const double rmse = LinearLagFitter::nestedCv({{1, 1, 10}, {2, 2, 2}}, {1, 1, 1}, folds);
+    QVERIFY(std::fabs(rmse - std::sqrt(14.0 / 3.0)) < 1e-12);
+    QCOMPARE(folds.size(), std::size_t(3));
+    QVERIFY(std::fabs(folds[0] - std::sqrt(2.0)) < 1e-12);
+    QVERIFY(std::fabs(folds[2] - std::sqrt(10.0)) < 1e-12);
+    // One candidate: the nested CV is the plain CV.
+    QVERIFY(std::fabs(LinearLagFitter::nestedCv({{1, 4, 9}}, {1, 2, 3}, folds) - std::sqrt(14.0 / 6.0)) < 1e-12);
 }
 
 void TestMultiRunFit::risesCarryOverToANewAmbient()
