@@ -1,6 +1,7 @@
 #include "InterferometerImport.h"
 
 #include "SessionStore.h"
+#include "StoreTransaction.h"
 
 #include <stdexcept>
 
@@ -118,18 +119,15 @@ InterferometerImport::Result InterferometerImport::import(SessionStore &store, q
     r.points = file.runCount * n;
     r.firstTime_s = starts.front();
     r.lastTime_s = starts.back() + (n - 1) * o.dwell_s;
-    store.begin();
-    try {
+    StoreTransaction transaction(store);
+    {
         for (int run = 0; run < file.runCount; ++run)
             store.addInterferometerPoints(sessionId, runPoints(file, run, firstRun, starts[run], o.dwell_s, o.direction));
         store.addEvent(sessionId, {r.firstTime_s, QStringLiteral("interferometer runs %1-%2 imported from %3 (times: %4)")
                                                       .arg(r.firstRun)
                                                       .arg(r.lastRun)
                                                       .arg(file.source, r.timeSource)});
-        store.commit();
-    } catch (...) {
-        store.rollback();
-        throw;
+        transaction.commit();
     }
     return r;
 }
