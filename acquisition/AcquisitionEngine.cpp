@@ -2,6 +2,7 @@
 
 #include "RecordingSink.h"
 #include "SessionStore.h"
+#include "StoreTransaction.h"
 
 #include <chrono>
 #include <stdexcept>
@@ -179,8 +180,8 @@ void AcquisitionEngine::writerLoop(const QString &dbPath, const SessionInfo &inf
                 points.swap(m_points);
             }
             const bool paused = m_paused;
-            store->begin();
-            try {
+            {
+                StoreTransaction transaction(*store);
                 for (DeviceBlock &b : blocks) {
                     if (paused) { // keep events (gaps), drop data
                         b.channels.clear();
@@ -192,10 +193,7 @@ void AcquisitionEngine::writerLoop(const QString &dbPath, const SessionInfo &inf
                 for (const EventRecord &e : markers)
                     sink->event(e.t, e.label);
                 sink->interferometerPoints(points);
-                store->commit();
-            } catch (...) {
-                store->rollback();
-                throw;
+                transaction.commit();
             }
             ++m_commits;
             m_samplesWritten = sink->samplesWritten();

@@ -1,5 +1,5 @@
 #pragma once
-// The instrument types a rig file's "devices" list can name, next to the simulated ones:
+// The instrument types (rows of DeviceTypes) a rig file's "devices" list can name, next to the simulated ones:
 //   modbus-tcp, modbus-rtu  Modbus modules and CNC register gateways (ModbusDevice)
 //   serial-line             instruments printing lines on a serial port (SerialLineDevice)
 //   ir-folder               camera software dropping radiometric frames into a folder (InfraredFolderDevice)

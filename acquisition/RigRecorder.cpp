@@ -2,6 +2,7 @@
 
 #include "RigConfigLoader.h"
 #include "SessionStore.h"
+#include "StoreTransaction.h"
 
 #include <QDateTime>
 
@@ -51,13 +52,10 @@ qint64 RigRecorder::record(const QString &name, double duration_s, const Progres
         block.events = m_rig.takeEvents();
         while (nextMarker < m_markers.size() && m_markers[nextMarker].t <= until)
             block.events.push_back(m_markers[nextMarker++]);
-        m_store.begin();
-        try {
+        {
+            StoreTransaction transaction(m_store);
             m_sink->write(block);
-            m_store.commit();
-        } catch (...) {
-            m_store.rollback();
-            throw;
+            transaction.commit();
         }
         done = until;
         if (progress && !progress(done, duration_s))

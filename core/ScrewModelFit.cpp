@@ -4,6 +4,7 @@
 #include "ParameterPlausibility.h"
 #include "SessionAnalysis.h"
 #include "SessionStore.h"
+#include "StoreTransaction.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -92,15 +93,10 @@ ScrewFitResult ScrewModelFit::run(const ScrewFitRequest &q, const Progress &prog
     out.document = FdmModelJson::document(out);
     out.stored = FdmModelJson::storedModel(out.document);
 
-    m_store.begin(); // one model row per fitted session, all or none (a kill in between leaves none)
-    try {
-        for (qint64 id : q.sessions)
-            m_store.addFittedModel(id, out.stored);
-        m_store.commit();
-    } catch (...) {
-        m_store.rollback();
-        throw;
-    }
+    StoreTransaction transaction(m_store); // one model row per fitted session, all or none (a kill in between leaves none)
+    for (qint64 id : q.sessions)
+        m_store.addFittedModel(id, out.stored);
+    transaction.commit();
     return out;
 }
 

@@ -5,6 +5,7 @@
 #include "DuplicateSessionError.h"
 #include "IrFrameCodec.h"
 #include "SessionStore.h"
+#include "StoreTransaction.h"
 
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -83,8 +84,8 @@ qint64 BundleTransfer::importBundle(SessionStore &store, const QString &bundlePa
         for (const ChannelInfo &channel : c.channels)
             channelIds.push_back(store.addChannel(id, channel));
     };
-    store.begin();
-    try {
+    StoreTransaction transaction(store);
+    {
         const BundleReader reader(bundlePath, [&](const BundleContent &c, const QVector<SampleBlock> &chunk) {
             create(c);
             for (int i = 0; i < chunk.size(); ++i) {
@@ -108,11 +109,8 @@ qint64 BundleTransfer::importBundle(SessionStore &store, const QString &bundlePa
             store.addEvent(id, e);
         for (int i = 0; i < c.frames.size(); ++i)
             store.addIrFrame(id, reader.frame(i));
-        store.commit();
+        transaction.commit();
         return id;
-    } catch (...) {
-        store.rollback();
-        throw;
     }
 }
 

@@ -4,6 +4,7 @@
 #include "CsvReader.h"
 #include "CsvRowDecoder.h"
 #include "SessionStore.h"
+#include "StoreTransaction.h"
 
 #include <QFile>
 #include <QFileInfo>
@@ -173,8 +174,8 @@ CsvImportResult CsvImporter::importFiles(SessionStore &store, const QStringList 
     };
 
     qint64 before = 0; // bytes of the files already imported
-    store.begin();
-    try {
+    StoreTransaction transaction(store);
+    {
         for (int file = 0; file < paths.size(); ++file) {
             const QString &path = paths[file];
             QFile in(path);
@@ -211,7 +212,7 @@ CsvImportResult CsvImporter::importFiles(SessionStore &store, const QStringList 
                     break;
                 reader.feed(chunk.constData(), n, sink);
                 if (options.progress && !options.progress(before + reader.bytesConsumed(), total)) {
-                    store.rollback();
+                    transaction.rollback();
                     CsvImportResult cancelled;
                     cancelled.cancelled = true;
                     return cancelled;
@@ -232,10 +233,7 @@ CsvImportResult CsvImporter::importFiles(SessionStore &store, const QStringList 
                     result.ignoredColumns << c;
             }
         }
-        store.commit();
-    } catch (...) {
-        store.rollback();
-        throw;
+        transaction.commit();
     }
     // What the user should know about the starts DriftLab did not read from a clock.
     QHash<QString, int> shared;

@@ -1,6 +1,7 @@
 #include "InterferometerImport.h"
 
 #include "SessionStore.h"
+#include "StoreTransaction.h"
 
 #include <stdexcept>
 
@@ -120,8 +121,8 @@ InterferometerImport::Result InterferometerImport::import(SessionStore &store, q
     r.points = file.runCount * n;
     r.firstTime_s = starts.front();
     r.lastTime_s = starts.back() + (n - 1) * o.dwell_s;
-    store.begin();
-    try {
+    StoreTransaction transaction(store);
+    {
         file.forEachRun([&](int run, const QVector<double> &deviations) {
             store.addInterferometerPoints(sessionId, runPoints(file, run - 1, deviations, firstRun, starts[run - 1], o.dwell_s, o.direction));
         });
@@ -129,10 +130,7 @@ InterferometerImport::Result InterferometerImport::import(SessionStore &store, q
                                                       .arg(r.firstRun)
                                                       .arg(r.lastRun)
                                                       .arg(file.source, r.timeSource)});
-        store.commit();
-    } catch (...) {
-        store.rollback();
-        throw;
+        transaction.commit();
     }
     return r;
 }

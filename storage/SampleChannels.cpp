@@ -1,6 +1,6 @@
 #include "SampleChannels.h"
 
-#include "PgBinaryStatement.h"
+#include "SampleBackend.h"
 #include "SqlSupport.h"
 #include "StorageError.h"
 
@@ -18,7 +18,7 @@ constexpr int kMaxBlockSamples = 8192;
 } // namespace
 
 SampleChannels::SampleChannels(const QSqlDatabase &db, const QString &path)
-    : m_db(db), m_path(path), m_pgBinary(PgBinaryStatement::usable(db))
+    : m_db(db), m_path(path), m_backend(SampleBackend::make(db, path))
 {
 }
 
@@ -27,14 +27,6 @@ SampleChannels::~SampleChannels() = default;
 void SampleChannels::reset()
 {
     m_state.clear();
-}
-
-QSqlQuery &SampleChannels::cached(const char *sql)
-{
-    auto it = m_queries.find(sql);
-    if (it == m_queries.end())
-        it = m_queries.insert(sql, SqlSupport::prepared(m_db, m_path, QString::fromLatin1(sql)));
-    return it.value();
 }
 
 void SampleChannels::append(qint64 channelId, const QVector<double> &t, const QVector<double> &v)
@@ -92,50 +84,22 @@ void SampleChannels::flushLevelRow(qint64 channelId, int level, SampleMipmap::Ro
 {
     if (!row.dirty || row.entries.isEmpty())
         return;
-    if (m_pgBinary) {
-        PgBinaryStatement::exec(m_db, m_path,
-                                "INSERT INTO sample_levels(channel_id, level, seq, t_first, t_last, n_raw, data) "
-                                "VALUES($1, $2, $3, $4, $5, $6, $7) ON CONFLICT(channel_id, level, seq) DO UPDATE SET "
-                                "t_first = excluded.t_first, t_last = excluded.t_last, n_raw = excluded.n_raw, data = excluded.data",
-                                {channelId, level, row.seq, row.entries.front().tFirst, row.entries.back().tLast, row.nRaw,
-                                 SampleMipmap::encodeEntries(row.entries)},
-                                QStringLiteral("cannot write mipmap level %1 of channel %2").arg(level).arg(channelId));
-        row.dirty = false;
-        return;
-    }
     // An upsert both SQLite (>= 3.24) and PostgreSQL understand.
-    QSqlQuery &q = cached("INSERT INTO sample_levels(channel_id, level, seq, t_first, t_last, n_raw, data) "
-                          "VALUES(?, ?, ?, ?, ?, ?, ?) ON CONFLICT(channel_id, level, seq) DO UPDATE SET "
-                          "t_first = excluded.t_first, t_last = excluded.t_last, n_raw = excluded.n_raw, data = excluded.data");
-    q.bindValue(0, channelId);
-    q.bindValue(1, level);
-    q.bindValue(2, row.seq);
-    q.bindValue(3, row.entries.front().tFirst);
-    q.bindValue(4, row.entries.back().tLast);
-    q.bindValue(5, row.nRaw);
-    q.bindValue(6, SampleMipmap::encodeEntries(row.entries));
-    SqlSupport::run(q, m_path, QStringLiteral("cannot write mipmap level %1 of channel %2").arg(level).arg(channelId));
+    m_backend->exec("INSERT INTO sample_levels(channel_id, level, seq, t_first, t_last, n_raw, data) "
+                    "VALUES(?, ?, ?, ?, ?, ?, ?) ON CONFLICT(channel_id, level, seq) DO UPDATE SET "
+                    "t_first = excluded.t_first, t_last = excluded.t_last, n_raw = excluded.n_raw, data = excluded.data",
+                    {channelId, level, row.seq, row.entries.front().tFirst, row.entries.back().tLast, row.nRaw,
+                     SampleMipmap::encodeEntries(row.entries)},
+                    QStringLiteral("cannot write mipmap level %1 of channel %2").arg(level).arg(channelId));
     row.dirty = false;
 }
 
 void SampleChannels::writeBlock(qint64 channelId, ChannelState &state, int n)
 {
-    if (m_pgBinary) {
-        PgBinaryStatement::exec(m_db, m_path, "INSERT INTO sample_blocks(channel_id, t_first, t_last, n, data) VALUES($1, $2, $3, $4, $5)",
-                                {channelId, state.pendingT.front(), state.pendingT[n - 1], n,
-                                 SampleMipmap::encodeSamples(state.pendingT.constData(), state.pendingV.constData(), n)},
-                                QStringLiteral("cannot append samples to channel %1").arg(channelId));
-        state.pendingT.remove(0, n);
-        state.pendingV.remove(0, n);
-        return;
-    }
-    QSqlQuery &q = cached("INSERT INTO sample_blocks(channel_id, t_first, t_last, n, data) VALUES(?, ?, ?, ?, ?)");
-    q.bindValue(0, channelId);
-    q.bindValue(1, state.pendingT.front());
-    q.bindValue(2, state.pendingT[n - 1]);
-    q.bindValue(3, n);
-    q.bindValue(4, SampleMipmap::encodeSamples(state.pendingT.constData(), state.pendingV.constData(), n));
-    SqlSupport::run(q, m_path, QStringLiteral("cannot append samples to channel %1").arg(channelId));
+    m_backend->exec("INSERT INTO sample_blocks(channel_id, t_first, t_last, n, data) VALUES(?, ?, ?, ?, ?)",
+                    {channelId, state.pendingT.front(), state.pendingT[n - 1], n,
+                     SampleMipmap::encodeSamples(state.pendingT.constData(), state.pendingV.constData(), n)},
+                    QStringLiteral("cannot append samples to channel %1").arg(channelId));
     state.pendingT.remove(0, n);
     state.pendingV.remove(0, n);
 }
@@ -213,42 +177,29 @@ SampleBlock SampleChannels::samples(qint64 channelId, double t0, double t1) cons
 void SampleChannels::forEachBlock(qint64 channelId,
                                   const std::function<void(const QVector<double> &, const QVector<double> &)> &visit) const
 {
-    if (m_pgBinary) {
-        // Binary results, 64 blocks a page (memory stays flat however long the channel is).
-        double lastT = -std::numeric_limits<double>::max();
-        qint64 lastId = -1;
-        for (;;) {
-            int got = 0;
-            QVector<double> t, v;
-            PgBinaryStatement::query(m_db, m_path,
-                                     "SELECT n, data, t_last, id FROM sample_blocks WHERE channel_id = $1 AND (t_last, id) > ($2, $3) "
-                                     "ORDER BY t_last, id LIMIT 64",
-                                     {channelId, lastT, lastId}, QStringLiteral("cannot read samples of channel %1").arg(channelId),
-                                     [&](const QVector<QByteArray> &row) {
-                                         t.clear();
-                                         v.clear();
-                                         SampleMipmap::decodeSamples(row[1], static_cast<int>(PgBinaryStatement::int64(row[0])), t, v);
-                                         lastT = PgBinaryStatement::float64(row[2]);
-                                         lastId = PgBinaryStatement::int64(row[3]);
-                                         ++got;
-                                         visit(t, v);
-                                     });
-            if (got < 64)
-                return;
-        }
-    }
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
-                           QStringLiteral("SELECT n, data FROM sample_blocks WHERE channel_id = ? ORDER BY t_last, id"));
-    q.setForwardOnly(true);
-    q.addBindValue(channelId);
-    SqlSupport::run(q, m_path, QStringLiteral("cannot read samples of channel %1").arg(channelId));
+    // 64 blocks a page (a central store's result is held whole by libpq, so memory stays flat
+    // however long the channel is); pages follow (t_last, id), the order of the blocks.
+    constexpr int kPage = 64;
+    double lastT = -std::numeric_limits<double>::max();
+    qint64 lastId = -1;
     QVector<double> t;
     QVector<double> v;
-    while (q.next()) {
-        t.clear();
-        v.clear();
-        SampleMipmap::decodeSamples(q.value(1).toByteArray(), q.value(0).toInt(), t, v);
-        visit(t, v);
+    for (;;) {
+        int got = 0;
+        m_backend->query("SELECT n, data, t_last, id FROM sample_blocks WHERE channel_id = ? AND (t_last, id) > (?, ?) "
+                         "ORDER BY t_last, id LIMIT 64",
+                         {channelId, lastT, lastId}, QStringLiteral("cannot read samples of channel %1").arg(channelId),
+                         [&](const SampleBackend::Row &row) {
+                             t.clear();
+                             v.clear();
+                             SampleMipmap::decodeSamples(row.bytes(1), static_cast<int>(row.integer(0)), t, v);
+                             lastT = row.real(2);
+                             lastId = row.integer(3);
+                             ++got;
+                             visit(t, v);
+                         });
+        if (got < kPage)
+            return;
     }
 }
 

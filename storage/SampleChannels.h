@@ -14,8 +14,11 @@
 
 #include <array>
 #include <functional>
+#include <memory>
 
 namespace driftlab {
+
+class SampleBackend;
 
 class SampleChannels {
 public:
@@ -46,14 +49,12 @@ private:
     void writeSamples(qint64 channelId, const double *t, const double *v, int n);
     void writeBlock(qint64 channelId, ChannelState &state, int n);
     void flushLevelRow(qint64 channelId, int level, SampleMipmap::Row &row);
-    QSqlQuery &cached(const char *sql);
     QVector<SampleMipmap::Entry> levelEntries(qint64 channelId, int level, double t0, double t1) const;
 
     QSqlDatabase m_db;
     QString m_path;
-    bool m_pgBinary = false; // blocks and mipmap rows go to PostgreSQL as binary bytea (PgBinaryStatement)
+    std::unique_ptr<SampleBackend> m_backend; // writes and block pages: QtSql or binary libpq
     QHash<qint64, ChannelState> m_state;
-    QHash<const char *, QSqlQuery> m_queries; // prepared write statements, reused
 };
 
 } // namespace driftlab

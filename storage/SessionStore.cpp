@@ -1,47 +1,31 @@
 #include "SessionStore.h"
 
-#include "CentralConnection.h"
 #include "CentralDigest.h"
 #include "IrFrameCodec.h"
+#include "LegacyConversion.h"
 #include "SampleChannels.h"
 #include "SchemaMigrator.h"
 #include "SqlSupport.h"
 #include "StorageError.h"
+#include "StoreConnection.h"
+#include "StoreRows.h"
 #include "StoreTransaction.h"
 
-#include <QAtomicInteger>
-#include <QFile>
-#include <QFileInfo>
 #include <QJsonDocument>
 #include <QSqlError>
 #include <QSqlQuery>
-#include <QUrl>
 #include <QUuid>
 #include <QVariant>
 
 #include <algorithm>
-#include <cerrno>
-#include <cmath>
-#include <cstring>
-
-#include <unistd.h>
 
 namespace driftlab {
 
 namespace {
 
-QAtomicInteger<quint64> g_connectionCounter;
-
-constexpr int kLegacyBlockSamples = 8192;
-
 QString json(const QJsonObject &o)
 {
     return QString::fromUtf8(QJsonDocument(o).toJson(QJsonDocument::Compact));
-}
-
-QJsonObject object(const QVariant &v)
-{
-    return QJsonDocument::fromJson(v.toString().toUtf8()).object();
 }
 
 // A null QString binds as SQL NULL; text columns are NOT NULL.
@@ -59,149 +43,38 @@ QVariant optionalReal(const std::optional<double> &v)
 
 bool SessionStore::isCentral(const QString &path)
 {
-    return path.startsWith(QLatin1String("postgresql://")) || path.startsWith(QLatin1String("postgres://"));
+    return StoreConnection::isCentral(path);
 }
 
 QString SessionStore::displayPath(const QString &path)
 {
-    if (!isCentral(path))
-        return path;
-    QUrl url(path);
-    url.setPassword(QString());
-    return url.toString();
+    return StoreConnection::displayPath(path);
 }
 
-SessionStore::SessionStore(const QString &path) : m_path(displayPath(path))
+SessionStore::SessionStore(const QString &path)
+    : m_connection(std::make_unique<StoreConnection>(path)), m_db(m_connection->db()), m_path(m_connection->path())
 {
-    m_connection = QStringLiteral("driftlab-store-%1").arg(++g_connectionCounter);
-    if (isCentral(path)) {
-        openCentral(path);
+    m_samples = std::make_unique<SampleChannels>(m_db, m_path);
+    if (m_connection->isCentral()) {
+        SchemaMigrator::migrate(m_db); // a new central store has nothing to convert
         return;
     }
-    m_db = QSqlDatabase::addDatabase(QStringLiteral("QSQLITE"), m_connection);
-    const QFileInfo file(path);
-    const QFileInfo dir(file.absolutePath());
-    if (!dir.isDir())
-        throw StorageError(QStringLiteral("%1: folder %2 does not exist").arg(path, dir.filePath()).toStdString());
-    // Read-only media (a write-protected share, a DVD, a read-only mount): a database whose
-    // folder cannot be written cannot get its -wal and -shm files, so it is opened read-only
-    // (immutable unless a WAL file is there to be read); every write is then refused with
-    // SQLITE_READONLY, reported as read-only by SqlSupport. A new database there is refused.
-    const QByteArray native = QFile::encodeName(dir.absoluteFilePath());
-    const bool folderWritable = ::access(native.constData(), W_OK) == 0;
-    const int folderErrno = folderWritable ? 0 : errno;
-    if (!file.exists() && !folderWritable)
-        throw StorageError(QStringLiteral("%1: cannot create the database: folder %2 is read-only (%3)")
-                               .arg(path, dir.absoluteFilePath(), QString::fromLocal8Bit(std::strerror(folderErrno)))
-                               .toStdString());
-    m_readOnly = !folderWritable || (file.exists() && ::access(QFile::encodeName(file.absoluteFilePath()).constData(), W_OK) != 0);
-    if (m_readOnly) {
-        const QFileInfo wal(file.absoluteFilePath() + QStringLiteral("-wal"));
-        QUrl uri = QUrl::fromLocalFile(file.absoluteFilePath());
-        uri.setScheme(QStringLiteral("file"));
-        uri.setQuery(wal.exists() && wal.size() > 0 ? QStringLiteral("mode=ro") : QStringLiteral("immutable=1"));
-        m_db.setDatabaseName(uri.toString(QUrl::FullyEncoded));
-        m_db.setConnectOptions(QStringLiteral("QSQLITE_OPEN_URI;QSQLITE_OPEN_READONLY;QSQLITE_BUSY_TIMEOUT=5000"));
-    } else {
-        m_db.setDatabaseName(path);
-        m_db.setConnectOptions(QStringLiteral("QSQLITE_BUSY_TIMEOUT=5000"));
-    }
-    if (!m_db.open())
-        SqlSupport::fail(path, QStringLiteral("cannot open database"), m_db.lastError());
-    QSqlQuery pragma(m_db);
-    if (m_readOnly) {
-        if (!pragma.exec(QStringLiteral("PRAGMA schema_version")))
-            SqlSupport::fail(path, QStringLiteral("cannot read (not an SQLite database?)"), pragma.lastError());
-        pragma.exec(QStringLiteral("PRAGMA foreign_keys=ON"));
-        if (SchemaMigrator::version(m_db) < SchemaMigrator::currentVersion())
-            throw StorageError(QStringLiteral("%1: read-only: its schema version %2 needs an upgrade to %3, which writes; "
-                                              "copy the file to writable storage to open it")
-                                   .arg(path)
-                                   .arg(SchemaMigrator::version(m_db))
-                                   .arg(SchemaMigrator::currentVersion())
-                                   .toStdString());
-    } else {
-        // WAL: readers see committed data while a recording writes.
-        if (!pragma.exec(QStringLiteral("PRAGMA journal_mode=WAL")))
-            SqlSupport::fail(path, QStringLiteral("cannot enable WAL (not an SQLite database?)"), pragma.lastError());
-        pragma.exec(QStringLiteral("PRAGMA foreign_keys=ON"));
-        pragma.exec(QStringLiteral("PRAGMA synchronous=NORMAL"));
-    }
-    m_samples = std::make_unique<SampleChannels>(m_db, m_path);
     SchemaMigrator::migrate(m_db, [this](int toVersion) {
         if (toVersion == 2)
-            convertLegacySamples();
+            LegacyConversion::samplesToBlocks(m_db, m_path, *m_samples);
         if (toVersion == 3)
-            assignMissingUuids();
+            LegacyConversion::assignMissingUuids(m_db, m_path);
     });
 }
 
-void SessionStore::openCentral(const QString &url)
+bool SessionStore::isReadOnly() const
 {
-    if (!QSqlDatabase::isDriverAvailable(QStringLiteral("QPSQL")))
-        throw StorageError(QStringLiteral("%1: Qt's PostgreSQL driver (QPSQL) is not installed (Debian package libqt5sql5-psql)")
-                               .arg(m_path)
-                               .toStdString());
-    m_central = true;
-    m_db = QSqlDatabase::addDatabase(QStringLiteral("QPSQL"), m_connection);
-    m_link = std::make_unique<CentralConnection>(m_db, url, m_path); // address, time limits, stall watchdog
-    m_samples = std::make_unique<SampleChannels>(m_db, m_path);
-    SchemaMigrator::migrate(m_db); // a new central store has nothing to convert
+    return m_connection->isReadOnly();
 }
 
-void SessionStore::failSql(const QString &what, const QSqlError &error) const
+bool SessionStore::isCentralStore() const
 {
-    SqlSupport::fail(m_path, what, error);
-}
-
-// Moves the rows of the version-1 narrow table into blocks and mipmap levels.
-void SessionStore::convertLegacySamples()
-{
-    QSqlQuery q(m_db);
-    q.setForwardOnly(true);
-    if (!q.exec(QStringLiteral("SELECT channel_id, t, value FROM samples ORDER BY channel_id, t, rowid")))
-        failSql(QStringLiteral("cannot read version-1 samples"), q.lastError());
-    qint64 channel = -1;
-    QVector<double> t;
-    QVector<double> v;
-    auto flush = [&] {
-        if (!t.isEmpty())
-            m_samples->append(channel, t, v);
-        t.clear();
-        v.clear();
-    };
-    while (q.next()) {
-        const qint64 c = q.value(0).toLongLong();
-        if (c != channel || t.size() >= kLegacyBlockSamples) {
-            flush();
-            channel = c;
-        }
-        t.push_back(q.value(1).toDouble());
-        v.push_back(q.value(2).toDouble());
-    }
-    flush();
-    q.finish();
-    m_samples->flush();
-    if (!q.exec(QStringLiteral("DELETE FROM samples")))
-        failSql(QStringLiteral("cannot empty the version-1 sample table"), q.lastError());
-}
-
-// Gives every session of a version-2 database its UUID.
-void SessionStore::assignMissingUuids()
-{
-    QSqlQuery q(m_db);
-    if (!q.exec(QStringLiteral("SELECT id FROM sessions WHERE uuid IS NULL")))
-        failSql(QStringLiteral("cannot list sessions without UUID"), q.lastError());
-    QVector<qint64> ids;
-    while (q.next())
-        ids.push_back(q.value(0).toLongLong());
-    q.finish();
-    QSqlQuery u = SqlSupport::prepared(m_db, m_path, QStringLiteral("UPDATE sessions SET uuid = ? WHERE id = ?"));
-    for (qint64 id : ids) {
-        u.addBindValue(newUuid());
-        u.addBindValue(id);
-        SqlSupport::run(u, m_path, QStringLiteral("cannot give session %1 a UUID").arg(id));
-    }
+    return m_connection->isCentral();
 }
 
 QString SessionStore::newUuid()
@@ -215,10 +88,7 @@ SessionStore::~SessionStore()
     m_samples.reset();
     if (m_inTransaction)
         m_db.rollback();
-    m_db.close();
-    m_link.reset(); // after the close: its watchdog also guards the rollback above
-    m_db = QSqlDatabase();
-    QSqlDatabase::removeDatabase(m_connection);
+    // m_connection closes the database and removes the connection (declared first: goes last)
 }
 
 void SessionStore::begin()
@@ -340,9 +210,8 @@ void SessionStore::deleteSession(qint64 sessionId)
 
 qint64 SessionStore::sessionByUuid(const QString &uuid) const
 {
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT id FROM sessions WHERE uuid = ?"));
-    q.addBindValue(uuid.toLower());
-    SqlSupport::run(q, m_path, QStringLiteral("cannot look up session UUID %1").arg(uuid));
+    QSqlQuery q = SqlSupport::select(m_db, m_path, QStringLiteral("SELECT id FROM sessions WHERE uuid = ?"), {uuid.toLower()},
+                                     QStringLiteral("cannot look up session UUID %1").arg(uuid));
     return q.next() ? q.value(0).toLongLong() : 0;
 }
 
@@ -350,9 +219,8 @@ qint64 SessionStore::sessionByContentHash(const QString &sha256) const
 {
     if (sha256.isEmpty())
         return 0;
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT id FROM sessions WHERE content_sha256 = ? ORDER BY id LIMIT 1"));
-    q.addBindValue(sha256);
-    SqlSupport::run(q, m_path, QStringLiteral("cannot look up session content"));
+    QSqlQuery q = SqlSupport::select(m_db, m_path, QStringLiteral("SELECT id FROM sessions WHERE content_sha256 = ? ORDER BY id LIMIT 1"),
+                                     {sha256}, QStringLiteral("cannot look up session content"));
     return q.next() ? q.value(0).toLongLong() : 0;
 }
 
@@ -472,7 +340,7 @@ void SessionStore::addEvent(qint64 sessionId, const EventRecord &event)
 
 void SessionStore::setComplete(qint64 sessionId, bool complete, const QString &centralDigest)
 {
-    if (!m_central) {
+    if (!m_connection->isCentral()) {
         QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("UPDATE sessions SET complete = ? WHERE id = ?"));
         q.addBindValue(complete ? 1 : 0);
         q.addBindValue(sessionId);
@@ -505,40 +373,17 @@ qint64 SessionStore::addAnalysisResult(qint64 sessionId, const QString &kind, co
     return SqlSupport::insertedId(q, m_db, m_path);
 }
 
-namespace {
-SessionInfo sessionFromQuery(const QSqlQuery &q)
-{
-    SessionInfo s;
-    s.id = q.value(0).toLongLong();
-    s.name = q.value(1).toString();
-    s.started = q.value(2).toString();
-    s.operatorName = q.value(3).toString();
-    s.notes = q.value(4).toString();
-    s.machine = QJsonDocument::fromJson(q.value(5).toString().toUtf8()).object();
-    s.complete = q.value(6).toInt() != 0;
-    s.manifest = object(q.value(7));
-    s.uuid = q.value(8).toString();
-    s.contentSha256 = q.value(9).toString();
-    return s;
-}
-const char *kSessionColumns = "id, name, started, operator, notes, machine_json, complete, manifest_json, uuid, content_sha256";
-} // namespace
-
 QVector<SessionInfo> SessionStore::sessions() const
 {
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT %1 FROM sessions ORDER BY id").arg(QLatin1String(kSessionColumns)));
-    SqlSupport::run(q, m_path, QStringLiteral("cannot list sessions"));
-    QVector<SessionInfo> out;
-    while (q.next())
-        out.push_back(sessionFromQuery(q));
-    return out;
+    return SqlSupport::rows(m_db, m_path, QStringLiteral("SELECT %1 FROM sessions ORDER BY id").arg(QLatin1String(StoreRows::sessionColumns())),
+                            {}, QStringLiteral("cannot list sessions"), StoreRows::session);
 }
 
 QVector<SessionSummary> SessionStore::sessionSummaries() const
 {
     // One query for the whole list (a central store may hold 10,000 sessions): the counts are
     // grouped once per table, not looked up per session.
-    QSqlQuery q = SqlSupport::prepared(
+    return SqlSupport::rows(
         m_db, m_path,
         QStringLiteral("SELECT s.id, s.uuid, s.name, s.started, s.complete, coalesce(c.n, 0), coalesce(b.n, 0), coalesce(f.n, 0) "
                        "FROM sessions s "
@@ -546,58 +391,25 @@ QVector<SessionSummary> SessionStore::sessionSummaries() const
                        "LEFT JOIN (SELECT ch.session_id, sum(sb.n) AS n FROM sample_blocks sb JOIN channels ch ON sb.channel_id = ch.id "
                        "GROUP BY ch.session_id) b ON b.session_id = s.id "
                        "LEFT JOIN (SELECT session_id, count(*) AS n FROM ir_frames GROUP BY session_id) f ON f.session_id = s.id "
-                       "ORDER BY s.id"));
-    q.setForwardOnly(true);
-    SqlSupport::run(q, m_path, QStringLiteral("cannot list sessions"));
-    QVector<SessionSummary> out;
-    while (q.next()) {
-        SessionSummary m;
-        m.id = q.value(0).toLongLong();
-        m.uuid = q.value(1).toString();
-        m.name = q.value(2).toString();
-        m.started = q.value(3).toString();
-        m.complete = q.value(4).toInt() != 0;
-        m.channels = q.value(5).toInt();
-        m.samples = q.value(6).toLongLong();
-        m.irFrames = q.value(7).toInt();
-        out.push_back(m);
-    }
-    return out;
+                       "ORDER BY s.id"),
+        {}, QStringLiteral("cannot list sessions"), StoreRows::summary);
 }
 
 SessionInfo SessionStore::session(qint64 sessionId) const
 {
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT %1 FROM sessions WHERE id = ?").arg(QLatin1String(kSessionColumns)));
-    q.addBindValue(sessionId);
-    SqlSupport::run(q, m_path, QStringLiteral("cannot read session %1").arg(sessionId));
-    if (!q.next())
+    const QVector<SessionInfo> found =
+        SqlSupport::rows(m_db, m_path, QStringLiteral("SELECT %1 FROM sessions WHERE id = ?").arg(QLatin1String(StoreRows::sessionColumns())),
+                         {sessionId}, QStringLiteral("cannot read session %1").arg(sessionId), StoreRows::session);
+    if (found.isEmpty())
         throw StorageError(QStringLiteral("%1: no session with id %2").arg(m_path).arg(sessionId).toStdString());
-    return sessionFromQuery(q);
+    return found.front();
 }
 
 QVector<ChannelInfo> SessionStore::channels(qint64 sessionId) const
 {
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
-                           QStringLiteral("SELECT id, session_id, key, kind, sensor, unit, location, role, screw_position_m "
-                                          "FROM channels WHERE session_id = ? ORDER BY id"));
-    q.addBindValue(sessionId);
-    SqlSupport::run(q, m_path, QStringLiteral("cannot list channels of session %1").arg(sessionId));
-    QVector<ChannelInfo> out;
-    while (q.next()) {
-        ChannelInfo c;
-        c.id = q.value(0).toLongLong();
-        c.sessionId = q.value(1).toLongLong();
-        c.key = q.value(2).toString();
-        c.kind = q.value(3).toString();
-        c.sensor = q.value(4).toString();
-        c.unit = q.value(5).toString();
-        c.location = q.value(6).toString();
-        c.role = q.value(7).toString();
-        if (!q.value(8).isNull())
-            c.screwPosition_m = q.value(8).toDouble();
-        out.push_back(c);
-    }
-    return out;
+    return SqlSupport::rows(m_db, m_path,
+                            QStringLiteral("SELECT %1 FROM channels WHERE session_id = ? ORDER BY id").arg(QLatin1String(StoreRows::channelColumns())),
+                            {sessionId}, QStringLiteral("cannot list channels of session %1").arg(sessionId), StoreRows::channel);
 }
 
 SampleBlock SessionStore::samples(qint64 channelId, double t0, double t1) const
@@ -617,38 +429,19 @@ qint64 SessionStore::sampleCount(qint64 channelId) const
 
 QVector<IrFrame> SessionStore::irFrames(qint64 sessionId) const
 {
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
-                           QStringLiteral("SELECT id, t, width, height, source_name FROM ir_frames WHERE session_id = ? "
-                                          "ORDER BY t, id"));
-    q.addBindValue(sessionId);
-    SqlSupport::run(q, m_path, QStringLiteral("cannot list infrared frames of session %1").arg(sessionId));
-    QVector<IrFrame> out;
-    while (q.next()) {
-        IrFrame f;
-        f.id = q.value(0).toLongLong();
-        f.t = q.value(1).toDouble();
-        f.width = q.value(2).toInt();
-        f.height = q.value(3).toInt();
-        f.sourceName = q.value(4).toString();
-        out.push_back(f);
-    }
-    return out;
+    return SqlSupport::rows(m_db, m_path,
+                            QStringLiteral("SELECT %1 FROM ir_frames WHERE session_id = ? ORDER BY t, id").arg(QLatin1String(StoreRows::irFrameColumns())),
+                            {sessionId}, QStringLiteral("cannot list infrared frames of session %1").arg(sessionId), StoreRows::irFrame);
 }
 
 IrFrame SessionStore::irFrame(qint64 frameId) const
 {
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
-                           QStringLiteral("SELECT id, t, width, height, source_name, encoding, data FROM ir_frames WHERE id = ?"));
-    q.addBindValue(frameId);
-    SqlSupport::run(q, m_path, QStringLiteral("cannot read infrared frame %1").arg(frameId));
+    QSqlQuery q = SqlSupport::select(m_db, m_path,
+                                     QStringLiteral("SELECT %1, encoding, data FROM ir_frames WHERE id = ?").arg(QLatin1String(StoreRows::irFrameColumns())),
+                                     {frameId}, QStringLiteral("cannot read infrared frame %1").arg(frameId));
     if (!q.next())
         throw StorageError(QStringLiteral("%1: no infrared frame with id %2").arg(m_path).arg(frameId).toStdString());
-    IrFrame f;
-    f.id = q.value(0).toLongLong();
-    f.t = q.value(1).toDouble();
-    f.width = q.value(2).toInt();
-    f.height = q.value(3).toInt();
-    f.sourceName = q.value(4).toString();
+    IrFrame f = StoreRows::irFrame(q);
     const QString what = QStringLiteral("%1: infrared frame %2").arg(m_path).arg(frameId);
     if (q.value(5).toString() != IrFrameCodec::storeEncoding())
         throw StorageError(QStringLiteral("%1: unknown encoding '%2'").arg(what, q.value(5).toString()).toStdString());
@@ -658,9 +451,8 @@ IrFrame SessionStore::irFrame(qint64 frameId) const
 
 QByteArray SessionStore::irFrameBlob(qint64 frameId, QString *encoding) const
 {
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT encoding, data FROM ir_frames WHERE id = ?"));
-    q.addBindValue(frameId);
-    SqlSupport::run(q, m_path, QStringLiteral("cannot read infrared frame %1").arg(frameId));
+    QSqlQuery q = SqlSupport::select(m_db, m_path, QStringLiteral("SELECT encoding, data FROM ir_frames WHERE id = ?"), {frameId},
+                                     QStringLiteral("cannot read infrared frame %1").arg(frameId));
     if (!q.next())
         throw StorageError(QStringLiteral("%1: no infrared frame with id %2").arg(m_path).arg(frameId).toStdString());
     if (encoding)
@@ -670,60 +462,44 @@ QByteArray SessionStore::irFrameBlob(qint64 frameId, QString *encoding) const
 
 QVector<InterferometerPoint> SessionStore::interferometerPoints(qint64 sessionId) const
 {
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
-                           QStringLiteral("SELECT t, run, position_mm, error_um, direction FROM interferometer_points "
-                                          "WHERE session_id = ? ORDER BY id"));
-    q.addBindValue(sessionId);
-    SqlSupport::run(q, m_path, QStringLiteral("cannot read interferometer points of session %1").arg(sessionId));
-    QVector<InterferometerPoint> out;
-    while (q.next())
-        out.push_back({q.value(0).toDouble(), q.value(1).toInt(), q.value(2).toDouble(), q.value(3).toDouble(),
-                       q.value(4).toString()});
-    return out;
+    return SqlSupport::rows(m_db, m_path,
+                            QStringLiteral("SELECT t, run, position_mm, error_um, direction FROM interferometer_points "
+                                           "WHERE session_id = ? ORDER BY id"),
+                            {sessionId}, QStringLiteral("cannot read interferometer points of session %1").arg(sessionId),
+                            [](const QSqlQuery &q) {
+                                return InterferometerPoint{q.value(0).toDouble(), q.value(1).toInt(), q.value(2).toDouble(),
+                                                           q.value(3).toDouble(), q.value(4).toString()};
+                            });
 }
 
 QVector<FittedModel> SessionStore::fittedModels(qint64 sessionId) const
 {
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
-                           QStringLiteral("SELECT id, model, created, parameters_json, uncertainties_json, provenance_json, "
-                                          "metrics_json FROM fitted_models WHERE session_id = ? ORDER BY id"));
-    q.addBindValue(sessionId);
-    SqlSupport::run(q, m_path, QStringLiteral("cannot read fitted models of session %1").arg(sessionId));
-    QVector<FittedModel> out;
-    while (q.next()) {
-        FittedModel m;
-        m.id = q.value(0).toLongLong();
-        m.model = q.value(1).toString();
-        m.created = q.value(2).toString();
-        m.parameters = object(q.value(3));
-        m.uncertainties = object(q.value(4));
-        m.provenance = object(q.value(5));
-        m.metrics = object(q.value(6));
-        out.push_back(m);
-    }
-    return out;
+    return SqlSupport::rows(
+        m_db, m_path,
+        QStringLiteral("SELECT %1 FROM fitted_models WHERE session_id = ? ORDER BY id").arg(QLatin1String(StoreRows::fittedModelColumns())),
+        {sessionId}, QStringLiteral("cannot read fitted models of session %1").arg(sessionId), StoreRows::fittedModel);
 }
 
 void SessionStore::setSizeLimit(qint64 bytes)
 {
-    if (m_central)
+    if (m_connection->isCentral())
         throw StorageError(QStringLiteral("%1: a size limit is for SQLite files only").arg(m_path).toStdString());
     QSqlQuery q(m_db);
     if (!q.exec(QStringLiteral("PRAGMA page_size")) || !q.next())
-        failSql(QStringLiteral("cannot read page size"), q.lastError());
+        SqlSupport::fail(m_path, QStringLiteral("cannot read page size"), q.lastError());
     const qint64 pages = std::max<qint64>(1, bytes / q.value(0).toLongLong());
     q.finish();
     if (!q.exec(QStringLiteral("PRAGMA max_page_count = %1").arg(pages)))
-        failSql(QStringLiteral("cannot set size limit"), q.lastError());
+        SqlSupport::fail(m_path, QStringLiteral("cannot set size limit"), q.lastError());
 }
 
 QString SessionStore::integrityCheck() const
 {
-    if (m_central)
+    if (m_connection->isCentral())
         return QStringLiteral("ok"); // the server keeps its own pages consistent
     QSqlQuery q(m_db);
     if (!q.exec(QStringLiteral("PRAGMA integrity_check")))
-        failSql(QStringLiteral("cannot run integrity check"), q.lastError());
+        SqlSupport::fail(m_path, QStringLiteral("cannot run integrity check"), q.lastError());
     QStringList lines;
     while (q.next())
         lines << q.value(0).toString();
@@ -732,38 +508,29 @@ QString SessionStore::integrityCheck() const
 
 QVector<EventRecord> SessionStore::events(qint64 sessionId) const
 {
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("SELECT t, label FROM events WHERE session_id = ? ORDER BY t, id"));
-    q.addBindValue(sessionId);
-    SqlSupport::run(q, m_path, QStringLiteral("cannot read events"));
-    QVector<EventRecord> out;
-    while (q.next())
-        out.push_back({q.value(0).toDouble(), q.value(1).toString()});
-    return out;
+    return SqlSupport::rows(m_db, m_path, QStringLiteral("SELECT t, label FROM events WHERE session_id = ? ORDER BY t, id"), {sessionId},
+                            QStringLiteral("cannot read events"),
+                            [](const QSqlQuery &q) { return EventRecord{q.value(0).toDouble(), q.value(1).toString()}; });
 }
 
 QVector<AnalysisResult> SessionStore::analysisResults(qint64 sessionId) const
 {
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
-                           QStringLiteral("SELECT kind, created, result_json FROM analysis_results WHERE session_id = ? ORDER BY id"));
-    q.addBindValue(sessionId);
-    SqlSupport::run(q, m_path, QStringLiteral("cannot read analysis results"));
-    QVector<AnalysisResult> out;
-    while (q.next())
-        out.push_back({q.value(0).toString(), q.value(1).toString(), object(q.value(2))});
-    return out;
+    return SqlSupport::rows(m_db, m_path,
+                            QStringLiteral("SELECT kind, created, result_json FROM analysis_results WHERE session_id = ? ORDER BY id"),
+                            {sessionId}, QStringLiteral("cannot read analysis results"), [](const QSqlQuery &q) {
+                                return AnalysisResult{q.value(0).toString(), q.value(1).toString(), StoreRows::object(q.value(2))};
+                            });
 }
 
 QJsonObject SessionStore::latestAnalysisResult(qint64 sessionId, const QString &kind) const
 {
-    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
-                           QStringLiteral("SELECT result_json FROM analysis_results WHERE session_id = ? AND kind = ? "
-                                          "ORDER BY id DESC LIMIT 1"));
-    q.addBindValue(sessionId);
-    q.addBindValue(text(kind));
-    SqlSupport::run(q, m_path, QStringLiteral("cannot read analysis result"));
-    if (!q.next())
-        return {};
-    return QJsonDocument::fromJson(q.value(0).toString().toUtf8()).object();
+    const QVector<QJsonObject> latest =
+        SqlSupport::rows(m_db, m_path,
+                         QStringLiteral("SELECT result_json FROM analysis_results WHERE session_id = ? AND kind = ? "
+                                        "ORDER BY id DESC LIMIT 1"),
+                         {sessionId, text(kind)}, QStringLiteral("cannot read analysis result"),
+                         [](const QSqlQuery &q) { return StoreRows::object(q.value(0)); });
+    return latest.isEmpty() ? QJsonObject() : latest.front();
 }
 
 } // namespace driftlab

@@ -1,5 +1,7 @@
 #pragma once
-// One open session database (SQLite through QtSql). Not thread-safe: each thread
+// One open session database (SQLite through QtSql, or a central PostgreSQL store; the
+// connection is StoreConnection's, row decoding StoreRows', transactions StoreTransaction's
+// for callers). Not thread-safe: each thread
 // opens its own SessionStore on the same file (WAL mode lets readers run during a recording).
 
 #include "StorageTypes.h"
@@ -16,8 +18,8 @@
 
 namespace driftlab {
 
-class CentralConnection;
 class SampleChannels;
+class StoreConnection;
 
 class SessionStore {
 public:
@@ -33,8 +35,8 @@ public:
 
     QString path() const { return m_path; }
     // Opened read-only because the file or its folder cannot be written (read-only media).
-    bool isReadOnly() const { return m_readOnly; }
-    bool isCentralStore() const { return m_central; }
+    bool isReadOnly() const;
+    bool isCentralStore() const;
 
     // Creates a session; an empty info.uuid gets a new random UUID. Throws StorageError if
     // the UUID is malformed or already names a session.
@@ -112,21 +114,14 @@ private:
     QSqlQuery &cached(const char *sql);
     // Runs work in the open transaction, or in one of its own (rolled back if work throws).
     void inTransaction(const std::function<void()> &work);
-    void openCentral(const QString &url);
-    void convertLegacySamples();
-    void assignMissingUuids();
     void updateSessionText(qint64 sessionId, const char *column, const QString &value);
-    [[noreturn]] void failSql(const QString &what, const QSqlError &error) const;
 
+    std::unique_ptr<StoreConnection> m_connection; // first: closed after everything below
+    QSqlDatabase &m_db;
     QString m_path;
-    bool m_readOnly = false;
-    bool m_central = false;
-    QString m_connection;
-    QSqlDatabase m_db;
     bool m_inTransaction = false;
     QHash<const char *, QSqlQuery> m_queries;   // prepared write statements, reused
     std::unique_ptr<SampleChannels> m_samples;  // blocks + mipmap of every channel
-    std::unique_ptr<CentralConnection> m_link;  // a central store's connection limits and watchdog
 };
 
 } // namespace driftlab

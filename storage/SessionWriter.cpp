@@ -2,7 +2,10 @@
 
 #include "IrFrameCodec.h"
 #include "SessionStore.h"
+#include "StoreTransaction.h"
 #include "StorageError.h"
+
+#include <optional>
 
 namespace driftlab {
 
@@ -46,12 +49,12 @@ void SessionWriter::loop(const QString &path, std::promise<void> &opened)
     opened.set_value();
     const auto interval = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
         std::chrono::duration<double>(m_options.maxCommitInterval_s));
-    bool inTx = false;
+    std::optional<StoreTransaction> tx; // open between commits (RAII: rolled back if left open)
     quint64 done = 0; // tasks run in this process, committed or not
     auto txStart = std::chrono::steady_clock::now();
     std::unique_lock<std::mutex> lock(m_mutex);
     for (;;) {
-        if (inTx) {
+        if (tx) {
             m_wake.wait_until(lock, txStart + interval,
                               [&] { return m_stop || m_flushRequested || !m_queue.empty(); });
         } else {
@@ -66,17 +69,16 @@ void SessionWriter::loop(const QString &path, std::promise<void> &opened)
         std::string error;
         try {
             for (Task &task : batch) {
-                if (!inTx) {
-                    store->begin();
-                    inTx = true;
+                if (!tx) {
+                    tx.emplace(*store);
                     txStart = std::chrono::steady_clock::now();
                 }
                 task(*store);
                 ++done;
             }
-            if (inTx && (stop || flush || std::chrono::steady_clock::now() - txStart >= interval)) {
-                inTx = false;
-                store->commit();
+            if (tx && (stop || flush || std::chrono::steady_clock::now() - txStart >= interval)) {
+                tx->commit(); // a failed commit is rolled back by SessionStore
+                tx.reset();
                 lock.lock();
                 m_committed = done;
                 ++m_commits;
@@ -84,9 +86,7 @@ void SessionWriter::loop(const QString &path, std::promise<void> &opened)
             }
         } catch (const std::exception &e) {
             error = e.what();
-            if (inTx)
-                store->rollback();
-            inTx = false;
+            tx.reset(); // rolls back an open transaction
         }
         lock.lock();
         if (flush)
@@ -102,6 +102,7 @@ void SessionWriter::loop(const QString &path, std::promise<void> &opened)
         }
     }
     lock.unlock();
+    tx.reset();
     store.reset();
 }
 

@@ -52,6 +52,17 @@ void SqlSupport::run(QSqlQuery &q, const QString &path, const QString &what)
         fail(path, what, q.lastError());
 }
 
+QSqlQuery SqlSupport::select(const QSqlDatabase &db, const QString &path, const QString &sql, const QVariantList &params,
+                             const QString &what)
+{
+    QSqlQuery q = prepared(db, path, sql);
+    q.setForwardOnly(true);
+    for (const QVariant &p : params)
+        q.addBindValue(p);
+    run(q, path, what);
+    return q;
+}
+
 qint64 SqlSupport::insertedId(QSqlQuery &q, const QSqlDatabase &db, const QString &path)
 {
     if (db.driverName() != QLatin1String("QPSQL"))

@@ -5,6 +5,10 @@
 #include <QSqlDatabase>
 #include <QSqlQuery>
 #include <QString>
+#include <QVariant>
+#include <QVector>
+
+#include <utility>
 
 class QSqlError;
 
@@ -18,6 +22,22 @@ public:
     // The id the INSERT just run by q gave its row: SQLite's rowid, PostgreSQL's lastval() of
     // the BIGSERIAL column (QPSQL has no lastInsertId without OIDs).
     static qint64 insertedId(QSqlQuery &q, const QSqlDatabase &db, const QString &path);
+
+    // The one select-and-decode helper of the store: prepares sql, binds params in order and
+    // runs it (forward only), failing with `what`; the cursor stands before the first row.
+    static QSqlQuery select(const QSqlDatabase &db, const QString &path, const QString &sql, const QVariantList &params,
+                            const QString &what);
+    // select() and decode(q) of every row, in order.
+    template <class Decode>
+    static auto rows(const QSqlDatabase &db, const QString &path, const QString &sql, const QVariantList &params,
+                     const QString &what, Decode decode) -> QVector<decltype(decode(std::declval<const QSqlQuery &>()))>
+    {
+        QSqlQuery q = select(db, path, sql, params, what);
+        QVector<decltype(decode(std::declval<const QSqlQuery &>()))> out;
+        while (q.next())
+            out.push_back(decode(static_cast<const QSqlQuery &>(q)));
+        return out;
+    }
 };
 
 } // namespace driftlab

@@ -1,6 +1,9 @@
 #include "RigSetupDialog.h"
 
+#include "DeviceConnectionForm.h"
 #include "DeviceTestRunner.h"
+#include "DeviceTypes.h"
+#include "ModbusChannelTable.h"
 #include "ModbusPreset.h"
 #include "RealDevices.h"
 #include "RangeCodeDelegate.h"
@@ -25,7 +28,6 @@
 #include <QPlainTextEdit>
 #include <QPushButton>
 #include <QSaveFile>
-#include <QSerialPortInfo>
 #include <QSpinBox>
 #include <QSplitter>
 #include <QStackedWidget>
@@ -35,14 +37,11 @@
 namespace driftlab {
 
 namespace {
-const QStringList kRoles{QString(), QStringLiteral("ambient"), QStringLiteral("fixed_bearing"), QStringLiteral("free_bearing"),
-                         QStringLiteral("nut"), QStringLiteral("motor"), QStringLiteral("structure"), QStringLiteral("coolant"),
-                         QStringLiteral("spindle"), QStringLiteral("screw_surface"), QStringLiteral("screw_elongation"),
-                         QStringLiteral("axis_position"), QStringLiteral("feed_rate")};
-enum Column { ColInput, ColId, ColRange, ColRole, ColLocation, ColCount };
-bool isModbus(const QString &type)
+// The record of a device's type (a rig file's type was checked when it was loaded or added).
+DeviceTypes::Type typeOf(const DeviceConfig &d)
 {
-    return type == QLatin1String("modbus-tcp") || type == QLatin1String("modbus-rtu");
+    const DeviceTypes::Type *t = DeviceTypes::find(d.type);
+    return t ? *t : DeviceTypes::Type{};
 }
 } // namespace
 
@@ -97,12 +96,17 @@ void RigSetupDialog::buildUi()
     auto *addMenu = new QMenu(add);
     for (const QString &p : ModbusPreset::names())
         addMenu->addAction(tr("Modbus TCP module: %1").arg(ModbusPreset::load(p).model), this, [this, p] { addDevice(QStringLiteral("modbus-tcp"), p); });
-    for (const QString &t : RealDevices::types())
-        addMenu->addAction(tr("%1 (%2)").arg(t, RealDevices::description(t)), this, [this, t] { addDevice(t); });
+    for (const DeviceTypes::Type &t : DeviceTypes::all()) {
+        const QString name = t.name;
+        if (!t.simulated)
+            addMenu->addAction(tr("%1 (%2)").arg(name, t.description), this, [this, name] { addDevice(name); });
+    }
     addMenu->addSeparator();
-    for (const QString &t : RealDevices::allTypes())
-        if (RealDevices::isSimulated(t))
-            addMenu->addAction(tr("simulated: %1").arg(t), this, [this, t] { addDevice(t); });
+    for (const DeviceTypes::Type &t : DeviceTypes::all()) {
+        const QString name = t.name;
+        if (t.simulated)
+            addMenu->addAction(tr("simulated: %1").arg(name), this, [this, name] { addDevice(name); });
+    }
     add->setMenu(addMenu);
     auto *remove = new QPushButton(tr("Remove"), this);
     auto *left = new QVBoxLayout;
@@ -119,34 +123,12 @@ void RigSetupDialog::buildUi()
     m_preset->addItem(tr("(register map)"), QString());
     for (const QString &p : ModbusPreset::names())
         m_preset->addItem(ModbusPreset::load(p).model, p);
-    m_host = new QLineEdit(this);
-    m_port = new QSpinBox(this);
-    m_port->setRange(1, 65535);
-    m_serial = new QComboBox(this);
-    m_serial->setEditable(true);
-    for (const QSerialPortInfo &info : QSerialPortInfo::availablePorts())
-        m_serial->addItem(info.systemLocation());
-    m_baud = new QSpinBox(this);
-    m_baud->setRange(300, 4000000);
     m_unit = new QSpinBox(this);
     m_unit->setRange(0, 247);
     m_poll = new QDoubleSpinBox(this);
     m_poll->setRange(0.01, 100.0);
     m_poll->setSuffix(tr(" Hz"));
-    m_connection = new QStackedWidget(this);
-    auto *tcp = new QWidget(m_connection);
-    auto *tcpForm = new QFormLayout(tcp);
-    tcpForm->setContentsMargins(0, 0, 0, 0);
-    tcpForm->addRow(tr("Host"), m_host);
-    tcpForm->addRow(tr("Port"), m_port);
-    auto *rtu = new QWidget(m_connection);
-    auto *rtuForm = new QFormLayout(rtu);
-    rtuForm->setContentsMargins(0, 0, 0, 0);
-    rtuForm->addRow(tr("Serial port"), m_serial);
-    rtuForm->addRow(tr("Baud"), m_baud);
-    m_connection->addWidget(tcp);
-    m_connection->addWidget(rtu);
-    m_connection->addWidget(new QWidget(m_connection));
+    m_connection = new DeviceConnectionForm(this);
     auto *form = new QFormLayout;
     form->addRow(tr("Device id"), m_id);
     form->addRow(tr("Type"), m_type);
@@ -155,11 +137,7 @@ void RigSetupDialog::buildUi()
     form->addRow(tr("Modbus unit id"), m_unit);
     form->addRow(tr("Poll rate"), m_poll);
 
-    m_channels = new QTableWidget(0, ColCount, this);
-    m_channels->setHorizontalHeaderLabels({tr("Input"), tr("Channel id"), tr("Range code"), tr("Role"), tr("Location")});
-    m_channels->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
-    m_channels->horizontalHeader()->setStretchLastSection(true);
-    m_channels->verticalHeader()->hide();
+    m_channels = new ModbusChannelTable(this);
     m_json = new QPlainTextEdit(this);
     m_json->setLineWrapMode(QPlainTextEdit::NoWrap);
     QFont mono(QStringLiteral("monospace"));
@@ -214,7 +192,7 @@ void RigSetupDialog::buildUi()
     layout->addWidget(buttons);
     ScreenFit::resize(this, QSize(1400, 760));
     // Range codes from the module preset's list, not free hex text.
-    m_channels->setItemDelegateForColumn(ColRange, new RangeCodeDelegate([this] {
+    m_channels->setItemDelegateForColumn(ModbusChannelTable::ColRange, new RangeCodeDelegate([this] {
         try {
             const QString preset = m_preset->currentData().toString();
             return preset.isEmpty() ? QVector<ModbusRange>() : ModbusPreset::load(preset).ranges;
@@ -241,11 +219,8 @@ void RigSetupDialog::buildUi()
             s.insert(QStringLiteral("preset"), m_preset->currentData().toString());
         showDevice();
     });
-    for (QLineEdit *e : {m_host})
-        connect(e, &QLineEdit::textEdited, this, &RigSetupDialog::formEdited);
-    connect(m_serial, &QComboBox::currentTextChanged, this, &RigSetupDialog::formEdited);
-    for (QSpinBox *b : {m_port, m_baud, m_unit})
-        connect(b, QOverload<int>::of(&QSpinBox::valueChanged), this, &RigSetupDialog::formEdited);
+    connect(m_connection, &DeviceConnectionForm::edited, this, &RigSetupDialog::formEdited);
+    connect(m_unit, QOverload<int>::of(&QSpinBox::valueChanged), this, &RigSetupDialog::formEdited);
     connect(m_poll, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, &RigSetupDialog::formEdited);
     connect(m_channels, &QTableWidget::itemChanged, this, &RigSetupDialog::formEdited);
     connect(m_json, &QPlainTextEdit::textChanged, this, &RigSetupDialog::jsonEdited);
@@ -359,39 +334,18 @@ void RigSetupDialog::showDevice(bool rewriteJson)
     const DeviceConfig &d = m_devices[m_current];
     const QJsonObject &s = d.settings;
     m_id->setText(d.id);
-    m_type->setText(QStringLiteral("%1: %2").arg(d.type, RealDevices::isSimulated(d.type) ? tr("simulated instrument") : RealDevices::description(d.type)));
-    const bool modbus = isModbus(d.type);
+    const DeviceTypes::Type type = typeOf(d);
+    m_type->setText(QStringLiteral("%1: %2").arg(d.type, type.simulated ? tr("simulated instrument") : type.description));
+    const bool modbus = type.modbus;
     m_preset->setEnabled(modbus);
     m_unit->setEnabled(modbus);
     m_poll->setEnabled(modbus);
     const QString preset = s.value(QStringLiteral("preset")).toString();
     m_preset->setCurrentIndex(std::max(0, m_preset->findData(preset)));
-    m_connection->setCurrentIndex(d.type == QLatin1String("modbus-tcp") ? 0 : d.type == QLatin1String("modbus-rtu") ? 1 : 2);
-    m_host->setText(s.value(QStringLiteral("host")).toString());
-    m_port->setValue(s.value(QStringLiteral("port")).toInt(502));
-    m_serial->setCurrentText(s.value(QStringLiteral("serial_port")).toString());
-    m_baud->setValue(s.value(QStringLiteral("baud")).toInt(19200));
+    m_connection->show(type.connection, s);
     m_unit->setValue(s.value(QStringLiteral("unit_id")).toInt(1));
     m_poll->setValue(s.value(QStringLiteral("poll_Hz")).toDouble(1.0));
-    const QJsonArray channels = s.value(QStringLiteral("channels")).toArray();
-    const bool table = modbus && !preset.isEmpty();
-    m_channels->setEnabled(table);
-    m_channels->setRowCount(table ? channels.size() : 0);
-    for (int r = 0; table && r < channels.size(); ++r) {
-        const QJsonObject c = channels[r].toObject();
-        const QJsonValue range = c.value(QStringLiteral("range"));
-        const QStringList cells{QString::number(c.value(QStringLiteral("input")).toInt()), c.value(QStringLiteral("id")).toString(),
-                                range.isString() ? range.toString() : QString(), c.value(QStringLiteral("role")).toString(),
-                                c.value(QStringLiteral("location")).toString()};
-        for (int col = 0; col < ColCount; ++col) {
-            auto *item = new QTableWidgetItem(cells[col]);
-            if (col == ColInput)
-                item->setFlags(item->flags() & ~Qt::ItemIsEditable);
-            if (col == ColRole)
-                item->setToolTip(tr("bundle roles: %1").arg(kRoles.mid(1).join(QStringLiteral(", "))));
-            m_channels->setItem(r, col, item);
-        }
-    }
+    m_channels->showChannels(s.value(QStringLiteral("channels")).toArray(), modbus && !preset.isEmpty());
     if (rewriteJson)
         m_json->setPlainText(QString::fromUtf8(QJsonDocument(s).toJson(QJsonDocument::Indented)));
     m_updating = false;
@@ -406,36 +360,14 @@ void RigSetupDialog::formEdited()
     QJsonObject &s = d.settings;
     if (!m_id->text().isEmpty())
         d.id = m_id->text();
-    if (d.type == QLatin1String("modbus-tcp")) {
-        s.insert(QStringLiteral("host"), m_host->text());
-        s.insert(QStringLiteral("port"), m_port->value());
-    } else if (d.type == QLatin1String("modbus-rtu")) {
-        s.insert(QStringLiteral("serial_port"), m_serial->currentText());
-        s.insert(QStringLiteral("baud"), m_baud->value());
-    }
-    if (isModbus(d.type)) {
+    const DeviceTypes::Type type = typeOf(d);
+    m_connection->applyTo(type.connection, s);
+    if (type.modbus) {
         s.insert(QStringLiteral("unit_id"), m_unit->value());
         s.insert(QStringLiteral("poll_Hz"), m_poll->value());
     }
-    if (m_channels->isEnabled() && m_channels->rowCount() > 0) {
-        QJsonArray channels = s.value(QStringLiteral("channels")).toArray();
-        for (int r = 0; r < m_channels->rowCount() && r < channels.size(); ++r) {
-            QJsonObject c = channels[r].toObject();
-            auto set = [&](const char *key, int col) {
-                const QString text = m_channels->item(r, col) ? m_channels->item(r, col)->text().trimmed() : QString();
-                if (text.isEmpty())
-                    c.remove(QLatin1String(key));
-                else
-                    c.insert(QLatin1String(key), text);
-            };
-            set("id", ColId);
-            set("range", ColRange);
-            set("role", ColRole);
-            set("location", ColLocation);
-            channels[r] = c;
-        }
-        s.insert(QStringLiteral("channels"), channels);
-    }
+    if (m_channels->isEnabled() && m_channels->rowCount() > 0)
+        s.insert(QStringLiteral("channels"), m_channels->applyTo(s.value(QStringLiteral("channels")).toArray()));
     m_updating = true;
     m_list->item(m_current)->setText(QStringLiteral("%1  (%2)").arg(d.id, d.type));
     m_json->setPlainText(QString::fromUtf8(QJsonDocument(s).toJson(QJsonDocument::Indented)));
@@ -488,13 +420,7 @@ void RigSetupDialog::setConnection(const QString &hostOrPort, int port)
 {
     if (m_current < 0)
         return;
-    if (m_devices[m_current].type == QLatin1String("modbus-rtu")) {
-        m_serial->setCurrentText(hostOrPort);
-        m_baud->setValue(port);
-    } else {
-        m_host->setText(hostOrPort);
-        m_port->setValue(port);
-    }
+    m_connection->set(typeOf(m_devices[m_current]).connection, hostOrPort, port);
     formEdited();
 }
 

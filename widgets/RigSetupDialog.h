@@ -24,7 +24,9 @@ class QStackedWidget;
 
 namespace driftlab {
 
+class DeviceConnectionForm;
 class DeviceTestRunner;
+class ModbusChannelTable;
 
 class RigSetupDialog : public QDialog {
     Q_OBJECT
@@ -86,14 +88,10 @@ private:
     QLineEdit *m_id;
     QLabel *m_type;
     QComboBox *m_preset;
-    QStackedWidget *m_connection; // page 0: TCP host/port, 1: serial port/baud, 2: nothing
-    QLineEdit *m_host;
-    QSpinBox *m_port;
-    QComboBox *m_serial;
-    QSpinBox *m_baud;
+    DeviceConnectionForm *m_connection; // TCP host/port, serial port/baud or nothing
     QSpinBox *m_unit;
     QDoubleSpinBox *m_poll;
-    QTableWidget *m_channels;
+    ModbusChannelTable *m_channels;
     QPlainTextEdit *m_json;
     QLabel *m_status;
     QPushButton *m_test, *m_stopTest;

@@ -3,6 +3,8 @@
 // device's own settings, invalid JSON by line), the list survives a save and load, and
 // RigDeviceSet builds the devices and the session description (simulated instruments
 // bound to the rig, the camera's calibration as the infrared block, the rig file kept).
+#include "Device.h"
+#include "DeviceTypes.h"
 #include "RealDevices.h"
 #include "RigConfigLoader.h"
 #include "RigDeviceSet.h"
@@ -29,6 +31,7 @@ class TestRigDevices : public QObject {
     Q_OBJECT
 private slots:
     void templatesAreValid();
+    void typeRecordsAgreeWithTheirDevices();
     void loaderErrorsNameTheField_data();
     void loaderErrorsNameTheField();
     void devicesSurviveSaveAndLoad();
@@ -53,6 +56,36 @@ void TestRigDevices::templatesAreValid()
     }
     QVERIFY(RealDevices::allTypes().contains(QStringLiteral("sim-cnc")));
     QVERIFY(RealDevices::isCamera(QStringLiteral("ir-folder")));
+}
+
+// The device-type table (DeviceTypes): one record per name; a real type's factory builds a
+// device from its own template without touching hardware, and the form's connection kind is
+// the one the template's settings carry (TCP: host, serial: serial_port); the camera flag is
+// exactly the types that give infrared frames.
+void TestRigDevices::typeRecordsAgreeWithTheirDevices()
+{
+    QSet<QString> names;
+    for (const DeviceTypes::Type &t : DeviceTypes::all()) {
+        QVERIFY2(!names.contains(t.name), qPrintable(t.name));
+        names.insert(t.name);
+        QCOMPARE(DeviceTypes::find(t.name), &t);
+        QCOMPARE(RealDevices::isSimulated(t.name), t.simulated);
+        if (t.simulated)
+            continue;
+        const QJsonObject s = t.example(QString());
+        const std::unique_ptr<Device> d = t.make(QStringLiteral("dev"), s, QStringLiteral("devices[0]"));
+        QVERIFY2(d != nullptr, qPrintable(t.name));
+        QCOMPARE(s.contains(QStringLiteral("host")), t.connection == DeviceTypes::Connection::Tcp);
+        QCOMPARE(s.contains(QStringLiteral("serial_port")) && t.modbus, t.connection == DeviceTypes::Connection::Serial);
+    }
+    const QStringList all = RealDevices::allTypes();
+    QCOMPARE(names, QSet<QString>(all.cbegin(), all.cend()));
+    QStringList cameras;
+    for (const DeviceTypes::Type &t : DeviceTypes::all())
+        if (t.camera)
+            cameras << t.name;
+    QCOMPARE(cameras, (QStringList{QStringLiteral("ir-folder"), QStringLiteral("ir-uvc"), QStringLiteral("sim-infrared")}));
+    QCOMPARE(DeviceTypes::find(QStringLiteral("no-such-type")), nullptr);
 }
 
 void TestRigDevices::loaderErrorsNameTheField_data()
