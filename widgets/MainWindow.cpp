@@ -114,7 +114,7 @@ MainWindow::MainWindow(QWidget *parent)
             if (ok)
                 m_views->setCurrentWidget(m_analysis->resultsView());
         });
-    // The sessions dock runs the full height; bottom docks share the width right of it.
+    // The sessions dock (and its tabs) runs the full height; bottom docks share the width right of it.
     setCorner(Qt::TopLeftCorner, Qt::LeftDockWidgetArea);
     setCorner(Qt::BottomLeftCorner, Qt::LeftDockWidgetArea);
     setCorner(Qt::TopRightCorner, Qt::RightDockWidgetArea);
@@ -125,10 +125,14 @@ MainWindow::MainWindow(QWidget *parent)
         this, [this] { return m_workbench->store(); }, [this] { return m_workbench->currentSession(); },
         [this](const QString &a) { return m_workbench->openDatabase(a); });
     buildMenus();
-    addPanelDock(tr("Sessions"), QStringLiteral("SessionsDock"), m_browser, Qt::LeftDockWidgetArea,
-                 QKeySequence(Qt::CTRL + Qt::Key_1));
+    QDockWidget *sessions = addPanelDock(tr("Sessions"), QStringLiteral("SessionsDock"), m_browser, Qt::LeftDockWidgetArea,
+                                         QKeySequence(Qt::CTRL + Qt::Key_1));
+    // Acquisition and Compensation are tabs of the sessions dock: side by side with the
+    // sessions they left the central views too little room at 1366 px and both scrolled
+    // sideways (tst_layout1366).
     QDockWidget *acquisition = addPanelDock(tr("Acquisition"), QStringLiteral("AcquisitionDock"), m_acquisition,
-                                            Qt::RightDockWidgetArea, QKeySequence(Qt::CTRL + Qt::Key_2));
+                                            Qt::LeftDockWidgetArea, QKeySequence(Qt::CTRL + Qt::Key_2));
+    tabifyDockWidget(sessions, acquisition);
     acquisition->hide();
     QDockWidget *models = addPanelDock(tr("Models"), QStringLiteral("ModelsDock"), m_models, Qt::BottomDockWidgetArea,
                                        QKeySequence(Qt::CTRL + Qt::Key_3));
@@ -142,7 +146,7 @@ MainWindow::MainWindow(QWidget *parent)
     tabifyDockWidget(diagnosis, analysis); // sensitive points and data-driven models
     analysis->hide();
     QDockWidget *compensation = addPanelDock(tr("Compensation"), QStringLiteral("CompensationDock"), m_compensation,
-                                             Qt::RightDockWidgetArea, QKeySequence(Qt::CTRL + Qt::Key_6));
+                                             Qt::LeftDockWidgetArea, QKeySequence(Qt::CTRL + Qt::Key_6));
     tabifyDockWidget(acquisition, compensation); // live offsets to a controller (docs/export.md)
     compensation->hide();
     // Further docks (rig setup, ...): addPanelDock(...) here.
@@ -210,8 +214,9 @@ QDockWidget *MainWindow::addPanelDock(const QString &title, const QString &objec
     scroll->setFrameShape(QFrame::NoFrame);
     scroll->setWidget(panel);
     // Never narrower than the panel's content: docks scroll vertically, not sideways.
-    // (Side docks at most 460 px: sessions + acquisition + the central views fit 1366 px.)
-    scroll->setMinimumWidth(std::min(460, panel->minimumSizeHint().width() + scroll->verticalScrollBar()->sizeHint().width()));
+    // (Side docks at most 540 px; the side panels are tabs of one dock area, so one of them
+    // and the central views fit 1366 px.)
+    scroll->setMinimumWidth(std::min(540, panel->minimumSizeHint().width() + scroll->verticalScrollBar()->sizeHint().width()));
     dock->setWidget(scroll);
     addDockWidget(area, dock);
     QAction *toggle = dock->toggleViewAction();
