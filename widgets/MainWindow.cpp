@@ -7,6 +7,7 @@
 #include "DiagnosisPanel.h"
 #include "ErrorSurface3D.h"
 #include "HelpBrowser.h"
+#include "Iso230View.h"
 #include "ModelExportDialog.h"
 #include "ModelsPanel.h"
 #include "PlotExporter.h"
@@ -74,6 +75,7 @@ MainWindow::MainWindow(QWidget *parent)
       m_split(new QSplitter(this)),
       m_workspace(new ReviewWorkspace(this)),
       m_comparison(new ReviewWorkspace(this)),
+      m_iso230(new Iso230View(this)),
       m_acquisition(new AcquisitionPanel(m_workbench, this)),
       m_models(new ModelsPanel(m_workbench, this)),
       m_diagnosis(new DiagnosisPanel(m_workbench, this)),
@@ -96,6 +98,7 @@ MainWindow::MainWindow(QWidget *parent)
     m_sessionPage->addWidget(m_welcome);
     m_sessionPage->addWidget(m_split);
     m_views->addTab(m_sessionPage, tr("Session"));
+    m_views->addTab(m_iso230, tr("ISO 230")); // the interferometer runs of the current session
     m_views->addTab(m_models->resultsView(), tr("Model fit"));
     m_diagnosis->resultsView()->setOrientation(Qt::Horizontal);
     m_views->addTab(m_diagnosis->resultsView(), tr("Diagnosis"));
@@ -294,6 +297,7 @@ void MainWindow::onStoreChanged()
     m_workspace->clear();
     m_comparison->clear();
     m_comparison->hide();
+    m_iso230->clear();
     if (const SessionStore *store = m_workbench->store())
         setWindowTitle(tr("DriftLab - %1").arg(store->isCentralStore() ? store->path() : QFileInfo(store->path()).fileName()));
 }
@@ -310,15 +314,18 @@ void MainWindow::onSessionsChanged()
 
 void MainWindow::onSessionChanged(qint64 sessionId)
 {
-    m_views->setCurrentWidget(m_sessionPage);
+    if (m_views->currentWidget() != m_iso230) // the ISO 230 view follows the session in place
+        m_views->setCurrentWidget(m_sessionPage);
     const SessionStore *store = m_workbench->store();
     if (!store || sessionId == 0) {
         m_workspace->clear();
         m_browser->setChannels({}, {});
+        m_iso230->clear();
         return;
     }
     try {
         m_workspace->setSession(store, sessionId);
+        m_iso230->setSession(store, sessionId);
         m_compensation->setSession(store->path(), sessionId);
         m_browser->selectSession(sessionId);
         m_browser->setChannels(store->channels(sessionId), m_workspace->defaultChannels());

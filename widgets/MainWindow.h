@@ -25,6 +25,7 @@ class AnalysisPanel;
 class CentralStoreActions;
 class CompensationPanel;
 class DiagnosisPanel;
+class Iso230View;
 class ModelsPanel;
 class ReviewWorkspace;
 class SessionActions;
@@ -66,8 +67,9 @@ public:
     TimeSeriesPlot *plot() const;
     ReviewWorkspace *workspace() const { return m_workspace; }
     ReviewWorkspace *comparison() const { return m_comparison; }
-    // The central area's tabs: Session (the review workspace), Model fit, Diagnosis, Analysis.
+    // The central area's tabs: Session (the review workspace), ISO 230, Model fit, Diagnosis, Analysis.
     QTabWidget *centralViews() const { return m_views; }
+    Iso230View *iso230() const { return m_iso230; }
     AcquisitionPanel *acquisition() const { return m_acquisition; }
     ModelsPanel *models() const { return m_models; }
     DiagnosisPanel *diagnosis() const { return m_diagnosis; }
@@ -108,6 +110,7 @@ private:
     QSplitter *m_split;
     ReviewWorkspace *m_workspace;
     ReviewWorkspace *m_comparison;
+    Iso230View *m_iso230;
     AcquisitionPanel *m_acquisition;
     ModelsPanel *m_models;
     DiagnosisPanel *m_diagnosis;
