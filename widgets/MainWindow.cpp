@@ -29,7 +29,7 @@
 #include <QFileInfo>
 #include <QInputDialog>
 #include <QLabel>
-#include <QListWidget>
+#include <QTableView>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
@@ -163,6 +163,7 @@ MainWindow::MainWindow(QWidget *parent)
     connect(m_workbench, &Workbench::message, this, &MainWindow::say);
     connect(m_workbench, &Workbench::failed, this, &MainWindow::say);
     connect(m_acquisition, &AcquisitionPanel::recordingStopped, this, &MainWindow::onRecordingStopped);
+    connect(m_acquisition, &AcquisitionPanel::recordingStarted, this, &MainWindow::markRecording);
     connect(m_welcome, &WelcomePage::recordSimulated, this, &MainWindow::recordSimulatedSession);
     connect(m_welcome, &WelcomePage::openExample, this, &MainWindow::openExampleBundle);
     connect(m_welcome, &WelcomePage::importCsv, this, [this] {
@@ -219,7 +220,8 @@ QDockWidget *MainWindow::addPanelDock(const QString &title, const QString &objec
     // Never narrower than the panel's content: docks scroll vertically, not sideways.
     // (Side docks at most 540 px; the side panels are tabs of one dock area, so one of them
     // and the central views fit 1366 px.)
-    scroll->setMinimumWidth(std::min(540, panel->minimumSizeHint().width() + scroll->verticalScrollBar()->sizeHint().width()));
+    scroll->setMinimumWidth(std::min(540, std::max(panel->minimumSizeHint().width(), panel->minimumWidth()) +
+                                                  scroll->verticalScrollBar()->sizeHint().width()));
     dock->setWidget(scroll);
     addDockWidget(area, dock);
     QAction *toggle = dock->toggleViewAction();
@@ -252,7 +254,7 @@ void MainWindow::buildMenus()
 
     QMenu *edit = menuBar()->addMenu(tr("&Edit"));
     // The session edits also on the session list's context menu.
-    QListWidget *list = m_browser->sessionList();
+    QTableView *list = m_browser->sessionTable();
     list->setContextMenuPolicy(Qt::ActionsContextMenu);
     list->addActions(m_actions->addEditActions(edit));
 
@@ -305,7 +307,8 @@ void MainWindow::onStoreChanged()
 void MainWindow::onSessionsChanged()
 {
     const SessionStore *store = m_workbench->store();
-    m_browser->setSessions(m_workbench->sessions());
+    m_browser->setSessions(m_workbench->sessions(), store);
+    markRecording();
     m_welcome->setDatabase(store ? store->path() : QString());
     m_sessionPage->setCurrentWidget(m_workbench->sessions().isEmpty() ? static_cast<QWidget *>(m_welcome) : m_split);
     m_summary->setText(store ? tr("%1: %n session(s)", nullptr, m_workbench->sessions().size()).arg(store->path())
@@ -334,8 +337,17 @@ void MainWindow::onSessionChanged(qint64 sessionId)
     }
 }
 
+void MainWindow::markRecording()
+{
+    // The sessions table says which session is being recorded, when it is in the open database.
+    const bool here = m_acquisition->recording() && m_workbench->store() &&
+                      QFileInfo(m_acquisition->databasePath()).absoluteFilePath() == m_workbench->localPath();
+    m_browser->setRecordingSession(here ? m_acquisition->sessionId() : 0);
+}
+
 void MainWindow::onRecordingStopped(qint64 sessionId)
 {
+    m_browser->setRecordingSession(0);
     // A finished recording appears in the session list of the database it went to.
     const QString db = QFileInfo(m_acquisition->databasePath()).absoluteFilePath();
     if (m_workbench->localPath() != db && !m_workbench->openDatabase(db))

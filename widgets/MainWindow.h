@@ -98,6 +98,7 @@ private:
     void onSessionChanged(qint64 sessionId);
     void onSessionsChanged();
     void onRecordingStopped(qint64 sessionId);
+    void markRecording();
     void say(const QString &message);
     bool ensureDatabase();
 
