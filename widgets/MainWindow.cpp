@@ -242,7 +242,11 @@ void MainWindow::buildMenus()
     m_actions->addDatabaseActions(file, [this](QMenu *menu) { m_central->addTo(menu); });
     file->addSeparator();
     m_actions->addImportExportActions(file);
-    file->addAction(tr("Export &model to controller..."), this, [this] { ModelExportDialog(this).exec(); })
+    file->addAction(tr("Export &model to controller..."), this, [this] {
+        ModelExportDialog dialog(this);
+        dialog.setStore(m_workbench->store(), m_workbench->currentSession()); // the models fitted with these sessions
+        dialog.exec();
+    })
         ->setObjectName(QStringLiteral("ExportModelAction"));
     file->addAction(tr("Export current &view (PNG, SVG, PDF)..."), this, &MainWindow::exportView,
                     QKeySequence(Qt::CTRL + Qt::SHIFT + Qt::Key_E));
