@@ -30,6 +30,9 @@
 #include <QInputDialog>
 #include <QLabel>
 #include <QTableView>
+#include <QListWidget>
+#include <QDialogButtonBox>
+#include <QVBoxLayout>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
@@ -267,6 +270,8 @@ void MainWindow::buildMenus()
     m_viewDocksEnd = m_viewMenu->addSeparator(); // dock toggles go above
     m_viewMenu->addAction(tr("&Compare with session..."), this, &MainWindow::chooseComparison);
     m_viewMenu->addAction(tr("Close c&omparison"), this, [this] { compareWith(0); });
+    m_viewMenu->addAction(tr("O&verlay sessions on the time plot..."), this, &MainWindow::chooseOverlay)
+        ->setObjectName(QStringLiteral("OverlayAction"));
     m_viewMenu->addSeparator();
     m_viewMenu->addAction(tr("&Reset layout"), this, &MainWindow::resetLayout)->setObjectName(QStringLiteral("ResetLayoutAction"));
 
@@ -459,6 +464,49 @@ void MainWindow::chooseComparison()
                                                  labels, 0, false, &ok);
     if (ok)
         compareWith(ids.value(labels.indexOf(choice)));
+}
+
+void MainWindow::overlaySessions(const QVector<qint64> &sessionIds)
+{
+    if (!m_workbench->store() || m_workbench->currentSession() == 0)
+        return;
+    try {
+        m_workspace->setOverlay(sessionIds);
+        m_views->setCurrentWidget(m_sessionPage);
+    } catch (const std::exception &e) {
+        m_workbench->reportError(QString::fromStdString(e.what()));
+    }
+}
+
+void MainWindow::chooseOverlay()
+{
+    if (!m_workbench->store() || m_workbench->currentSession() == 0)
+        return;
+    QDialog dialog(this);
+    dialog.setWindowTitle(tr("Overlay sessions"));
+    auto *list = new QListWidget(&dialog);
+    for (const SessionInfo &s : m_workbench->sessions()) {
+        if (s.id == m_workbench->currentSession())
+            continue;
+        auto *item = new QListWidgetItem(QStringLiteral("#%1  %2  (%3)").arg(s.id).arg(s.name, s.started), list);
+        item->setData(Qt::UserRole, s.id);
+        item->setFlags(item->flags() | Qt::ItemIsUserCheckable);
+        item->setCheckState(m_workspace->overlay().contains(s.id) ? Qt::Checked : Qt::Unchecked);
+    }
+    auto *buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dialog);
+    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    auto *layout = new QVBoxLayout(&dialog);
+    layout->addWidget(new QLabel(tr("Sessions to draw on the current session's time plot (same channels, same elapsed time):"), &dialog));
+    layout->addWidget(list);
+    layout->addWidget(buttons);
+    if (dialog.exec() != QDialog::Accepted)
+        return;
+    QVector<qint64> ids;
+    for (int i = 0; i < list->count(); ++i)
+        if (list->item(i)->checkState() == Qt::Checked)
+            ids << list->item(i)->data(Qt::UserRole).toLongLong();
+    overlaySessions(ids);
 }
 
 void MainWindow::exportView()

@@ -50,6 +50,8 @@ public:
     WelcomePage *welcome() const { return m_welcome; }
     // Shows a second session beside the first (0 closes the comparison).
     void compareWith(qint64 sessionId);
+    // Draws other sessions on the current session's time plot (View > Overlay sessions...).
+    void overlaySessions(const QVector<qint64> &sessionIds);
 
     // The window as on screen, with the 3-D view's OpenGL surface drawn in (QWidget::grab
     // leaves a native OpenGL window blank).
@@ -91,6 +93,7 @@ private:
     void buildMenus();
     void exportView();
     void chooseComparison();
+    void chooseOverlay();
     void showAbout();
     void showDocumentation();
     void fitToScreen();
