@@ -6,6 +6,7 @@
 
 #include <QFile>
 #include <QFileInfo>
+#include <QJsonDocument>
 #include <QJsonObject>
 
 #include <cmath>
@@ -88,6 +89,24 @@ ExportableModel ExportableModelJson::parse(const QByteArray &bytes, const QStrin
     } catch (const std::invalid_argument &e) {
         fail(source, QStringLiteral("screw"), QString::fromUtf8(e.what()));
     }
+    return m;
+}
+
+ExportableModel ExportableModelJson::fromStored(const FittedModel &model, const QJsonObject &machine, const QString &source)
+{
+    QJsonObject doc;
+    if (model.parameters.contains(QStringLiteral("format"))) {
+        doc = model.parameters;
+    } else {
+        doc = QJsonObject{{QStringLiteral("model"), model.model},
+                          {QStringLiteral("parameters"), model.parameters},
+                          {QStringLiteral("screw"), machine.value(QStringLiteral("screw"))},
+                          {QStringLiteral("grid"), model.provenance.value(QStringLiteral("grid"))}};
+        if (model.provenance.contains(QStringLiteral("schema_version")))
+            doc.insert(QStringLiteral("schema_version"), model.provenance.value(QStringLiteral("schema_version")));
+    }
+    ExportableModel m = parse(QJsonDocument(doc).toJson(QJsonDocument::Compact), source);
+    m.source = source.toStdString();
     return m;
 }
 

@@ -7,6 +7,7 @@
 #include "DiagnosisPanel.h"
 #include "ErrorSurface3D.h"
 #include "HelpBrowser.h"
+#include "Iso230View.h"
 #include "ModelExportDialog.h"
 #include "ModelsPanel.h"
 #include "PlotExporter.h"
@@ -28,7 +29,10 @@
 #include <QFileInfo>
 #include <QInputDialog>
 #include <QLabel>
+#include <QTableView>
 #include <QListWidget>
+#include <QDialogButtonBox>
+#include <QVBoxLayout>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
@@ -74,6 +78,7 @@ MainWindow::MainWindow(QWidget *parent)
       m_split(new QSplitter(this)),
       m_workspace(new ReviewWorkspace(this)),
       m_comparison(new ReviewWorkspace(this)),
+      m_iso230(new Iso230View(this)),
       m_acquisition(new AcquisitionPanel(m_workbench, this)),
       m_models(new ModelsPanel(m_workbench, this)),
       m_diagnosis(new DiagnosisPanel(m_workbench, this)),
@@ -96,6 +101,7 @@ MainWindow::MainWindow(QWidget *parent)
     m_sessionPage->addWidget(m_welcome);
     m_sessionPage->addWidget(m_split);
     m_views->addTab(m_sessionPage, tr("Session"));
+    m_views->addTab(m_iso230, tr("ISO 230")); // the interferometer runs of the current session
     m_views->addTab(m_models->resultsView(), tr("Model fit"));
     m_diagnosis->resultsView()->setOrientation(Qt::Horizontal);
     m_views->addTab(m_diagnosis->resultsView(), tr("Diagnosis"));
@@ -114,7 +120,7 @@ MainWindow::MainWindow(QWidget *parent)
             if (ok)
                 m_views->setCurrentWidget(m_analysis->resultsView());
         });
-    // The sessions dock runs the full height; bottom docks share the width right of it.
+    // The sessions dock (and its tabs) runs the full height; bottom docks share the width right of it.
     setCorner(Qt::TopLeftCorner, Qt::LeftDockWidgetArea);
     setCorner(Qt::BottomLeftCorner, Qt::LeftDockWidgetArea);
     setCorner(Qt::TopRightCorner, Qt::RightDockWidgetArea);
@@ -125,10 +131,14 @@ MainWindow::MainWindow(QWidget *parent)
         this, [this] { return m_workbench->store(); }, [this] { return m_workbench->currentSession(); },
         [this](const QString &a) { return m_workbench->openDatabase(a); });
     buildMenus();
-    addPanelDock(tr("Sessions"), QStringLiteral("SessionsDock"), m_browser, Qt::LeftDockWidgetArea,
-                 QKeySequence(Qt::CTRL + Qt::Key_1));
+    QDockWidget *sessions = addPanelDock(tr("Sessions"), QStringLiteral("SessionsDock"), m_browser, Qt::LeftDockWidgetArea,
+                                         QKeySequence(Qt::CTRL + Qt::Key_1));
+    // Acquisition and Compensation are tabs of the sessions dock: side by side with the
+    // sessions they left the central views too little room at 1366 px and both scrolled
+    // sideways (tst_layout1366).
     QDockWidget *acquisition = addPanelDock(tr("Acquisition"), QStringLiteral("AcquisitionDock"), m_acquisition,
-                                            Qt::RightDockWidgetArea, QKeySequence(Qt::CTRL + Qt::Key_2));
+                                            Qt::LeftDockWidgetArea, QKeySequence(Qt::CTRL + Qt::Key_2));
+    tabifyDockWidget(sessions, acquisition);
     acquisition->hide();
     QDockWidget *models = addPanelDock(tr("Models"), QStringLiteral("ModelsDock"), m_models, Qt::BottomDockWidgetArea,
                                        QKeySequence(Qt::CTRL + Qt::Key_3));
@@ -142,7 +152,7 @@ MainWindow::MainWindow(QWidget *parent)
     tabifyDockWidget(diagnosis, analysis); // sensitive points and data-driven models
     analysis->hide();
     QDockWidget *compensation = addPanelDock(tr("Compensation"), QStringLiteral("CompensationDock"), m_compensation,
-                                             Qt::RightDockWidgetArea, QKeySequence(Qt::CTRL + Qt::Key_6));
+                                             Qt::LeftDockWidgetArea, QKeySequence(Qt::CTRL + Qt::Key_6));
     tabifyDockWidget(acquisition, compensation); // live offsets to a controller (docs/export.md)
     compensation->hide();
     // Further docks (rig setup, ...): addPanelDock(...) here.
@@ -156,6 +166,7 @@ MainWindow::MainWindow(QWidget *parent)
     connect(m_workbench, &Workbench::message, this, &MainWindow::say);
     connect(m_workbench, &Workbench::failed, this, &MainWindow::say);
     connect(m_acquisition, &AcquisitionPanel::recordingStopped, this, &MainWindow::onRecordingStopped);
+    connect(m_acquisition, &AcquisitionPanel::recordingStarted, this, &MainWindow::markRecording);
     connect(m_welcome, &WelcomePage::recordSimulated, this, &MainWindow::recordSimulatedSession);
     connect(m_welcome, &WelcomePage::openExample, this, &MainWindow::openExampleBundle);
     connect(m_welcome, &WelcomePage::importCsv, this, [this] {
@@ -210,8 +221,10 @@ QDockWidget *MainWindow::addPanelDock(const QString &title, const QString &objec
     scroll->setFrameShape(QFrame::NoFrame);
     scroll->setWidget(panel);
     // Never narrower than the panel's content: docks scroll vertically, not sideways.
-    // (Side docks at most 460 px: sessions + acquisition + the central views fit 1366 px.)
-    scroll->setMinimumWidth(std::min(460, panel->minimumSizeHint().width() + scroll->verticalScrollBar()->sizeHint().width()));
+    // (Side docks at most 540 px; the side panels are tabs of one dock area, so one of them
+    // and the central views fit 1366 px.)
+    scroll->setMinimumWidth(std::min(540, std::max(panel->minimumSizeHint().width(), panel->minimumWidth()) +
+                                                  scroll->verticalScrollBar()->sizeHint().width()));
     dock->setWidget(scroll);
     addDockWidget(area, dock);
     QAction *toggle = dock->toggleViewAction();
@@ -232,7 +245,11 @@ void MainWindow::buildMenus()
     m_actions->addDatabaseActions(file, [this](QMenu *menu) { m_central->addTo(menu); });
     file->addSeparator();
     m_actions->addImportExportActions(file);
-    file->addAction(tr("Export &model to controller..."), this, [this] { ModelExportDialog(this).exec(); })
+    file->addAction(tr("Export &model to controller..."), this, [this] {
+        ModelExportDialog dialog(this);
+        dialog.setStore(m_workbench->store(), m_workbench->currentSession()); // the models fitted with these sessions
+        dialog.exec();
+    })
         ->setObjectName(QStringLiteral("ExportModelAction"));
     file->addAction(tr("Export current &view (PNG, SVG, PDF)..."), this, &MainWindow::exportView,
                     QKeySequence(Qt::CTRL + Qt::SHIFT + Qt::Key_E));
@@ -244,7 +261,7 @@ void MainWindow::buildMenus()
 
     QMenu *edit = menuBar()->addMenu(tr("&Edit"));
     // The session edits also on the session list's context menu.
-    QListWidget *list = m_browser->sessionList();
+    QTableView *list = m_browser->sessionTable();
     list->setContextMenuPolicy(Qt::ActionsContextMenu);
     list->addActions(m_actions->addEditActions(edit));
 
@@ -253,6 +270,8 @@ void MainWindow::buildMenus()
     m_viewDocksEnd = m_viewMenu->addSeparator(); // dock toggles go above
     m_viewMenu->addAction(tr("&Compare with session..."), this, &MainWindow::chooseComparison);
     m_viewMenu->addAction(tr("Close c&omparison"), this, [this] { compareWith(0); });
+    m_viewMenu->addAction(tr("O&verlay sessions on the time plot..."), this, &MainWindow::chooseOverlay)
+        ->setObjectName(QStringLiteral("OverlayAction"));
     m_viewMenu->addSeparator();
     m_viewMenu->addAction(tr("&Reset layout"), this, &MainWindow::resetLayout)->setObjectName(QStringLiteral("ResetLayoutAction"));
 
@@ -289,6 +308,7 @@ void MainWindow::onStoreChanged()
     m_workspace->clear();
     m_comparison->clear();
     m_comparison->hide();
+    m_iso230->clear();
     if (const SessionStore *store = m_workbench->store())
         setWindowTitle(tr("DriftLab - %1").arg(store->isCentralStore() ? store->path() : QFileInfo(store->path()).fileName()));
 }
@@ -296,7 +316,8 @@ void MainWindow::onStoreChanged()
 void MainWindow::onSessionsChanged()
 {
     const SessionStore *store = m_workbench->store();
-    m_browser->setSessions(m_workbench->sessions());
+    m_browser->setSessions(m_workbench->sessions(), store);
+    markRecording();
     m_welcome->setDatabase(store ? store->path() : QString());
     m_sessionPage->setCurrentWidget(m_workbench->sessions().isEmpty() ? static_cast<QWidget *>(m_welcome) : m_split);
     m_summary->setText(store ? tr("%1: %n session(s)", nullptr, m_workbench->sessions().size()).arg(store->path())
@@ -305,15 +326,18 @@ void MainWindow::onSessionsChanged()
 
 void MainWindow::onSessionChanged(qint64 sessionId)
 {
-    m_views->setCurrentWidget(m_sessionPage);
+    if (m_views->currentWidget() != m_iso230) // the ISO 230 view follows the session in place
+        m_views->setCurrentWidget(m_sessionPage);
     const SessionStore *store = m_workbench->store();
     if (!store || sessionId == 0) {
         m_workspace->clear();
         m_browser->setChannels({}, {});
+        m_iso230->clear();
         return;
     }
     try {
         m_workspace->setSession(store, sessionId);
+        m_iso230->setSession(store, sessionId);
         m_compensation->setSession(store->path(), sessionId);
         m_browser->selectSession(sessionId);
         m_browser->setChannels(store->channels(sessionId), m_workspace->defaultChannels());
@@ -322,8 +346,17 @@ void MainWindow::onSessionChanged(qint64 sessionId)
     }
 }
 
+void MainWindow::markRecording()
+{
+    // The sessions table says which session is being recorded, when it is in the open database.
+    const bool here = m_acquisition->recording() && m_workbench->store() &&
+                      QFileInfo(m_acquisition->databasePath()).absoluteFilePath() == m_workbench->localPath();
+    m_browser->setRecordingSession(here ? m_acquisition->sessionId() : 0);
+}
+
 void MainWindow::onRecordingStopped(qint64 sessionId)
 {
+    m_browser->setRecordingSession(0);
     // A finished recording appears in the session list of the database it went to.
     const QString db = QFileInfo(m_acquisition->databasePath()).absoluteFilePath();
     if (m_workbench->localPath() != db && !m_workbench->openDatabase(db))
@@ -431,6 +464,49 @@ void MainWindow::chooseComparison()
                                                  labels, 0, false, &ok);
     if (ok)
         compareWith(ids.value(labels.indexOf(choice)));
+}
+
+void MainWindow::overlaySessions(const QVector<qint64> &sessionIds)
+{
+    if (!m_workbench->store() || m_workbench->currentSession() == 0)
+        return;
+    try {
+        m_workspace->setOverlay(sessionIds);
+        m_views->setCurrentWidget(m_sessionPage);
+    } catch (const std::exception &e) {
+        m_workbench->reportError(QString::fromStdString(e.what()));
+    }
+}
+
+void MainWindow::chooseOverlay()
+{
+    if (!m_workbench->store() || m_workbench->currentSession() == 0)
+        return;
+    QDialog dialog(this);
+    dialog.setWindowTitle(tr("Overlay sessions"));
+    auto *list = new QListWidget(&dialog);
+    for (const SessionInfo &s : m_workbench->sessions()) {
+        if (s.id == m_workbench->currentSession())
+            continue;
+        auto *item = new QListWidgetItem(QStringLiteral("#%1  %2  (%3)").arg(s.id).arg(s.name, s.started), list);
+        item->setData(Qt::UserRole, s.id);
+        item->setFlags(item->flags() | Qt::ItemIsUserCheckable);
+        item->setCheckState(m_workspace->overlay().contains(s.id) ? Qt::Checked : Qt::Unchecked);
+    }
+    auto *buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dialog);
+    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    auto *layout = new QVBoxLayout(&dialog);
+    layout->addWidget(new QLabel(tr("Sessions to draw on the current session's time plot (same channels, same elapsed time):"), &dialog));
+    layout->addWidget(list);
+    layout->addWidget(buttons);
+    if (dialog.exec() != QDialog::Accepted)
+        return;
+    QVector<qint64> ids;
+    for (int i = 0; i < list->count(); ++i)
+        if (list->item(i)->checkState() == Qt::Checked)
+            ids << list->item(i)->data(Qt::UserRole).toLongLong();
+    overlaySessions(ids);
 }
 
 void MainWindow::exportView()

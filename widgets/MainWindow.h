@@ -25,6 +25,7 @@ class AnalysisPanel;
 class CentralStoreActions;
 class CompensationPanel;
 class DiagnosisPanel;
+class Iso230View;
 class ModelsPanel;
 class ReviewWorkspace;
 class SessionActions;
@@ -49,6 +50,8 @@ public:
     WelcomePage *welcome() const { return m_welcome; }
     // Shows a second session beside the first (0 closes the comparison).
     void compareWith(qint64 sessionId);
+    // Draws other sessions on the current session's time plot (View > Overlay sessions...).
+    void overlaySessions(const QVector<qint64> &sessionIds);
 
     // The window as on screen, with the 3-D view's OpenGL surface drawn in (QWidget::grab
     // leaves a native OpenGL window blank).
@@ -66,8 +69,9 @@ public:
     TimeSeriesPlot *plot() const;
     ReviewWorkspace *workspace() const { return m_workspace; }
     ReviewWorkspace *comparison() const { return m_comparison; }
-    // The central area's tabs: Session (the review workspace), Model fit, Diagnosis, Analysis.
+    // The central area's tabs: Session (the review workspace), ISO 230, Model fit, Diagnosis, Analysis.
     QTabWidget *centralViews() const { return m_views; }
+    Iso230View *iso230() const { return m_iso230; }
     AcquisitionPanel *acquisition() const { return m_acquisition; }
     ModelsPanel *models() const { return m_models; }
     DiagnosisPanel *diagnosis() const { return m_diagnosis; }
@@ -89,6 +93,7 @@ private:
     void buildMenus();
     void exportView();
     void chooseComparison();
+    void chooseOverlay();
     void showAbout();
     void showDocumentation();
     void fitToScreen();
@@ -96,6 +101,7 @@ private:
     void onSessionChanged(qint64 sessionId);
     void onSessionsChanged();
     void onRecordingStopped(qint64 sessionId);
+    void markRecording();
     void say(const QString &message);
     bool ensureDatabase();
 
@@ -108,6 +114,7 @@ private:
     QSplitter *m_split;
     ReviewWorkspace *m_workspace;
     ReviewWorkspace *m_comparison;
+    Iso230View *m_iso230;
     AcquisitionPanel *m_acquisition;
     ModelsPanel *m_models;
     DiagnosisPanel *m_diagnosis;

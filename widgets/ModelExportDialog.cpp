@@ -3,8 +3,10 @@
 #include "ExportableModelJson.h"
 #include "ModelExportWriter.h"
 #include "ScreenFit.h"
+#include "SessionStore.h"
 
 #include <QComboBox>
+#include <QDateTime>
 #include <QDialogButtonBox>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -24,8 +26,13 @@ namespace driftlab {
 ModelExportDialog::ModelExportDialog(QWidget *parent) : QDialog(parent)
 {
     setWindowTitle(tr("Export model to controller"));
+    m_storedChoice = new QComboBox(this);
+    m_storedChoice->setObjectName(QStringLiteral("StoredModels"));
+    m_storedChoice->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    m_storedChoice->setMinimumContentsLength(32);
+    m_storedChoice->view()->setTextElideMode(Qt::ElideNone);
     m_model = new QLineEdit(this);
-    m_model->setPlaceholderText(tr("MODEL.json from a fit"));
+    m_model->setPlaceholderText(tr("or a MODEL.json from a fit (Browse...)"));
     auto *browseModel = new QPushButton(tr("Browse..."), this);
     auto *modelRow = new QHBoxLayout;
     modelRow->addWidget(m_model, 1);
@@ -51,7 +58,8 @@ ModelExportDialog::ModelExportDialog(QWidget *parent) : QDialog(parent)
     folderRow->addWidget(m_folder, 1);
     folderRow->addWidget(browseFolder);
     auto *form = new QFormLayout;
-    form->addRow(tr("Model:"), modelRow);
+    form->addRow(tr("Fitted model:"), m_storedChoice);
+    form->addRow(tr("Model file:"), modelRow);
     form->addRow(tr("Target:"), m_target);
     form->addRow(tr("Axis:"), m_axis);
     form->addRow(tr("File name:"), m_name);
@@ -68,10 +76,16 @@ ModelExportDialog::ModelExportDialog(QWidget *parent) : QDialog(parent)
     layout->addWidget(m_preview, 1);
     layout->addWidget(buttons);
     ScreenFit::resize(this, QSize(900, 640));
+    setStore(nullptr);
 
     connect(browseModel, &QPushButton::clicked, this, &ModelExportDialog::browseModel);
     connect(browseFolder, &QPushButton::clicked, this, &ModelExportDialog::browseFolder);
-    connect(m_model, &QLineEdit::editingFinished, this, &ModelExportDialog::refresh);
+    connect(m_model, &QLineEdit::editingFinished, this, [this] {
+        if (!m_model->text().isEmpty())
+            m_storedChoice->setCurrentIndex(0); // the file, not a stored model
+        refresh();
+    });
+    connect(m_storedChoice, QOverload<int>::of(&QComboBox::activated), this, [this](int i) { selectStoredModel(i - 1); });
     connect(m_target, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &ModelExportDialog::refresh);
     connect(m_axis, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &ModelExportDialog::refresh);
     connect(m_name, &QLineEdit::editingFinished, this, &ModelExportDialog::refresh);
@@ -84,9 +98,64 @@ ModelExportDialog::ModelExportDialog(QWidget *parent) : QDialog(parent)
     refresh();
 }
 
+void ModelExportDialog::setStore(const SessionStore *store, qint64 currentSession)
+{
+    m_stored.clear();
+    m_storedChoice->clear();
+    m_storedChoice->addItem(tr("(the file below)"));
+    int anyBest = -1, currentBest = -1; // the newest (highest id) of all, of the current session
+    if (store) {
+        try {
+            for (const SessionInfo &s : store->sessions()) {
+                for (const FittedModel &m : store->fittedModels(s.id)) {
+                    const QDateTime created = QDateTime::fromString(m.created, Qt::ISODate);
+                    const QString label = tr("#%1 %2: %3, %4")
+                                              .arg(s.id)
+                                              .arg(s.name, m.model,
+                                                   created.isValid() ? created.toUTC().toString(QStringLiteral("yyyy-MM-dd HH:mm"))
+                                                                     : m.created);
+                    m_stored.push_back({m, s.machine, tr("session %1, model %2").arg(s.id).arg(m.id)});
+                    m_storedChoice->addItem(label);
+                    m_storedChoice->setItemData(m_storedChoice->count() - 1, label, Qt::ToolTipRole);
+                    const int i = m_stored.size() - 1;
+                    if (anyBest < 0 || m_stored[anyBest].model.id < m.id)
+                        anyBest = i;
+                    if (s.id == currentSession && (currentBest < 0 || m_stored[currentBest].model.id < m.id))
+                        currentBest = i;
+                }
+            }
+        } catch (const std::exception &e) {
+            m_message->setText(QString::fromUtf8(e.what()));
+        }
+    }
+    m_storedChoice->setEnabled(!m_stored.isEmpty());
+    if (m_stored.isEmpty())
+        m_storedChoice->setItemText(0, store ? tr("(no fitted model stored with these sessions)") : tr("(no database open)"));
+    selectStoredModel(currentBest >= 0 ? currentBest : anyBest);
+}
+
+QStringList ModelExportDialog::storedModels() const
+{
+    QStringList out;
+    for (int i = 1; i < m_storedChoice->count(); ++i)
+        out << m_storedChoice->itemText(i);
+    return out;
+}
+
+void ModelExportDialog::selectStoredModel(int index)
+{
+    if (index >= m_stored.size())
+        index = -1;
+    m_storedChoice->setCurrentIndex(index + 1);
+    if (index >= 0)
+        m_model->clear();
+    refresh();
+}
+
 void ModelExportDialog::setModelPath(const QString &path)
 {
     m_model->setText(path);
+    m_storedChoice->setCurrentIndex(0);
     refresh();
 }
 
@@ -121,8 +190,10 @@ void ModelExportDialog::refresh()
     m_ok = false;
     m_result = ExportResult{};
     const ModelExporter *exporter = m_registry.find(m_target->currentData().toString().toStdString());
-    if (m_model->text().isEmpty() || !exporter) {
-        m_message->setText(tr("Choose a fitted model (MODEL.json)."));
+    const int stored = m_storedChoice->currentIndex() - 1;
+    if ((stored < 0 && m_model->text().isEmpty()) || !exporter) {
+        m_message->setText(m_stored.isEmpty() ? tr("Choose a fitted model (MODEL.json) with Browse...")
+                                              : tr("Choose a fitted model above, or a MODEL.json with Browse..."));
         m_export->setEnabled(false);
         return;
     }
@@ -130,7 +201,9 @@ void ModelExportDialog::refresh()
     options.axis = m_axis->currentText().toStdString();
     options.baseName = m_name->text().trimmed().toStdString();
     try {
-        const ExportableModel model = ExportableModelJson::read(m_model->text());
+        const ExportableModel model = stored >= 0 ? ExportableModelJson::fromStored(m_stored[stored].model, m_stored[stored].machine,
+                                                                                     m_stored[stored].source)
+                                                  : ExportableModelJson::read(m_model->text());
         m_result = exporter->exportModel(model, options);
         m_ok = true;
         QStringList lines{tr("%1 -> %2: %n file(s), approximation error %3 um", nullptr, static_cast<int>(m_result.files.size()))

@@ -1,11 +1,16 @@
 #pragma once
-// File > Export model to controller: pick a MODEL.json (fit --json, fit --model ... --out, or
-// the Analysis dock's "save MODEL.json"), a target from the export registry, axis and base
+// File > Export model to controller: pick a fitted model stored with the open database's
+// sessions (listed, the current session's newest first) or, with Browse..., a MODEL.json (fit
+// --json, fit --model ... --out, or the Analysis dock's "save MODEL.json"), a target from the export registry, axis and base
 // name; the preview shows exactly the files that will be written (one tab each), the notes and
 // the approximation error, or why the target refuses the model. Export writes them into a
 // folder through ModelExportWriter, as 'driftlab-cli export-model' does.
 
 #include "ModelExporterRegistry.h"
+#include "StorageTypes.h"
+
+#include <QJsonObject>
+#include <QVector>
 
 #include <QDialog>
 
@@ -17,12 +22,21 @@ class QTabWidget;
 
 namespace driftlab {
 
+class SessionStore;
+
 class ModelExportDialog : public QDialog {
     Q_OBJECT
 
 public:
     explicit ModelExportDialog(QWidget *parent = nullptr);
 
+    // Lists the models stored with the sessions of `store` (nullptr: none) and selects the
+    // newest of `currentSession` (else the newest of all).
+    void setStore(const SessionStore *store, qint64 currentSession = 0);
+    // The listed stored models, as shown ("#3 X warm-up: fdm-seed000, 2026-11-20 08:14").
+    QStringList storedModels() const;
+    // Selects a listed model by index (-1: the file of the Model field).
+    void selectStoredModel(int index);
     void setModelPath(const QString &path);
     void setTarget(const QString &name);
     void setFolder(const QString &folder);
@@ -42,6 +56,13 @@ private:
     ModelExporterRegistry m_registry;
     ExportResult m_result;
     bool m_ok = false;
+    struct Stored {
+        FittedModel model;
+        QJsonObject machine;
+        QString source;
+    };
+    QVector<Stored> m_stored;
+    QComboBox *m_storedChoice = nullptr;
     QLineEdit *m_model = nullptr;
     QComboBox *m_target = nullptr;
     QComboBox *m_axis = nullptr;

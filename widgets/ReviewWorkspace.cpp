@@ -15,6 +15,8 @@
 #include <QTabWidget>
 #include <QVBoxLayout>
 
+#include <qwt_plot_curve.h>
+
 #include <cmath>
 
 namespace driftlab {
@@ -94,6 +96,7 @@ void ReviewWorkspace::clear()
     m_sessionId = 0;
     m_data.reset();
     m_hasErrors = false;
+    m_overlay.clear();
     m_timeSeries->clearCurves();
     m_heading->setText(tr("No session"));
     for (int t = SurfaceTab; t <= InfraredTab; ++t)
@@ -106,6 +109,7 @@ void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
     m_store = store;
     m_sessionId = sessionId;
     m_data = data;
+    m_overlay.clear();
     m_timeSeries->setTitle(data->info().name);
     const SessionInfo &info = data->info();
     m_heading->setText(tr("<b>Session #%1</b>&nbsp;&nbsp;%2&nbsp;&nbsp;<span style='color:#555'>started %3%4%5</span>")
@@ -179,8 +183,41 @@ QVector<qint64> ReviewWorkspace::defaultChannels() const
     return shown;
 }
 
+QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, bool right)
+{
+    if (m_store->sampleCount(id) > kRawCurveLimit) {
+        const SessionStore *store = m_store;
+        const DecimatedSeries whole = store->decimated(id, -1e300, 1e300, 1);
+        const double tFirst = whole.tFirst.isEmpty() ? 0.0 : whole.tFirst.front();
+        const double tLast = whole.tLast.isEmpty() ? 0.0 : whole.tLast.back();
+        return m_timeSeries->addDecimatedCurve(
+            title, [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); }, tFirst, tLast, right);
+    }
+    const SampleBlock block = m_store->samples(id);
+    return m_timeSeries->addCurve(title, block.t, block.v, right);
+}
+
+void ReviewWorkspace::setOverlay(const QVector<qint64> &sessionIds)
+{
+    m_overlay.clear();
+    for (qint64 id : sessionIds)
+        if (id != m_sessionId && id != 0 && !m_overlay.contains(id))
+            m_overlay.push_back(id);
+    if (!m_store || !m_data)
+        return;
+    // The title says which session each line style is.
+    QStringList names{tr("#%1 %2 (solid)").arg(m_sessionId).arg(m_data->info().name)};
+    const QStringList styles{tr("dashed"), tr("dotted"), tr("dash-dot")};
+    for (int k = 0; k < m_overlay.size(); ++k)
+        names << tr("#%1 %2 (%3)").arg(m_overlay[k]).arg(m_store->session(m_overlay[k]).name, styles[k % 3]);
+    m_timeSeries->setTitle(m_overlay.isEmpty() ? m_data->info().name : names.join(QStringLiteral(", ")));
+    showChannels(m_shown);
+    m_tabs->setCurrentIndex(TimeSeriesTab);
+}
+
 void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
 {
+    m_shown = channelIds;
     m_timeSeries->clearCurves();
     m_leftOut.clear();
     if (!m_store || !m_data)
@@ -209,18 +246,23 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
             leftOut << QStringLiteral("%1 (%2)").arg(c.key, UnitLabels::display(c.unit));
             continue;
         }
-        if (m_store->sampleCount(c.id) > kRawCurveLimit) {
-            const SessionStore *store = m_store;
-            const qint64 id = c.id;
-            const DecimatedSeries whole = store->decimated(id, -1e300, 1e300, 1);
-            const double tFirst = whole.tFirst.isEmpty() ? 0.0 : whole.tFirst.front();
-            const double tLast = whole.tLast.isEmpty() ? 0.0 : whole.tLast.back();
-            m_timeSeries->addDecimatedCurve(
-                c.key, [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); }, tFirst,
-                tLast, right);
-        } else {
-            const SampleBlock block = m_store->samples(c.id);
-            m_timeSeries->addCurve(c.key, block.t, block.v, right);
+        // Overlaid sessions (setOverlay): the same channel (key and unit) of each, dashed,
+        // dotted, ...; every curve then names its session.
+        for (int k = 0; k <= m_overlay.size(); ++k) {
+            const qint64 session = k == 0 ? m_sessionId : m_overlay[k - 1];
+            qint64 id = k == 0 ? c.id : 0;
+            for (const ChannelInfo &o : k == 0 ? QVector<ChannelInfo>() : m_store->channels(session))
+                if (o.key == c.key && o.unit == c.unit)
+                    id = o.id;
+            if (id == 0)
+                continue;
+            const QString name = m_overlay.isEmpty() ? c.key : QStringLiteral("#%1 %2").arg(session).arg(c.key);
+            QwtPlotCurve *curve = addChannelCurve(id, name, right);
+            if (k > 0) {
+                QPen pen = curve->pen();
+                pen.setStyle(k % 3 == 1 ? Qt::DashLine : k % 3 == 2 ? Qt::DotLine : Qt::DashDotLine);
+                curve->setPen(pen);
+            }
         }
         QStringList &names = right ? rightNames : leftNames;
         if (!names.contains(UnitLabels::quantity(c.kind)))

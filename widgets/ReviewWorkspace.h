@@ -13,6 +13,7 @@ class QComboBox;
 class QLabel;
 class QTabWidget;
 class QwtPlot;
+class QwtPlotCurve;
 
 namespace driftlab {
 
@@ -37,6 +38,12 @@ public:
     // Plots the channels (by id) in the time-series view.
     void showChannels(const QVector<qint64> &channelIds);
     QVector<qint64> defaultChannels() const;
+    // Overlays other sessions of the same store on the time-series view (issue 33 item 4):
+    // the shown channels' namesakes (same key and unit) of each, on the same elapsed-time
+    // axis, dashed / dotted / dash-dot; legend entries "#id key", the title names each
+    // session and its line style. Empty: this session alone. A new session clears it.
+    void setOverlay(const QVector<qint64> &sessionIds);
+    QVector<qint64> overlay() const { return m_overlay; }
     // Channels showChannels() left out because their unit needed a third axis ("" for none).
     QString leftOutChannels() const { return m_leftOut; }
 
@@ -59,6 +66,7 @@ public:
     QString heading() const;
 
 private:
+    QwtPlotCurve *addChannelCurve(qint64 channelId, const QString &title, bool rightAxis);
     void updateTemperatureView();
     void ensure3D();
 
@@ -80,6 +88,8 @@ private:
     ErrorSurface3D *m_3d = nullptr;
     InfraredPanel *m_infrared;
     QString m_leftOut;
+    QVector<qint64> m_shown;
+    QVector<qint64> m_overlay;
 };
 
 } // namespace driftlab

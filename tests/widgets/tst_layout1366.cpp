@@ -175,15 +175,6 @@ void TestLayout1366::everyDockFits()
         d->raise();
         QTest::qWait(30);
         const QStringList p = problems(&window);
-        // Known and open (issue 33 item 1): with the Sessions and Acquisition docks both beside
-        // the central views, their contents still scroll sideways (Acquisition needs 496 px).
-        // Any other problem still fails here.
-        bool onlyKnown = !p.isEmpty() && window.dock(QStringLiteral("AcquisitionDock"))->isVisible();
-        for (const QString &problem : p)
-            onlyKnown = onlyKnown && problem.contains(QStringLiteral("scrolls sideways")) &&
-                        (problem.contains(QStringLiteral("AcquisitionPanel")) || problem.contains(QStringLiteral("SessionBrowser")));
-        if (onlyKnown)
-            QEXPECT_FAIL("", "Sessions + Acquisition docks at 1366 px still scroll sideways (open)", Continue);
         QVERIFY2(p.isEmpty(), qPrintable(name + QStringLiteral(" open:\n  ") + p.join(QStringLiteral("\n  "))));
     }
     // Every central view at full size, all docks open.
@@ -192,12 +183,6 @@ void TestLayout1366::everyDockFits()
         views->setCurrentIndex(i);
         QTest::qWait(30);
         const QStringList p = problems(&window);
-        bool onlyKnown = !p.isEmpty() && window.dock(QStringLiteral("AcquisitionDock"))->isVisible();
-        for (const QString &problem : p)
-            onlyKnown = onlyKnown && problem.contains(QStringLiteral("scrolls sideways")) &&
-                        (problem.contains(QStringLiteral("AcquisitionPanel")) || problem.contains(QStringLiteral("SessionBrowser")));
-        if (onlyKnown)
-            QEXPECT_FAIL("", "Sessions + Acquisition docks at 1366 px still scroll sideways (open)", Continue);
         QVERIFY2(p.isEmpty(), qPrintable(views->tabText(i) + QStringLiteral(" view:\n  ") + p.join(QStringLiteral("\n  "))));
     }
     // The comparison says which session is which.

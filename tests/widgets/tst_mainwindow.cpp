@@ -16,7 +16,7 @@
 #include <QAction>
 #include <QApplication>
 #include <QDockWidget>
-#include <QListWidget>
+#include <QTableView>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QSettings>
@@ -237,8 +237,8 @@ void TestMainWindow::fitsA1366x768Screen()
     QVERIFY2(window.minimumSizeHint().width() <= 1366 && window.minimumSizeHint().height() <= 768,
              qPrintable(QStringLiteral("minimum %1 x %2").arg(window.minimumSizeHint().width()).arg(window.minimumSizeHint().height())));
     QCOMPARE(window.size(), QSize(1366, 768));
-    QVERIFY2(window.browser()->sessionList()->height() >= 100,
-             qPrintable(QString::number(window.browser()->sessionList()->height())));
+    QVERIFY2(window.browser()->sessionTable()->height() >= 100,
+             qPrintable(QString::number(window.browser()->sessionTable()->height())));
     QVERIFY(window.workspace()->width() >= 300);
 }
 
@@ -284,7 +284,7 @@ void TestMainWindow::renameNotesUndoAndDelete()
     const QString notes = window.workbench()->store()->session(m_session).notes;
     QVERIFY(window.workbench()->setSessionNotes(m_session, QStringLiteral("door closed")));
     QCOMPARE(window.workbench()->store()->session(m_session).name, QStringLiteral("X axis, cold start"));
-    QVERIFY(window.browser()->sessionList()->item(0)->text().contains(QStringLiteral("X axis, cold start")));
+    QVERIFY(window.browser()->text(0, SessionBrowser::Name).contains(QStringLiteral("X axis, cold start")));
     window.workbench()->undoStack()->undo(); // notes
     QCOMPARE(window.workbench()->store()->session(m_session).notes, notes);
     window.workbench()->undoStack()->undo(); // name
@@ -299,7 +299,7 @@ void TestMainWindow::renameNotesUndoAndDelete()
     QString question;
     answerNextMessageBox(QMessageBox::Cancel, &question);
     QAction *remove = nullptr;
-    for (QAction *a : window.browser()->sessionList()->actions())
+    for (QAction *a : window.browser()->sessionTable()->actions())
         if (a->text().contains(QStringLiteral("Delete")))
             remove = a;
     QVERIFY(remove);
@@ -350,15 +350,15 @@ void TestMainWindow::pushesAndBrowsesTheCentralStore()
     // Browse it like a file: the session list shows the pushed session, its samples plot.
     QVERIFY2(window.workbench()->openDatabase(url), qPrintable(window.workbench()->lastError()));
     QVERIFY(window.windowTitle().contains(QStringLiteral("postgresql://")));
-    QListWidget *list = window.findChild<SessionBrowser *>()->sessionList();
-    QCOMPARE(list->count(), 1);
-    QVERIFY(list->item(0)->text().contains(QStringLiteral("gui test")));
+    SessionBrowser *list = window.findChild<SessionBrowser *>();
+    QCOMPARE(list->sessionCount(), 1);
+    QVERIFY(list->text(0, SessionBrowser::Name).contains(QStringLiteral("gui test")));
     // Recording still goes to the local file.
     QCOMPARE(window.findChild<AcquisitionPanel *>()->targetDatabase(), QFileInfo(m_db).absoluteFilePath());
     // A store that cannot be reached is reported, and the window keeps what it had open.
     QVERIFY(!window.workbench()->openDatabase(QStringLiteral("postgresql://driftlab@127.0.0.1:1/lab")));
     QVERIFY(window.workbench()->lastError().contains(QStringLiteral("cannot connect to the central store")));
-    QCOMPARE(list->count(), 1);
+    QCOMPARE(list->sessionCount(), 1);
 }
 
 QTEST_MAIN(TestMainWindow)

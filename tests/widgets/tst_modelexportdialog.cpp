@@ -6,6 +6,11 @@
 #include "ModelExporterRegistry.h"
 
 #include "ExportableModelJson.h"
+#include "SessionStore.h"
+
+#include <QComboBox>
+#include <QJsonDocument>
+#include <QJsonObject>
 
 #include <QDir>
 #include <QFile>
@@ -21,6 +26,7 @@ class TestModelExportDialog : public QObject {
 private slots:
     void previewEqualsExportAndWrites();
     void refusalDisablesExport();
+    void listsTheModelsStoredWithTheSessions();
 
 private:
     QString write(const QString &name, const QByteArray &bytes);
@@ -89,6 +95,89 @@ void TestModelExportDialog::refusalDisablesExport()
     dialog.setModelPath(m_dir.filePath(QStringLiteral("missing.json")));
     QVERIFY(!dialog.canExport());
     QVERIFY2(dialog.message().contains(QStringLiteral("cannot read")), qPrintable(dialog.message()));
+}
+
+// Issue 33 item 6: the dialog lists the fitted models stored with the open database's
+// sessions (the current session's newest selected) and previews each exactly as export-model
+// would preview the same model written as MODEL.json by hand; Browse... (a file) still works.
+void TestModelExportDialog::listsTheModelsStoredWithTheSessions()
+{
+    const QString db = m_dir.filePath(QStringLiteral("models.sqlite"));
+    SessionStore store(db);
+    const QJsonObject screw{{QStringLiteral("length_m"), 0.8}, {QStringLiteral("diameter_m"), 0.034},
+                            {QStringLiteral("nut_length_m"), 0.212}, {QStringLiteral("fixed_bearing_length_m"), 0.03},
+                            {QStringLiteral("density_kg_m3"), 7800}, {QStringLiteral("specific_heat_J_kgK"), 448},
+                            {QStringLiteral("expansion_per_K"), 1.17e-5}};
+    SessionInfo a;
+    a.name = QStringLiteral("X warm-up");
+    a.machine = QJsonObject{{QStringLiteral("name"), QStringLiteral("rig")}, {QStringLiteral("screw"), screw}};
+    const qint64 first = store.createSession(a);
+    SessionInfo b;
+    b.name = QStringLiteral("X cool-down");
+    const qint64 second = store.createSession(b);
+    store.createSession(SessionInfo{}); // a session without models
+    const QByteArray synthetic = R"({"format": "driftlab-model", "version": 1, "model": "synthetic",
+        "target": {"channel": "interferometer"}, "inputs": [{"channel": "t1"}, {"channel": "t2"}],
+        "synthetic": {"temperatures": [0, 1], "a": 6.5, "b_perK": 0.045, "c": -1.2, "t0_C": 20, "p0_mm": -141, "p_ref_mm": 550}})";
+    FittedModel dd;
+    dd.model = QStringLiteral("driftlab-model/synthetic");
+    dd.parameters = QJsonDocument::fromJson(synthetic).object();
+    const qint64 ddId = store.addFittedModel(second, dd);
+    FittedModel fdm;
+    fdm.model = QStringLiteral("fdm-seed000");
+    fdm.parameters = QJsonObject{{QStringLiteral("k1"), 0.0008}, {QStringLiteral("k2"), 22},    {QStringLiteral("k3"), 0.00095},
+                                 {QStringLiteral("k4"), 0.0015}, {QStringLiteral("lambda_W_mK"), 42}, {QStringLiteral("fixed_end_position_mm"), -141}};
+    fdm.provenance = QJsonObject{{QStringLiteral("schema_version"), 2}, {QStringLiteral("grid"), QJsonObject{{QStringLiteral("dx_m"), 0.01}}}};
+    const qint64 fdmId = store.addFittedModel(first, fdm);
+
+    ModelExportDialog dialog;
+    dialog.setTarget(QStringLiteral("c"));
+    dialog.setStore(&store, second);
+    const QStringList listed = dialog.storedModels();
+    QCOMPARE(listed.size(), 2);
+    QVERIFY2(listed[0].startsWith(QStringLiteral("#%1 X warm-up: fdm-seed000").arg(first)), qPrintable(listed[0]));
+    QVERIFY2(listed[1].startsWith(QStringLiteral("#%1 X cool-down: driftlab-model/synthetic").arg(second)), qPrintable(listed[1]));
+    QCOMPARE(dialog.findChild<QComboBox *>(QStringLiteral("StoredModels"))->currentIndex(), 2); // the current session's
+    // The data-driven model: as export-model previews the same JSON.
+    const auto expect = [](const QByteArray &json, const QString &source, const char *target) {
+        return ModelExporterRegistry().find(target)->exportModel(ExportableModelJson::parse(json, source), ExportOptions{});
+    };
+    ExportResult expected = expect(synthetic, QStringLiteral("session %1, model %2").arg(second).arg(ddId), "c");
+    QVERIFY(!expected.files.empty());
+    QCOMPARE(dialog.previewFileNames().size(), static_cast<int>(expected.files.size()));
+    for (const ExportFile &f : expected.files)
+        QCOMPARE(dialog.previewText(QString::fromStdString(f.name)), QString::fromStdString(f.content));
+    // The screw model: its parameters and grid from the record, the screw from the session.
+    dialog.selectStoredModel(0);
+    const QByteArray fdmJson = QJsonDocument(QJsonObject{{QStringLiteral("model"), QStringLiteral("fdm-seed000")},
+                                                         {QStringLiteral("schema_version"), 2},
+                                                         {QStringLiteral("parameters"), fdm.parameters},
+                                                         {QStringLiteral("screw"), screw},
+                                                         {QStringLiteral("grid"), QJsonObject{{QStringLiteral("dx_m"), 0.01}}}})
+                                   .toJson();
+    expected = expect(fdmJson, QStringLiteral("session %1, model %2").arg(first).arg(fdmId), "c");
+    QVERIFY2(dialog.message().contains(QStringLiteral("fdm-seed000 -> c")), qPrintable(dialog.message()));
+    for (const ExportFile &f : expected.files)
+        QCOMPARE(dialog.previewText(QString::fromStdString(f.name)), QString::fromStdString(f.content));
+    dialog.setFolder(m_dir.filePath(QStringLiteral("stored")));
+    QVERIFY(dialog.canExport());
+    // Browse... stays: a file replaces the stored choice.
+    const QString file = write(QStringLiteral("file.json"), synthetic);
+    dialog.setModelPath(file);
+    QCOMPARE(dialog.findChild<QComboBox *>(QStringLiteral("StoredModels"))->currentIndex(), 0);
+    expected = expect(synthetic, file, "c");
+    for (const ExportFile &f : expected.files)
+        QCOMPARE(dialog.previewText(QString::fromStdString(f.name)), QString::fromStdString(f.content));
+    // Without a current session with models: the newest of all; without models: says so.
+    ModelExportDialog other;
+    other.setStore(&store, 0);
+    QVERIFY(fdmId > ddId);
+    QCOMPARE(other.findChild<QComboBox *>(QStringLiteral("StoredModels"))->currentIndex(), 1); // the fdm model, stored last
+    SessionStore empty(m_dir.filePath(QStringLiteral("empty.sqlite")));
+    other.setStore(&empty, 0);
+    QVERIFY(other.storedModels().isEmpty());
+    QVERIFY(!other.canExport());
+    QVERIFY(other.message().contains(QStringLiteral("Browse")));
 }
 
 QTEST_MAIN(TestModelExportDialog)

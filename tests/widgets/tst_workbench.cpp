@@ -13,7 +13,6 @@
 #include "WelcomePage.h"
 #include "Workbench.h"
 
-#include <QListWidget>
 #include <QPushButton>
 #include <QUndoStack>
 #include <QSettings>
@@ -60,8 +59,8 @@ void TestWorkbench::recordingIsListedWhileItRuns()
     AcquisitionPanel *acq = window.acquisition();
     QVERIFY2(acq->startRecording(QStringLiteral("baseline"), acq->targetDatabase(), 600.0), qPrintable(acq->lastError()));
     // Listed at once, current, and counted, while it records.
-    QListWidget *list = window.browser()->sessionList();
-    QCOMPARE(list->count(), 1);
+    SessionBrowser *list = window.browser();
+    QCOMPARE(list->sessionCount(), 1);
     QCOMPARE(bench->currentSession(), acq->sessionId());
     QVERIFY2(window.storeSummary().contains(QStringLiteral(": 1 session")), qPrintable(window.storeSummary()));
     // It cannot be deleted while it records.
@@ -69,7 +68,7 @@ void TestWorkbench::recordingIsListedWhileItRuns()
     QVERIFY2(bench->lastError().contains(QStringLiteral("being recorded")), qPrintable(bench->lastError()));
     QTest::qWait(300);
     acq->stopRecording();
-    QCOMPARE(list->count(), 1);
+    QCOMPARE(list->sessionCount(), 1);
     QVERIFY2(window.storeSummary().contains(QStringLiteral(": 1 session")), qPrintable(window.storeSummary()));
     QVERIFY(acq->plot()->curve(QStringLiteral("S1")));
 
@@ -80,7 +79,7 @@ void TestWorkbench::recordingIsListedWhileItRuns()
     QVERIFY(acq->plot()->curves().isEmpty());
     QCOMPARE(acq->deviceRowCount(), 0);
     QCOMPARE(acq->targetDatabase(), QFileInfo(other).absoluteFilePath());
-    QCOMPARE(list->count(), 0);
+    QCOMPARE(list->sessionCount(), 0);
     QCOMPARE(bench->currentSession(), qint64(0));
     QVERIFY2(window.storeSummary().contains(QStringLiteral(": 0 session")), qPrintable(window.storeSummary()));
 }
@@ -101,7 +100,7 @@ void TestWorkbench::welcomeOffersAFirstSession()
     QCOMPARE(acq->databasePath(), QFileInfo(db).absoluteFilePath());
     QVERIFY(!window.welcome()->isVisible());
     QVERIFY(window.workspace()->isVisible());
-    QCOMPARE(window.browser()->sessionList()->count(), 1);
+    QCOMPARE(window.browser()->sessionCount(), 1);
     acq->stopRecording();
     QCOMPARE(window.workbench()->sessions().size(), 1);
     // The example bundle is a resource of the application, not of this test: said so.
