@@ -1,8 +1,8 @@
 #include "AnalysisPanel.h"
 
 #include "AnalysisPlots.h"
-#include "AnalysisResultKind.h"
 #include "DataDrivenModelJson.h"
+#include "PointSelection.h"
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
 #include "Workbench.h"
@@ -367,17 +367,20 @@ bool AnalysisPanel::startSelection()
         QString error;
         try {
             SessionStore store(path); // this thread's own connection
-            const SelectionResult r = DataDrivenFit(store).selectPoints(
-                q.session, q.target, q.train, q.kMin, q.kMax, {}, [this](double f, const QString &stage) {
-                    QMetaObject::invokeMethod(this, [this, f, stage] {
-                        m_progress->setValue(static_cast<int>(100 * f));
-                        m_stage->setText(stage);
-                    }, Qt::QueuedConnection);
-                    return !m_job.cancelled();
-                });
-            result = DataDrivenFit::selectionJson(r);
-            result.insert(QStringLiteral("session"), q.session);
-            store.addAnalysisResult(q.session, AnalysisResultKind::sensitivePoints(), result);
+            PointSelectionRequest selection;
+            selection.sessions = {q.session};
+            selection.target = q.target;
+            selection.hours = q.train;
+            selection.kMin = q.kMin;
+            selection.kMax = q.kMax;
+            // The use case the CLI's select-points runs: checks, selects, stores the same record.
+            result = PointSelection(store).run(selection, [this](double f, const QString &stage) {
+                QMetaObject::invokeMethod(this, [this, f, stage] {
+                    m_progress->setValue(static_cast<int>(100 * f));
+                    m_stage->setText(stage);
+                }, Qt::QueuedConnection);
+                return !m_job.cancelled();
+            }).record;
         } catch (const std::exception &e) {
             error = m_job.cancelled() ? tr("Cancelled: no selection was made") : QString::fromUtf8(e.what());
         }

@@ -12,6 +12,7 @@
 #include "ModelsPanel.h"
 #include "PlotExporter.h"
 #include "ReviewWorkspace.h"
+#include "ImporterRegistry.h"
 #include "SessionActions.h"
 #include "SessionBrowser.h"
 #include "SessionStore.h"
@@ -53,13 +54,6 @@
 namespace driftlab {
 
 namespace {
-bool isBundlePath(const QString &path)
-{
-    const QFileInfo info(path);
-    return (info.isDir() && QFileInfo::exists(info.filePath() + QStringLiteral("/manifest.json"))) ||
-           info.suffix().compare(QLatin1String("zip"), Qt::CaseInsensitive) == 0;
-}
-
 bool isDatabasePath(const QString &path)
 {
     const QString suffix = QFileInfo(path).suffix().toLower();
@@ -566,7 +560,7 @@ QImage MainWindow::snapshot()
 void MainWindow::dragEnterEvent(QDragEnterEvent *event)
 {
     for (const QUrl &url : event->mimeData()->urls()) {
-        if (url.isLocalFile() && (isBundlePath(url.toLocalFile()) || isDatabasePath(url.toLocalFile()))) {
+        if (url.isLocalFile() && (isDatabasePath(url.toLocalFile()) || ImporterRegistry().find(url.toLocalFile()))) {
             event->acceptProposedAction();
             return;
         }
@@ -578,10 +572,12 @@ void MainWindow::dropEvent(QDropEvent *event)
     for (const QUrl &url : event->mimeData()->urls()) {
         if (!url.isLocalFile())
             continue;
+        // A database is opened; any other file goes to its importer (core/ImporterRegistry, the
+        // one `driftlab-cli import` uses).
         if (isDatabasePath(url.toLocalFile()))
             m_workbench->openDatabase(url.toLocalFile());
-        else if (isBundlePath(url.toLocalFile()))
-            m_actions->importBundle(url.toLocalFile());
+        else if (ImporterRegistry().find(url.toLocalFile()))
+            m_actions->importFile(url.toLocalFile());
     }
     event->acceptProposedAction();
 }

@@ -1,6 +1,7 @@
 #include "SessionActions.h"
 
 #include "CsvImportDialog.h"
+#include "ImporterRegistry.h"
 #include "SessionStore.h"
 #include "Workbench.h"
 
@@ -85,11 +86,17 @@ void SessionActions::chooseNewDatabase()
     m_workbench->newDatabase(path);
 }
 
-bool SessionActions::importBundle(const QString &path)
+bool SessionActions::importFile(const QString &path)
 {
+    const ImporterRegistry registry;
+    const SessionImporter *importer = registry.find(path);
+    if (importer && importer->needsColumnMap()) {
+        importCsvFile(path);
+        return false; // the dialog imports when the user accepts the map
+    }
     QApplication::setOverrideCursor(Qt::WaitCursor);
     qint64 existing = 0;
-    qint64 id = m_workbench->importBundle(path, false, &existing);
+    qint64 id = m_workbench->importFile(path, false, &existing);
     QApplication::restoreOverrideCursor();
     if (existing > 0) {
         const QMessageBox::StandardButton answer = QMessageBox::question(
@@ -98,7 +105,7 @@ bool SessionActions::importBundle(const QString &path)
             QMessageBox::Yes | QMessageBox::No, QMessageBox::No);
         if (answer == QMessageBox::Yes) {
             QApplication::setOverrideCursor(Qt::WaitCursor);
-            id = m_workbench->importBundle(path, true);
+            id = m_workbench->importFile(path, true);
             QApplication::restoreOverrideCursor();
         } else {
             m_workbench->setCurrentSession(existing);
@@ -128,8 +135,16 @@ void SessionActions::importCsv()
     }
     const QString path = QFileDialog::getOpenFileName(m_window, tr("Import CSV table"), QString(),
                                                       tr("Tables (*.csv *.txt *.tsv *.dat);;All files (*)"));
-    if (path.isEmpty())
+    if (!path.isEmpty())
+        importCsvFile(path);
+}
+
+void SessionActions::importCsvFile(const QString &path)
+{
+    if (!m_workbench->store()) {
+        m_workbench->reportError(tr("Open a database first (File > Open database): the table is imported into it"));
         return;
+    }
     auto *dialog = new CsvImportDialog(m_workbench->store()->path(), m_window);
     dialog->setAttribute(Qt::WA_DeleteOnClose);
     connect(dialog, &CsvImportDialog::imported, m_workbench, [this](qint64 id) { m_workbench->refreshSessions(id); });

@@ -30,11 +30,14 @@ public:
     QList<QAction *> addEditActions(QMenu *edit);
 
     // Imports a bundle; a bundle already in the database asks whether to import a copy.
-    bool importBundle(const QString &path);
+    bool importBundle(const QString &path) { return importFile(path); }
+    // Any file of the importer registry (drag and drop); a table opens the CSV import dialog.
+    bool importFile(const QString &path);
     void chooseDatabase();
     void chooseNewDatabase();
     void chooseBundle();
     void importCsv();
+    void importCsvFile(const QString &path);
     void exportSession();
     void askRename();
     void askNotes();

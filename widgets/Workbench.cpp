@@ -1,6 +1,7 @@
 #include "Workbench.h"
 
 #include "BundleTransfer.h"
+#include "ImporterRegistry.h"
 #include "DuplicateSessionError.h"
 #include "SessionStore.h"
 #include "SessionTextCommand.h"
@@ -212,6 +213,11 @@ bool Workbench::deleteSession(qint64 sessionId)
 
 qint64 Workbench::importBundle(const QString &path, bool allowDuplicate, qint64 *duplicateOf)
 {
+    return importFile(path, allowDuplicate, duplicateOf);
+}
+
+qint64 Workbench::importFile(const QString &path, bool allowDuplicate, qint64 *duplicateOf)
+{
     if (duplicateOf)
         *duplicateOf = 0;
     if (!m_store) {
@@ -219,7 +225,17 @@ qint64 Workbench::importBundle(const QString &path, bool allowDuplicate, qint64 
         return 0;
     }
     try {
-        const qint64 id = BundleTransfer::importBundle(*m_store, path, allowDuplicate);
+        const ImporterRegistry registry;
+        const SessionImporter *importer = registry.find(path);
+        if (!importer) {
+            reportError(tr("%1: not a file DriftLab imports (a bundle, a session database, an .rtl or CSV file)").arg(path));
+            return 0;
+        }
+        SessionImporter::Options options;
+        options.allowDuplicate = allowDuplicate;
+        options.session = m_session;
+        const QList<qint64> ids = importer->import(path, *m_store, options);
+        const qint64 id = ids.isEmpty() ? 0 : ids.back();
         refreshSessions(id);
         emit message(tr("Imported %1 as session %2").arg(path).arg(id));
         return id;

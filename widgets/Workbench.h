@@ -62,6 +62,9 @@ public:
     // in the database sets *duplicateOf to that session (and imports nothing) unless
     // allowDuplicate.
     qint64 importBundle(const QString &path, bool allowDuplicate = false, qint64 *duplicateOf = nullptr);
+    // Any file the importer registry takes (core/ImporterRegistry: bundle, session database,
+    // .rtl into the current session, ...), the same way; returns the last session imported.
+    qint64 importFile(const QString &path, bool allowDuplicate = false, qint64 *duplicateOf = nullptr);
     bool exportSession(qint64 sessionId, const QString &out);
 
     // A recording into `databasePath` started or stopped: when it is the open database the

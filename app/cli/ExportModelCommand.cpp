@@ -3,13 +3,9 @@
 #include "CliOptions.h"
 #include "CliSupport.h"
 #include "OutputTarget.h"
-#include "ExportableModelJson.h"
-#include "ModelExportWriter.h"
-#include "ModelExporterRegistry.h"
+#include "ModelExport.h"
 
 #include <QCommandLineParser>
-#include <QFileInfo>
-#include <QDir>
 #include <QJsonArray>
 #include <QJsonObject>
 #include <QTextStream>
@@ -57,7 +53,8 @@ QString ExportModelCommand::summary() const
 
 int ExportModelCommand::run(const QStringList &args)
 {
-    const ModelExporterRegistry registry;
+    const ModelExport exporting;
+    const ModelExporterRegistry &registry = exporting.registry();
     QCommandLineParser p;
     const QString targets = QString::fromStdString(registry.names());
     const QCommandLineOption target(QStringLiteral("target"), QStringLiteral("Format: %1.").arg(targets), QStringLiteral("name"));
@@ -125,58 +122,30 @@ int ExportModelCommand::run(const QStringList &args)
             throw UsageError(QStringLiteral("export-model: --first-variable must be an integer >= 0, got '%1'").arg(p.value(first)));
     }
 
-    const QString modelPath = p.positionalArguments().front();
-    ExportResult result;
-    ExportableModel model;
+    ModelExport::Request request{p.positionalArguments().front(), p.value(target), options};
+    ModelExport::Result result;
     try {
-        model = ExportableModelJson::read(modelPath);
-        result = exporter->exportModel(model, options);
+        result = exporting.prepare(request);
     } catch (const std::invalid_argument &e) {
         throw UsageError(QStringLiteral("export-model: %1").arg(QString::fromUtf8(e.what())));
     } catch (const ExportRefused &e) {
-        throw UsageError(QStringLiteral("export-model: %1 refused: %2").arg(modelPath, QString::fromUtf8(e.what())));
+        throw UsageError(QStringLiteral("export-model: %1 refused: %2").arg(request.modelPath, QString::fromUtf8(e.what())));
     }
 
     // Everything is in memory: say how much it is (refused above the bound without --force),
     // and only now touch the file system.
     const QString dir = p.value(out);
-    qint64 bytes = 0;
-    for (const ExportFile &f : result.files)
-        bytes += static_cast<qint64>(f.content.size());
-    OutputTarget(dir, QStringLiteral("--out"), OutputTarget::Kind::Folder).announceSize(bytes, p.isSet(force));
-    QStringList paths;
-    const bool existed = QFileInfo::exists(dir);
-    try {
-        paths = ModelExportWriter::write(result, dir);
-    } catch (const std::runtime_error &e) {
-        // Each file is written whole (QSaveFile); a folder this run made is not left half-filled.
-        if (!existed)
-            QDir(dir).removeRecursively();
-        throw std::runtime_error(std::string(e.what()) + (existed ? "" : " (nothing was left)"));
-    }
-    QJsonArray files;
-    for (int i = 0; i < paths.size(); ++i)
-        files.append(QJsonObject{{QStringLiteral("path"), paths[i]},
-                                 {QStringLiteral("bytes"), static_cast<qint64>(result.files[static_cast<std::size_t>(i)].content.size())}});
-    QJsonArray notes;
-    for (const std::string &n : result.notes)
-        notes.append(QString::fromStdString(n));
+    OutputTarget(dir, QStringLiteral("--out"), OutputTarget::Kind::Folder).announceSize(result.bytes(), p.isSet(force));
+    exporting.write(result, dir); // on failure it removes a folder it made: nothing is left
+    const QJsonObject summary = ModelExport::summaryJson(result);
     if (p.isSet(json))
-        CliSupport::writeJson(QJsonDocument(QJsonObject{{QStringLiteral("model"), modelPath},
-                                                        {QStringLiteral("kind"), QString::fromStdString(model.kind())},
-                                                        {QStringLiteral("target"), QString::fromStdString(exporter->name())},
-                                                        {QStringLiteral("source"), QString::fromStdString(exporter->reference())},
-                                                        {QStringLiteral("files"), files},
-                                                        {QStringLiteral("notes"), notes},
-                                                        {QStringLiteral("approximation_error_um"), result.approximationError_um}}),
-                              p.value(json));
+        CliSupport::writeJson(QJsonDocument(summary), p.value(json));
     if (!p.isSet(json) || p.value(json) != QLatin1String("-")) {
-        o << QString::fromStdString(model.kind()) << " -> " << QString::fromStdString(exporter->name()) << ": "
-          << files.size() << " file(s) in " << dir << ", approximation error "
-          << QString::number(result.approximationError_um, 'g', 4) << " um\n";
-        for (const QJsonValue &f : files)
-            o << "  " << f.toObject().value(QStringLiteral("path")).toString() << '\n';
-        for (const std::string &n : result.notes)
+        o << result.kind << " -> " << result.target << ": " << result.paths.size() << " file(s) in " << dir
+          << ", approximation error " << QString::number(result.exported.approximationError_um, 'g', 4) << " um\n";
+        for (const QString &f : result.paths)
+            o << "  " << f << '\n';
+        for (const std::string &n : result.exported.notes)
             o << "  note: " << QString::fromStdString(n) << '\n';
     }
     return 0;

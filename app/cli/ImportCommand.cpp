@@ -2,6 +2,7 @@
 
 #include "BundleError.h"
 #include "BundleTransfer.h"
+#include "ImporterRegistry.h"
 #include "CliSupport.h"
 #include "CliOptions.h"
 #include "OutputTarget.h"
@@ -10,6 +11,7 @@
 
 #include <QCommandLineParser>
 #include <QElapsedTimer>
+#include <QJsonArray>
 #include <QFileInfo>
 #include <QJsonObject>
 #include <QTextStream>
@@ -22,7 +24,36 @@ QString ImportCommand::summary() const
                           "The whole bundle is validated first; a bad bundle is refused (exit code 2) with\n"
                           "a message naming file, line and field, and nothing is imported. A bundle already in\n"
                           "the database (same session UUID, or same recorded content) is refused (exit code 2)\n"
-                          "unless --allow-duplicate.");
+                          "unless --allow-duplicate. Another session database (.sqlite, .db) given instead has its\n"
+                          "complete sessions copied and verified; the importer of a path is core/ImporterRegistry's,\n"
+                          "the one the GUI's drag and drop uses (CSV tables: import-csv, .rtl files: import-rtl).");
+}
+
+int ImportCommand::importOther(const SessionImporter &importer, const QString &file, SessionStore &store, bool allowDuplicate,
+                               const QString &json)
+{
+    if (importer.needsColumnMap())
+        throw UsageError(QStringLiteral("import: %1 is %2: use import-csv --map MAP").arg(file, importer.description()));
+    SessionImporter::Options options;
+    options.allowDuplicate = allowDuplicate;
+    QList<qint64> ids;
+    try {
+        ids = importer.import(file, store, options);
+    } catch (const std::invalid_argument &e) {
+        throw UsageError(QStringLiteral("import: %1").arg(QString::fromUtf8(e.what())));
+    }
+    QJsonArray sessions;
+    for (qint64 id : ids)
+        sessions.append(static_cast<double>(id));
+    const QJsonObject result{{QStringLiteral("database"), store.path()},
+                             {QStringLiteral("source"), file},
+                             {QStringLiteral("importer"), importer.name()},
+                             {QStringLiteral("sessions"), sessions}};
+    if (!json.isEmpty())
+        CliSupport::writeJson(QJsonDocument(result), json);
+    else
+        QTextStream(stdout) << ids.size() << " session(s) from " << file << " in " << store.path() << '\n';
+    return 0;
 }
 
 int ImportCommand::run(const QStringList &args)
@@ -50,6 +81,10 @@ int ImportCommand::run(const QStringList &args)
     CliSupport::progress(QStringLiteral("importing %1 into %2").arg(bundle, path));
     QElapsedTimer timer;
     timer.start();
+    const ImporterRegistry registry;
+    const SessionImporter *importer = registry.find(bundle);
+    if (importer && importer != registry.byName(QStringLiteral("bundle")))
+        return importOther(*importer, bundle, store, p.isSet(allowDuplicate), p.isSet(json) ? p.value(json) : QString());
     qint64 id = 0;
     try {
         id = BundleTransfer::importBundle(store, bundle, p.isSet(allowDuplicate));

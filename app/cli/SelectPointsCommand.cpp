@@ -1,13 +1,11 @@
 #include "SelectPointsCommand.h"
 
-#include "AnalysisResultKind.h"
 #include "CliSupport.h"
 #include "CliOptions.h"
-#include "FitRequestCheck.h"
 #include "OutputTarget.h"
 #include "SessionArgument.h"
-#include "DataDrivenFit.h"
 #include "DataDrivenFitCommand.h"
+#include "PointSelection.h"
 #include "SessionStore.h"
 
 #include <QCommandLineParser>
@@ -60,32 +58,24 @@ int SelectPointsCommand::run(const QStringList &args)
         OutputTarget::json(p.value(json)).check(p.isSet(force));
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
-    const QList<qint64> sessions = DataDrivenFitCommand::sessionArgs(store, p.positionalArguments(), QStringLiteral("SESSION"), cmd);
-    const qint64 session = sessions.front();
-    for (int i = 0; i < sessions.size(); ++i)
-        if (sessions.indexOf(sessions[i]) != i)
-            throw UsageError(QStringLiteral("%1: session %2 is given twice").arg(cmd).arg(sessions[i]));
-    SelectionResult r;
+    PointSelectionRequest q;
+    q.sessions = DataDrivenFitCommand::sessionArgs(store, p.positionalArguments(), QStringLiteral("SESSION"), cmd);
+    q.target = p.value(target);
+    q.kMin = kMin;
+    q.kMax = kMax;
+    q.channels = p.value(channels).split(QLatin1Char(','), Qt::SkipEmptyParts);
+    const qint64 session = q.sessions.front();
+    PointSelection::Result selected;
     try {
-        const HourRange hours = p.isSet(range) ? HourRange::parse(p.value(range), QStringLiteral("--range")) : HourRange();
-        // The target and the range are checked as fit checks them, before any sample is read.
-        for (qint64 id : sessions) {
-            FitRequestCheck::checkTarget(store, id, p.value(target));
-            FitRequestCheck::checkRange(store, id, hours, QStringLiteral("--range"));
-        }
+        q.hours = p.isSet(range) ? HourRange::parse(p.value(range), QStringLiteral("--range")) : HourRange();
+        PointSelection::check(store, q);
         CliSupport::progress(QStringLiteral("selecting sensitive points of session %1 for %2...").arg(session).arg(p.value(target)));
-        r = DataDrivenFit(store).selectPoints(sessions, p.value(target), hours, kMin, kMax,
-                                              p.value(channels).split(QLatin1Char(','), Qt::SkipEmptyParts));
+        selected = PointSelection(store).run(q);
     } catch (const std::invalid_argument &e) {
         throw UsageError(QStringLiteral("%1: %2").arg(cmd, QString::fromUtf8(e.what())));
     }
-    QJsonObject result = DataDrivenFit::selectionJson(r);
-    result.insert(QStringLiteral("session"), session);
-    QJsonArray ids;
-    for (qint64 id : sessions)
-        ids.append(id);
-    result.insert(QStringLiteral("sessions"), ids);
-    store.addAnalysisResult(session, AnalysisResultKind::sensitivePoints(), result);
+    const SelectionResult &r = selected.selection;
+    const QJsonObject &result = selected.record;
     if (p.isSet(json))
         CliSupport::writeJson(QJsonDocument(result), p.value(json));
     if (!p.isSet(json) || p.value(json) != QLatin1String("-")) {
