@@ -110,9 +110,7 @@ InterferometerImport::Result InterferometerImport::import(SessionStore &store, q
     const SessionInfo info = store.session(sessionId);
     Result r;
     const QVector<double> starts = runStarts(file, info, o, &r.timeSource);
-    int firstRun = 0;
-    for (const InterferometerPoint &p : store.interferometerPoints(sessionId))
-        firstRun = std::max(firstRun, p.run + 1);
+    const int firstRun = store.nextInterferometerRun(sessionId); // a query: the session's points stay on disk
     // Run by run into one transaction: the points of the whole file are never held at once (a
     // file from RtlFile::read() is read again from its device, one run at a time).
     const int n = file.targets_mm.size();

@@ -472,6 +472,13 @@ QVector<InterferometerPoint> SessionStore::interferometerPoints(qint64 sessionId
                             });
 }
 
+int SessionStore::nextInterferometerRun(qint64 sessionId) const
+{
+    QSqlQuery q = SqlSupport::select(m_db, m_path, QStringLiteral("SELECT MAX(run) FROM interferometer_points WHERE session_id = ?"),
+                                     {sessionId}, QStringLiteral("cannot read interferometer runs of session %1").arg(sessionId));
+    return q.next() && !q.value(0).isNull() ? q.value(0).toInt() + 1 : 0;
+}
+
 QVector<FittedModel> SessionStore::fittedModels(qint64 sessionId) const
 {
     return SqlSupport::rows(

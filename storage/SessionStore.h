@@ -99,6 +99,8 @@ public:
     // A frame's stored (compressed) bytes and their encoding, as they are.
     QByteArray irFrameBlob(qint64 frameId, QString *encoding) const;
     QVector<InterferometerPoint> interferometerPoints(qint64 sessionId) const;
+    // The next free interferometer run number of a session (0 when it has none), without reading its points.
+    int nextInterferometerRun(qint64 sessionId) const;
     QVector<FittedModel> fittedModels(qint64 sessionId) const;
     QVector<EventRecord> events(qint64 sessionId) const;
     QJsonObject latestAnalysisResult(qint64 sessionId, const QString &kind) const;
