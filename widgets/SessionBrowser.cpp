@@ -221,6 +221,8 @@ void SessionBrowser::fitColumns()
 {
     // As many columns as fit the table's width at their full contents, in priority order;
     // the name stretches into what is left (and needs at least its header).
+    // The name keeps what it needs, up to half the width (at least 120 px), before any
+    // other column is shown.
     const int width = m_table->viewport()->width();
     int used = 0;
     for (const Column c : kPriority) {
@@ -228,7 +230,7 @@ void SessionBrowser::fitColumns()
         const bool fits = c == Name || used + need <= width;
         m_table->setColumnHidden(c, !fits);
         if (fits)
-            used += c == Name ? std::min(need, std::max(120, m_table->horizontalHeader()->sectionSizeHint(c))) : need;
+            used += c == Name ? std::min(need, std::max(120, width / 2)) : need;
     }
 }
 
