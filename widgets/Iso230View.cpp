@@ -307,7 +307,7 @@ void Iso230View::fitTables()
 {
     // The tables get the width their columns need (no sideways scrolling when the window has
     // room), the plot the rest; the user can still move the splitter.
-    int need = 2 * m_targets->frameWidth() + m_targets->verticalScrollBar()->sizeHint().width();
+    int need = 2 * m_targets->frameWidth() + m_targets->verticalScrollBar()->sizeHint().width() + 6;
     for (int c = 0; c < TargetColumns; ++c)
         need += m_targets->columnWidth(c);
     const int total = m_split->width();

@@ -169,7 +169,7 @@ int main(int argc, char **argv)
         if (!d)
             return usageError(QStringLiteral("--dock: unknown dock '%1' (sessions, acquisition, models, diagnosis, analysis, compensation)").arg(name));
         d->show();
-        d->raise(); // a tab of the sessions dock comes to the front
+        QTimer::singleShot(0, d, &QDockWidget::raise); // a tab of the sessions dock comes to the front once shown
     }
     if (p.isSet(overlay)) {
         QVector<qint64> ids;
