@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates docs/screenshots/<size>-<view>.png: the main window maximised under a window
 # manager (Xvfb + openbox, as a user sees it) at 1366x768 and 1920x1080, on two sessions of the
-# simulated baseline rig (4 h seed 11, 3 h seed 12), plus the first start (no database yet).
+# simulated baseline rig (4 h seed 11, 3 h seed 12) and the instrumented rig (2 h seed 13, ISO 230),
+# plus the first start (no database yet).
 # Needs xvfb and openbox (apt-get install xvfb openbox); without openbox the window is sized to
 # the screen instead. PNGs are quantised when pngquant is there (keeps the repository small).
 # Usage: scripts/screenshots.sh [BUILD_DIR]
@@ -17,6 +18,8 @@ mkdir -p -m 700 "$XDG_RUNTIME_DIR"
 db="$tmp/screens.sqlite"
 "$build/app/driftlab-cli" record --rig baseline --duration 4:00:00 --seed 11 --out "$db" --name "X axis, 4 h warm-up (seed 11)" >/dev/null 2>&1
 "$build/app/driftlab-cli" record --rig baseline --duration 3:00:00 --seed 12 --out "$db" --name "X axis, 3 h warm-up (seed 12)" >/dev/null 2>&1
+# Session 3: the instrumented rig (3 bidirectional cycles per interferometer run) for the ISO 230 view.
+"$build/app/driftlab-cli" record --rig seed002-instruments --duration 2:00:00 --seed 13 --out "$db" --name "X axis, ISO 230-2 runs (seed 13)" >/dev/null 2>&1
 out="$src/docs/screenshots"
 display=77
 for size in 1366x768 1920x1080; do
@@ -30,6 +33,8 @@ for size in 1366x768 1920x1080; do
   }
   shot sessions --db "$db" --show-session 1 --view error-3d
   shot acquisition --db "$db" --show-session 2 --dock acquisition
+  shot iso230 --db "$db" --show-session 3 --central-view iso230
+  shot overlay --db "$db" --show-session 1 --overlay 2
   shot models --db "$db" --fit 1:2
   shot diagnosis --db "$db" --diagnose 1:2
   shot analysis --db "$db" --analysis 1:S1:2

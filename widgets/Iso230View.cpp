@@ -9,6 +9,7 @@
 #include <QHeaderView>
 #include <QJsonArray>
 #include <QLabel>
+#include <QScrollBar>
 #include <QSplitter>
 #include <QTabWidget>
 #include <QTableWidget>
@@ -52,7 +53,7 @@ QTableWidgetItem *textItem(const QString &text)
 
 QString direction(int d)
 {
-    return d > 0 ? QStringLiteral("↑ (+)") : d < 0 ? QStringLiteral("↓ (−)") : QStringLiteral("one");
+    return d > 0 ? QStringLiteral("↑ +") : d < 0 ? QStringLiteral("↓ −") : QStringLiteral("one");
 }
 
 } // namespace
@@ -73,7 +74,8 @@ Iso230View::Iso230View(QWidget *parent)
     m_heading->setWordWrap(true);
     m_heading->setTextInteractionFlags(Qt::TextSelectableByMouse);
     m_test->setObjectName(QStringLiteral("Iso230Test"));
-    m_test->setSizeAdjustPolicy(QComboBox::AdjustToContents);
+    m_test->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    m_test->setMinimumContentsLength(28); // "run 12 at 10:02:22 (reference)"
     m_temperature->setObjectName(QStringLiteral("Iso230Temperature"));
     m_temperature->setToolTip(tr("Temperature channel the drift is regressed on (µm/K)"));
     auto *controls = new QHBoxLayout;
@@ -109,8 +111,8 @@ Iso230View::Iso230View(QWidget *parent)
     m_positioning->setAxisTitle(QwtPlot::xBottom, tr("target position (mm)"));
     m_positioning->setAxisTitles(tr("positioning deviation (µm)"), QString());
     m_positioning->enableAxis(QwtPlot::yRight, false);
-    m_positioning->setTitle(tr("ISO 230-2: mean deviation and x̄ ± 2s per direction"));
-    auto *positioning = new QSplitter(Qt::Horizontal, this);
+    m_positioning->setTitle(tr("ISO 230-2: x̄ and x̄ ± 2s"));
+    auto *positioning = m_split = new QSplitter(Qt::Horizontal, this);
     positioning->addWidget(tables);
     positioning->addWidget(m_positioning);
     positioning->setChildrenCollapsible(false);
@@ -252,6 +254,7 @@ void Iso230View::showTest(int index)
     }
     fillTables(index);
     fillPositioningPlot(index);
+    fitTables();
 }
 
 void Iso230View::fillTables(int index)
@@ -298,6 +301,24 @@ void Iso230View::fillTables(int index)
             put(g.position_mm, direction(t.directionRecorded ? 1 : 0), g.approachesUp, g.meanUp_um, g.sUp_um, g.repeatUp_um, NAN);
         }
     }
+}
+
+void Iso230View::fitTables()
+{
+    // The tables get the width their columns need (no sideways scrolling when the window has
+    // room), the plot the rest; the user can still move the splitter.
+    int need = 2 * m_targets->frameWidth() + m_targets->verticalScrollBar()->sizeHint().width() + 6;
+    for (int c = 0; c < TargetColumns; ++c)
+        need += m_targets->columnWidth(c);
+    const int total = m_split->width();
+    if (total > 0)
+        m_split->setSizes({std::min(need, total - 260), std::max(260, total - need)});
+}
+
+void Iso230View::resizeEvent(QResizeEvent *event)
+{
+    QWidget::resizeEvent(event);
+    fitTables();
 }
 
 void Iso230View::fillPositioningPlot(int index)

@@ -14,6 +14,7 @@
 
 class QComboBox;
 class QLabel;
+class QSplitter;
 class QTableWidget;
 class QTabWidget;
 
@@ -51,7 +52,11 @@ public:
     enum AxisRow { A, E, R, B, MeanB, M, AxisRows };
     // Axis table columns: up (↑), down (↓), bidirectional.
 
+protected:
+    void resizeEvent(QResizeEvent *event) override;
+
 private:
+    void fitTables();
     void fillTables(int index);
     void fillPositioningPlot(int index);
     void fillDriftPlot();
@@ -63,6 +68,7 @@ private:
     QComboBox *m_test;
     QComboBox *m_temperature;
     QTabWidget *m_tabs;
+    QSplitter *m_split;
     QTableWidget *m_axis;
     QTableWidget *m_targets;
     TimeSeriesPlot *m_positioning;

@@ -33,6 +33,11 @@ QString value(const QwtPlot *plot, int axis, double v)
 
 PlotReadout::PlotReadout(QWidget *canvas) : QwtPlotZoomer(canvas) {}
 
+QString PlotReadout::valueText(const QwtPlot *plot, int axis, double v)
+{
+    return value(plot, axis, v);
+}
+
 QString PlotReadout::unitOf(const QString &axisTitle)
 {
     static const QRegularExpression unit(QStringLiteral("\\(([^()]*)\\)\\s*$"));

@@ -15,6 +15,9 @@ public:
 
     // The readout at a point of the plot's scales (x, left y); the right axis too when shown.
     QString readout(const QPointF &plotPos) const;
+    // A value of an axis as the readout writes it: h:mm:ss on a time axis, else the number
+    // to the axis' pixel resolution with the unit of its title.
+    static QString valueText(const QwtPlot *plot, int axis, double v);
     // "temperature (°C)" -> "°C"; "" without parentheses.
     static QString unitOf(const QString &axisTitle);
 

@@ -221,14 +221,20 @@ void SessionBrowser::fitColumns()
 {
     // As many columns as fit the table's width at their full contents, in priority order;
     // the name stretches into what is left (and needs at least its header).
+    // The name keeps what it needs (leaving room for state and start, at least 120 px)
+    // before any column after them is shown.
     const int width = m_table->viewport()->width();
+    int need[Columns];
+    for (int c = 0; c < Columns; ++c)
+        need[c] = std::max(static_cast<const QAbstractItemView *>(m_table)->sizeHintForColumn(c),
+                           m_table->horizontalHeader()->sectionSizeHint(c));
+    const int nameReserve = std::max(120, std::min(need[Name], width - need[State] - need[Started]));
     int used = 0;
     for (const Column c : kPriority) {
-        const int need = std::max(static_cast<const QAbstractItemView *>(m_table)->sizeHintForColumn(c), m_table->horizontalHeader()->sectionSizeHint(c));
-        const bool fits = c == Name || used + need <= width;
+        const bool fits = c == Name || used + need[c] <= width;
         m_table->setColumnHidden(c, !fits);
         if (fits)
-            used += c == Name ? std::min(need, std::max(120, m_table->horizontalHeader()->sectionSizeHint(c))) : need;
+            used += c == Name ? nameReserve : need[c];
     }
 }
 

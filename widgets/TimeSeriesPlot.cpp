@@ -1,6 +1,7 @@
 #include "TimeSeriesPlot.h"
 
 #include "ElapsedTimeAxis.h"
+#include "PlotCursors.h"
 #include "PlotInteraction.h"
 #include "PlotReadout.h"
 
@@ -66,6 +67,7 @@ TimeSeriesPlot::TimeSeriesPlot(QWidget *parent) : QwtPlot(parent), m_refresh(new
     panner->setMouseButton(Qt::MiddleButton);
     new QwtPlotMagnifier(canvas());
     PlotInteraction::install(this, m_zoomer); // context menu, per-axis wheel zoom
+    PlotCursors::install(this);               // Shift+click: cursors A, B and their delta
 }
 
 void TimeSeriesPlot::clearCurves()

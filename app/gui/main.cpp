@@ -13,6 +13,7 @@
 
 #include <QAction>
 #include <QApplication>
+#include <QTabWidget>
 #include <QCommandLineParser>
 #include <QDir>
 #include <QDockWidget>
@@ -104,7 +105,13 @@ int main(int argc, char **argv)
                                                      "then fit the data-driven models on hours 0..TRAIN_H and validate on the "
                                                      "rest: ID:TARGET[:TRAIN_H[:select]] ('select': stop after the selection)."),
                                       QStringLiteral("spec"));
-    p.addOptions({db, session, screenshot, view, compare, fit, diagnose, dock, analysis});
+    const QCommandLineOption central(QStringLiteral("central-view"),
+                                     QStringLiteral("Central tab to show: session, iso230, model-fit, diagnosis, analysis."),
+                                     QStringLiteral("name"));
+    const QCommandLineOption overlay(QStringLiteral("overlay"),
+                                     QStringLiteral("Overlay these sessions (comma-separated ids) on the time plot of --show-session."),
+                                     QStringLiteral("ids"));
+    p.addOptions({db, session, screenshot, view, compare, fit, diagnose, dock, analysis, central, overlay});
     if (!p.parse(QApplication::arguments()))
         return usageError(p.errorText());
     if (p.isSet(help))
@@ -162,6 +169,29 @@ int main(int argc, char **argv)
         if (!d)
             return usageError(QStringLiteral("--dock: unknown dock '%1' (sessions, acquisition, models, diagnosis, analysis, compensation)").arg(name));
         d->show();
+        QTimer::singleShot(0, d, &QDockWidget::raise); // a tab of the sessions dock comes to the front once shown
+    }
+    if (p.isSet(overlay)) {
+        QVector<qint64> ids;
+        for (const QString &part : p.value(overlay).split(QLatin1Char(','))) {
+            const qint64 id = sessionArg(window, part.trimmed());
+            if (!id)
+                return usageError(QStringLiteral("--overlay: %1 has no session '%2'").arg(path, part));
+            ids << id;
+        }
+        window.overlaySessions(ids);
+    }
+    if (p.isSet(central)) {
+        QTabWidget *tabs = window.centralViews();
+        int found = -1;
+        for (int i = 0; i < tabs->count(); ++i)
+            if (QString(tabs->tabText(i)).remove(QLatin1Char(' ')).compare(QString(p.value(central)).remove(QLatin1Char('-')),
+                                                                          Qt::CaseInsensitive) == 0)
+                found = i;
+        if (found < 0)
+            return usageError(QStringLiteral("--central-view: no tab '%1' (session, iso230, model-fit, diagnosis, analysis)")
+                                  .arg(p.value(central)));
+        tabs->setCurrentIndex(found);
     }
     if (p.isSet(view) && !window.workspace()->selectView(p.value(view)))
         err() << "driftlab: this session has no data for the view " << p.value(view) << '\n';

@@ -1,0 +1,171 @@
+#include "PlotCursors.h"
+
+#include "ElapsedTimeAxis.h"
+#include "PlotReadout.h"
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QPen>
+
+#include <qwt_plot.h>
+#include <qwt_plot_canvas.h>
+#include <qwt_plot_curve.h>
+#include <qwt_plot_marker.h>
+#include <qwt_plot_textlabel.h>
+#include <qwt_scale_map.h>
+#include <qwt_text.h>
+
+#include <cmath>
+
+namespace driftlab {
+
+PlotCursors *PlotCursors::install(QwtPlot *plot)
+{
+    return new PlotCursors(plot);
+}
+
+PlotCursors *PlotCursors::of(const QwtPlot *plot)
+{
+    return plot->findChild<PlotCursors *>(QString(), Qt::FindDirectChildrenOnly);
+}
+
+PlotCursors::PlotCursors(QwtPlot *plot) : QObject(plot), m_plot(plot), m_label(new QwtPlotTextLabel())
+{
+    const QColor colours[2] = {QColor(200, 0, 120), QColor(0, 120, 200)};
+    for (int i = 0; i < 2; ++i) {
+        m_marker[i] = new QwtPlotMarker(i == A ? QStringLiteral("cursor A") : QStringLiteral("cursor B"));
+        m_marker[i]->setLineStyle(QwtPlotMarker::VLine);
+        m_marker[i]->setLinePen(colours[i], 1.0, Qt::SolidLine);
+        QwtText label(i == A ? QStringLiteral("A") : QStringLiteral("B"));
+        label.setColor(colours[i]);
+        m_marker[i]->setLabel(label);
+        m_marker[i]->setLabelAlignment(Qt::AlignRight | Qt::AlignBottom);
+        m_marker[i]->setItemAttribute(QwtPlotItem::Legend, false);
+        m_marker[i]->setItemAttribute(QwtPlotItem::AutoScale, false);
+    }
+    m_label->setZ(100);
+    plot->canvas()->installEventFilter(this);
+}
+
+void PlotCursors::setCursor(Which which, double x)
+{
+    m_x[which] = x;
+    m_marker[which]->setXValue(x);
+    m_marker[which]->attach(m_plot);
+    update();
+}
+
+void PlotCursors::clear()
+{
+    for (int i = 0; i < 2; ++i) {
+        m_x[i].reset();
+        m_marker[i]->detach();
+    }
+    update();
+}
+
+std::optional<double> PlotCursors::position(Which which) const
+{
+    return m_x[which];
+}
+
+double PlotCursors::valueAt(const QwtPlotCurve &curve, double x)
+{
+    const size_t n = curve.dataSize();
+    for (size_t i = 1; i < n; ++i) {
+        const QPointF a = curve.sample(i - 1), b = curve.sample(i);
+        if ((a.x() <= x && x <= b.x()) || (b.x() <= x && x <= a.x()))
+            return a.x() == b.x() ? a.y() : a.y() + (b.y() - a.y()) * (x - a.x()) / (b.x() - a.x());
+    }
+    return n == 1 && curve.sample(0).x() == x ? curve.sample(0).y() : NAN;
+}
+
+QString PlotCursors::text() const
+{
+    if (!m_x[A] && !m_x[B])
+        return QString();
+    const int xAxis = QwtPlot::xBottom;
+    const bool time = ElapsedTimeAxis::installed(m_plot, xAxis);
+    QStringList lines;
+    QString head;
+    if (m_x[A])
+        head += QStringLiteral("A %1").arg(PlotReadout::valueText(m_plot, xAxis, *m_x[A]));
+    if (m_x[B])
+        head += QStringLiteral("%1B %2").arg(head.isEmpty() ? QString() : QStringLiteral("   "),
+                                             PlotReadout::valueText(m_plot, xAxis, *m_x[B]));
+    if (m_x[A] && m_x[B]) {
+        const double dx = *m_x[B] - *m_x[A];
+        head += QStringLiteral("   Δ%1 %2").arg(time ? QStringLiteral("t") : QStringLiteral("x"),
+                                                 time ? (dx < 0 ? QStringLiteral("-") : QString()) + ElapsedTimeAxis::format(std::fabs(dx))
+                                                      : PlotReadout::valueText(m_plot, xAxis, dx));
+    }
+    lines << head;
+    for (const QwtPlotItem *item : m_plot->itemList(QwtPlotItem::Rtti_PlotCurve)) {
+        const auto *curve = static_cast<const QwtPlotCurve *>(item);
+        if (!curve->isVisible())
+            continue;
+        const int axis = curve->yAxis();
+        QString line = curve->title().text() + QStringLiteral("  ");
+        const double va = m_x[A] ? valueAt(*curve, *m_x[A]) : NAN;
+        const double vb = m_x[B] ? valueAt(*curve, *m_x[B]) : NAN;
+        const auto show = [this, axis](double v) { return std::isfinite(v) ? PlotReadout::valueText(m_plot, axis, v) : QStringLiteral("-"); };
+        if (m_x[A] && m_x[B]) {
+            line += QStringLiteral("%1 → %2").arg(show(va), show(vb));
+            if (std::isfinite(va) && std::isfinite(vb))
+                line += QStringLiteral("  Δ %1").arg(show(vb - va));
+        } else {
+            line += show(m_x[A] ? va : vb);
+        }
+        lines << line;
+    }
+    return lines.join(QLatin1Char('\n'));
+}
+
+void PlotCursors::update()
+{
+    const QString t = text();
+    if (t.isEmpty()) {
+        m_label->detach();
+    } else {
+        QwtText label(t);
+        label.setRenderFlags(Qt::AlignLeft | Qt::AlignTop);
+        label.setBackgroundBrush(QColor(255, 255, 255, 215));
+        label.setBorderPen(QPen(QColor(160, 160, 160)));
+        m_label->setText(label);
+        m_label->attach(m_plot);
+    }
+    m_plot->replot();
+}
+
+bool PlotCursors::eventFilter(QObject *watched, QEvent *event)
+{
+    if (watched == m_plot->canvas() && event->type() == QEvent::MouseButtonPress) {
+        const auto *mouse = static_cast<QMouseEvent *>(event);
+        if (mouse->modifiers() & Qt::ShiftModifier) {
+            if (mouse->button() == Qt::RightButton) {
+                clear();
+                return true;
+            }
+            if (mouse->button() == Qt::LeftButton) {
+                const double x = m_plot->canvasMap(QwtPlot::xBottom).invTransform(mouse->pos().x());
+                if (m_x[A] && !m_x[B]) {
+                    setCursor(B, x);
+                } else {
+                    m_x[B].reset();
+                    m_marker[B]->detach();
+                    setCursor(A, x);
+                }
+                return true; // not a zoom rectangle
+            }
+        }
+    } else if (watched == m_plot->canvas() && event->type() == QEvent::KeyPress) {
+        const auto *key = static_cast<QKeyEvent *>(event);
+        if (key->key() == Qt::Key_Escape && (key->modifiers() & Qt::ShiftModifier)) {
+            clear();
+            return true;
+        }
+    }
+    return QObject::eventFilter(watched, event);
+}
+
+} // namespace driftlab
