@@ -230,19 +230,21 @@ int DataDrivenFitCommand::run(const QStringList &args)
           << q.target << " fitted on session" << (ids.size() > 1 ? "s " : " ") << ids.join(QStringLiteral(", ")) << " in "
           << QString::number(r.wallTime_s, 'f', 2) << " s -> " << p.value(out) << '\n';
         if (!r.comparison.empty()) {
-            o << "  family      CV RMSE  CV SE   params  reference   held-out RMSE\n";
+            o << "  family           CV RMSE  CV SE  nested CV  paired SE  params  reference   held-out RMSE\n";
+            auto num = [](double v, int width) {
+                return (std::isfinite(v) ? QString::number(v, 'f', 3) : QStringLiteral("-")).rightJustified(width);
+            };
             for (const FamilyComparison &c : r.comparison) {
-                o << (c.chosen ? "* " : "  ") << c.model.leftJustified(10)
-                  << (std::isfinite(c.cvRmse) ? QString::number(c.cvRmse, 'f', 3) : QStringLiteral("-")).rightJustified(8)
-                  << (std::isfinite(c.cvStandardError) ? QString::number(c.cvStandardError, 'f', 3) : QStringLiteral("-")).rightJustified(7)
+                o << (c.chosen ? "* " : "  ") << (c.model + (c.plainReference ? QStringLiteral(" (ref)") : QString())).leftJustified(15)
+                  << num(c.cvRmse, 8) << num(c.cvStandardError, 7) << num(c.nestedCvRmse, 11) << num(c.pairedStandardError, 11)
                   << QString::number(c.parameters).rightJustified(8) << "  " << c.reference.leftJustified(10)
                   << (c.holdout ? QString::number(c.holdout->rmse, 'f', 3) : QStringLiteral("-")).rightJustified(10);
                 if (!c.error.isEmpty())
                     o << "  (not fitted: " << c.error << ')';
                 o << '\n';
             }
-            o << "  chosen by CV, one-standard-error rule (fewest parameters within one CV standard error of the lowest);"
-                 " held-out never used to choose\n";
+            o << "  chosen by nested CV: among the families within one paired standard error of the lowest, a plain"
+                 " reference (ref) first, else the fewest parameters; held-out never used to choose\n";
         }
         if (r.selection) {
             QStringList chosen;
