@@ -29,7 +29,7 @@ PlotCursors *PlotCursors::of(const QwtPlot *plot)
     return plot->findChild<PlotCursors *>(QString(), Qt::FindDirectChildrenOnly);
 }
 
-PlotCursors::PlotCursors(QwtPlot *plot) : QObject(plot), m_plot(plot), m_label(new QwtPlotTextLabel())
+PlotCursors::PlotCursors(QwtPlot *plot) : QObject(plot), m_plot(plot), m_canvas(plot->canvas()), m_label(new QwtPlotTextLabel())
 {
     const QColor colours[2] = {QColor(200, 0, 120), QColor(0, 120, 200)};
     for (int i = 0; i < 2; ++i) {
@@ -44,14 +44,23 @@ PlotCursors::PlotCursors(QwtPlot *plot) : QObject(plot), m_plot(plot), m_label(n
         m_marker[i]->setItemAttribute(QwtPlotItem::AutoScale, false);
     }
     m_label->setZ(100);
-    plot->canvas()->installEventFilter(this);
+    // The plot owns the markers and the label from here on (it deletes its attached items):
+    // they stay attached and are shown or hidden, so none is left without an owner.
+    for (QwtPlotMarker *marker : m_marker) {
+        marker->setVisible(false);
+        marker->attach(m_plot);
+    }
+    m_label->setVisible(false);
+    m_label->attach(m_plot);
+
+    m_canvas->installEventFilter(this);
 }
 
 void PlotCursors::setCursor(Which which, double x)
 {
     m_x[which] = x;
     m_marker[which]->setXValue(x);
-    m_marker[which]->attach(m_plot);
+    m_marker[which]->setVisible(true);
     update();
 }
 
@@ -59,7 +68,7 @@ void PlotCursors::clear()
 {
     for (int i = 0; i < 2; ++i) {
         m_x[i].reset();
-        m_marker[i]->detach();
+        m_marker[i]->setVisible(false);
     }
     update();
 }
@@ -125,21 +134,21 @@ void PlotCursors::update()
 {
     const QString t = text();
     if (t.isEmpty()) {
-        m_label->detach();
+        m_label->setVisible(false);
     } else {
         QwtText label(t);
         label.setRenderFlags(Qt::AlignLeft | Qt::AlignTop);
         label.setBackgroundBrush(QColor(255, 255, 255, 215));
         label.setBorderPen(QPen(QColor(160, 160, 160)));
         m_label->setText(label);
-        m_label->attach(m_plot);
+        m_label->setVisible(true);
     }
     m_plot->replot();
 }
 
 bool PlotCursors::eventFilter(QObject *watched, QEvent *event)
 {
-    if (watched == m_plot->canvas() && event->type() == QEvent::MouseButtonPress) {
+    if (watched == m_canvas && event->type() == QEvent::MouseButtonPress) {
         const auto *mouse = static_cast<QMouseEvent *>(event);
         if (mouse->modifiers() & Qt::ShiftModifier) {
             if (mouse->button() == Qt::RightButton) {
@@ -152,13 +161,13 @@ bool PlotCursors::eventFilter(QObject *watched, QEvent *event)
                     setCursor(B, x);
                 } else {
                     m_x[B].reset();
-                    m_marker[B]->detach();
+                    m_marker[B]->setVisible(false);
                     setCursor(A, x);
                 }
                 return true; // not a zoom rectangle
             }
         }
-    } else if (watched == m_plot->canvas() && event->type() == QEvent::KeyPress) {
+    } else if (watched == m_canvas && event->type() == QEvent::KeyPress) {
         const auto *key = static_cast<QKeyEvent *>(event);
         if (key->key() == Qt::Key_Escape && (key->modifiers() & Qt::ShiftModifier)) {
             clear();

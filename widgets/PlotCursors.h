@@ -14,6 +14,7 @@ class QwtPlot;
 class QwtPlotCurve;
 class QwtPlotMarker;
 class QwtPlotTextLabel;
+class QWidget;
 
 namespace driftlab {
 
@@ -41,6 +42,7 @@ private:
     void update();
 
     QwtPlot *m_plot;
+    QWidget *m_canvas; // compared without calling into m_plot, which may be half destroyed
     QwtPlotMarker *m_marker[2];
     QwtPlotTextLabel *m_label;
     std::optional<double> m_x[2];
