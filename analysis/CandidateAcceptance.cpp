@@ -48,9 +48,10 @@ HeldoutPredictionTest::Result CandidateAcceptance::predictionTest(const Candidat
     return HeldoutPredictionTest::run(reference.heldout, candidate.heldout, reference.outOfFold, candidate.outOfFold);
 }
 
-double CandidateAcceptance::discoveryThreshold(const std::vector<const CandidateFit *> &candidates, const CandidateFit &reference) const
+double CandidateAcceptance::discoveryThreshold(const std::vector<const CandidateFit *> &candidates, const CandidateFit &reference,
+                                               size_t untested) const
 {
-    std::vector<double> p;
+    std::vector<double> p(untested, 1.0);
     for (const CandidateFit *c : candidates)
         if (c)
             p.push_back(predictionTest(*c, reference).p);

@@ -39,7 +39,10 @@ public:
 
     // Benjamini-Hochberg threshold at DiagnosisOptions::heldoutFdr over the prediction-test
     // p-values of one round's candidates (null entries skipped); -1 when none is a discovery.
-    double discoveryThreshold(const std::vector<const CandidateFit *> &candidates, const CandidateFit &reference) const;
+    // `untested`: further hypotheses of the same search that were not refitted (counted with
+    // p = 1, so the number of candidates of a larger search enters the rate honestly).
+    double discoveryThreshold(const std::vector<const CandidateFit *> &candidates, const CandidateFit &reference,
+                              size_t untested = 0) const;
 
     // The refit brings still-air convection k2 back above the plausible minimum the reference
     // fell below (then a held-out RMS no worse than the reference's suffices).

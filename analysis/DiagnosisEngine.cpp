@@ -1,6 +1,7 @@
 #include "DiagnosisEngine.h"
 
 #include "CandidateAcceptance.h"
+#include "DecisiveTestPlanner.h"
 #include "DiscrepancyTerm.h"
 #include "FixedText.h"
 #include "MeasurementChainCheck.h"
@@ -388,11 +389,80 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
     }
     report.location.implausibleRefits = chosen.implausibleRefits;
     assemble(report, chosen, base, train, validate);
+    if (m_options.adviseTests) {
+        if (!tick(0.97, "which test would decide"))
+            return report;
+        adviseTest(report, chosen, base, library, train, validate, opts, effectiveN);
+    }
     for (auto f = report.measurementChain.rbegin(); f != report.measurementChain.rend(); ++f)
         report.explanation = "Measurement chain: " + f->law + ". " + report.explanation;
     tick(1.0, "done");
     report.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return report;
+}
+
+void DiagnosisEngine::adviseTest(DiagnosisReport &report, const ForwardSelection::Result &chosen, const CandidateFit &base,
+                                 const std::vector<CandidateEffect> &library, const DiagnosisRecording &train,
+                                 const DiagnosisRecording &validate, const IdentificationOptions &opts, double effectiveN)
+{
+    const DecisiveTestPlanner::Rivals rivals =
+        DecisiveTestPlanner::rivals(report, m_options.adviceScoreMargin, m_options.adviceHeldoutRatio);
+    if (!rivals.any || rivals.stepsBefore > static_cast<int>(chosen.steps.size()))
+        return;
+    auto find = [&](const std::string &code) -> const CandidateEffect * {
+        const auto it = std::find_if(library.begin(), library.end(), [&](const CandidateEffect &e) { return e.code == code; });
+        return it == library.end() ? nullptr : &*it;
+    };
+    std::vector<ForwardSelection::Choice> before;
+    std::string name = "baseline";
+    for (int k = 0; k < rivals.stepsBefore; ++k) {
+        before.push_back(chosen.steps[static_cast<size_t>(k)].choice);
+        name += " + " + chosen.steps[static_cast<size_t>(k)].choice.effect->code;
+    }
+    const CandidateEffect *a = rivals.a.empty() ? nullptr : find(rivals.a);
+    const CandidateEffect *b = find(rivals.b);
+    if (!b || (!rivals.a.empty() && !a))
+        return;
+    try {
+        const CandidateFit fa = a ? evaluate(before, a, train, validate, opts, effectiveN)
+                                  : (before.empty() ? base : chosen.steps[before.size() - 1].fit);
+        const CandidateFit fb = evaluate(before, b, train, validate, opts, effectiveN);
+        // A fitted model's predictions on another recording: fresh components in the order
+        // evaluate() adds them (the candidate's own, then the accepted ones), bound to it.
+        auto predictor = [&](const CandidateEffect *candidate, const CandidateFit &f) -> DecisiveTestPlanner::Predictor {
+            return [this, &train, &opts, &before, candidate, &f](const DiagnosisRecording &rec) {
+                ScrewModelIdentifier id(m_geometry, opts);
+                std::vector<CandidateModel> parts;
+                if (candidate)
+                    parts.push_back(candidate->create(train, f.start));
+                for (const ForwardSelection::Choice &c : before)
+                    parts.push_back(c.effect->create(train, c.start));
+                for (const CandidateModel &m : parts) {
+                    for (const auto &s : m.sources)
+                        id.addHeatSource(s);
+                    for (const auto &t : m.terms)
+                        id.addErrorTerm(t);
+                }
+                for (const CandidateModel &m : parts)
+                    if (m.bind)
+                        m.bind(rec);
+                return id.predict(f.fit, {rec.screw});
+            };
+        };
+        const DecisiveTestPlanner planner(m_geometry.length_m);
+        const double noise_um = std::max(0.1, std::min(fa.eval.heldoutRms_um, fb.eval.heldoutRms_um));
+        const double noise_K = report.location.temperaturePoints > 0 ? std::max(0.05, report.location.temperatureRms_K)
+                                                                     : m_options.screwTemperatureSigma_K;
+        DecisiveTestAdvice &advice = report.advice;
+        advice.trigger = rivals.trigger;
+        advice.modelA = a ? name + " + " + a->code : name;
+        advice.modelB = name + " + " + b->code;
+        advice.tests = planner.rank(planner.propose(train), predictor(a, fa), predictor(b, fb), noise_um, noise_K);
+        advice.given = !advice.tests.empty();
+        advice.summary = DecisiveTestPlanner::summarise(advice.modelA, advice.modelB, advice.tests);
+    } catch (const std::exception &ex) {
+        report.notes.push_back(std::string("which test would decide: not computed (") + ex.what() + ")");
+    }
 }
 
 std::string DiagnosisEngine::noneExplanation(const DiagnosisReport &report, const std::vector<CandidateOutcome> &empiricalRound)

@@ -61,6 +61,11 @@ private:
     // The explanation of `none`: the driver terms that could not be placed, or a residual that
     // is not plain noise, or noise (ResidualLocator::isLocated on the baseline's residual).
     static std::string noneExplanation(const DiagnosisReport &report, const std::vector<CandidateOutcome> &empiricalRound);
+    // Which added measurement would decide between the two closest explanations
+    // (DecisiveTestPlanner::rivals): both refitted, simulated on the proposed programmes.
+    void adviseTest(DiagnosisReport &report, const ForwardSelection::Result &selection, const CandidateFit &base,
+                    const std::vector<CandidateEffect> &library, const DiagnosisRecording &train, const DiagnosisRecording &validate,
+                    const IdentificationOptions &options, double effectiveN);
     std::vector<ObservationFit> predictTemperatures(ScrewModelIdentifier &id, const IdentificationResult &fit,
                                                     const CandidateModel &model,
                                                     const DiagnosisRecording &train) const;

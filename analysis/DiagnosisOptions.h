@@ -38,6 +38,9 @@ struct DiagnosisOptions {
     // The prediction test (CandidateAcceptance::predictionTest) of every round's candidates is
     // read at this false-discovery rate (Benjamini-Hochberg over the round's candidates).
     double heldoutFdr = 0.05;
+    // When no single effect and no pair passes: the best pair plus one, refitted as triples
+    // (ForwardSelection::tryTriples, issue 36 item 4).
+    bool tryTriples = true;
     // A pair's members: each must improve the prediction of the other alone at this level.
     double pairMemberAlpha = 0.01;
     // Still-air convection k2 below this (W/(m^2 K)) is below natural convection plus
@@ -80,6 +83,13 @@ struct DiagnosisOptions {
     // Off by default: on the rig's "none" sessions it moved lambda and P_f to the truth but
     // raised the held-out interferometer RMS by half (docs/diagnosis.md).
     bool fitScrewTemperatures = false;
+    // Say which added measurement would decide (DecisiveTestPlanner, issue 36 item 5) when the
+    // answer is `none` with a located residual or the runner-up of a named step is close: its
+    // score within adviceScoreMargin of the winner's or its held-out RMS within
+    // adviceHeldoutRatio of the winner's.
+    bool adviseTests = true;
+    double adviceScoreMargin = 0.10;
+    double adviceHeldoutRatio = 1.10;
     double screwTemperatureSigma_K = 0.3;
 };
 

@@ -191,6 +191,33 @@ struct SensorFinding {
     std::vector<std::string> evidence;
 };
 
+// One added measurement the diagnosis proposes (DecisiveTestPlanner), simulated with the two
+// competing fitted models: how differently they predict it, relative to the measured noise.
+struct ProposedTestEvidence {
+    std::string code;          // "cooldown", "standstill_phases", "feed_high", "feed_low", "dense_runs", "screw_pt100_free_end", ...
+    std::string description;   // the programme in words
+    std::string observable;    // "interferometer" or "screw temperature"
+    double duration_h = 0.0;   // added recording time
+    int runs = 0;              // interferometer runs (or temperature samples) scored
+    int points = 0;
+    double noise = 0.0;        // per point, in `unit` (the better model's held-out RMS, at least the floor)
+    std::string unit;          // "um" or "K"
+    double rmsDifference = 0.0;  // RMS of model A - model B over the scored points
+    double maxDifference = 0.0;  // largest |A - B|
+    double expectedChi2 = 0.0;   // sum over runs of (run RMS of A - B / noise)^2: each run one sample
+    double expectedZ = 0.0;      // sqrt(expectedChi2)
+    double expectedHeldoutGain = 0.0; // 1 - noise / sqrt(noise^2 + rmsDifference^2)
+};
+
+// Which added measurement would decide between two explanations (issue 36 item 5).
+struct DecisiveTestAdvice {
+    bool given = false;
+    std::string trigger;       // why advice is given (the rule that fired)
+    std::string modelA, modelB; // the two explanations, e.g. "baseline" and "baseline + holding_heat"
+    std::vector<ProposedTestEvidence> tests; // ranked, most decisive first
+    std::string summary;       // in words
+};
+
 struct DiagnosisReport {
     // Accepted effect codes joined by '+' in the order of acceptance, "none" when none was,
     // "unexplained" for a located discrepancy no candidate explains.
@@ -210,6 +237,9 @@ struct DiagnosisReport {
     std::vector<std::string> notes;
     // Sensors found at fault (corrected before the selection, never charged to the machine).
     std::vector<SensorFinding> measurementChain;
+    // The added measurement that would separate the two closest explanations (when the answer
+    // is `none` with a located residual, or the best two are close).
+    DecisiveTestAdvice advice;
     double wallTime_s = 0.0;
     bool cancelled = false;
 };

@@ -198,7 +198,7 @@ bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, c
         }
     }
     if (best < 0)
-        return false;
+        return tryTriples(result, accepted, reference, round, outcomes, indexOf, pairs, fits, ok, train, effectiveN, refit, tick);
     const auto [a, b] = pairs[static_cast<size_t>(best)];
     const std::string together = "accepted together with " + m_library[a].code + " + " + m_library[b].code +
                                  ": neither passes alone, the two together do (held-out " + fixedText(100.0 * bestJoint.heldoutImprovement, 0) +
@@ -223,6 +223,128 @@ bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, c
     accepted.push_back(second.choice);
     result.steps.push_back(std::move(first));
     result.steps.push_back(std::move(second));
+    return true;
+}
+
+bool ForwardSelection::tryTriples(Result &result, std::vector<Choice> &accepted, const CandidateFit &reference, Round &round,
+                                  const std::vector<CandidateOutcome> &outcomes, const std::vector<size_t> &indexOf,
+                                  const std::vector<std::pair<size_t, size_t>> &pairs, std::vector<CandidateFit> &pairFits,
+                                  const std::vector<bool> &pairOk, const DiagnosisRecording &train, double effectiveN,
+                                  const Refit &refit, const std::function<bool(double, const std::string &)> &tick) const
+{
+    if (!m_options.tryTriples || static_cast<int>(accepted.size()) + 3 > std::max(1, m_options.maxEffects))
+        return false;
+    int bp = -1;
+    for (size_t k = 0; k < pairs.size(); ++k)
+        if (pairOk[k] && (bp < 0 || pairFits[k].eval.heldoutRms_um < pairFits[static_cast<size_t>(bp)].eval.heldoutRms_um))
+            bp = static_cast<int>(k);
+    if (bp < 0)
+        return false;
+    CandidateFit &pair = pairFits[static_cast<size_t>(bp)];
+    const auto [a, b] = pairs[static_cast<size_t>(bp)];
+    std::vector<Choice> with = accepted;
+    with.push_back({&m_library[a], round.fits[a].start});
+    with.push_back({&m_library[b], pair.start});
+    std::vector<size_t> thirds;
+    size_t applicable = 0;
+    for (size_t k = 0; k < outcomes.size(); ++k) {
+        if (!outcomes[k].applicable)
+            continue;
+        ++applicable;
+        const size_t c = indexOf[k];
+        if (c != a && c != b && !excluded(c, with))
+            thirds.push_back(c);
+    }
+    if (thirds.empty())
+        return false;
+    std::vector<CandidateFit> fits(thirds.size());
+    std::vector<bool> ok(thirds.size(), false);
+    if (!parallel(
+            thirds.size(),
+            [&](size_t k) {
+                try {
+                    fits[k] = refit(with, m_library[thirds[k]]);
+                    crossValidateIfUseful(fits[k], reference);
+                    ok[k] = true;
+                } catch (const std::exception &) {
+                }
+            },
+            [&](size_t k) { return "three together: " + m_library[a].code + " + " + m_library[b].code + " + " + m_library[thirds[k]].code; },
+            tick)) {
+        result.cancelled = true;
+        return false;
+    }
+    std::vector<const CandidateFit *> fitted;
+    for (size_t k = 0; k < thirds.size(); ++k)
+        if (ok[k])
+            fitted.push_back(&fits[k]);
+    const size_t hypotheses = applicable * (applicable - 1) / 2 + thirds.size();
+    const double threshold = m_acceptance.discoveryThreshold(fitted, reference, hypotheses - std::min(hypotheses, fitted.size()));
+    auto amplitudeZ = [](const CandidateFit &f, const std::vector<std::string> &names) {
+        double z = 0.0;
+        for (const IdentifiedParameter &p : f.fit.all)
+            if (std::find(names.begin(), names.end(), p.name) != names.end() && p.standardError > 0)
+                z = std::max(z, std::fabs(p.value) / p.standardError);
+        return z;
+    };
+    auto adds = [&](const CandidateFit &all, const CandidateFit &without) {
+        return all.eval.informationCriterion - without.eval.informationCriterion <= m_options.maxDeltaIc &&
+               CandidateAcceptance::predictionTest(all, without).p < m_options.pairMemberAlpha;
+    };
+    auto pairFit = [&](size_t x, size_t y) -> const CandidateFit * {
+        for (size_t k = 0; k < pairs.size(); ++k)
+            if (pairOk[k] && ((pairs[k].first == x && pairs[k].second == y) || (pairs[k].first == y && pairs[k].second == x)))
+                return &pairFits[k];
+        return nullptr;
+    };
+    int best = -1;
+    CandidateOutcome bestJoint;
+    for (size_t k = 0; k < thirds.size(); ++k) {
+        if (!ok[k])
+            continue;
+        const size_t c = thirds[k];
+        CandidateOutcome joint =
+            m_acceptance.judge(m_library[c], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, threshold, !accepted.empty());
+        const CandidateFit *withoutA = pairFit(b, c), *withoutB = pairFit(a, c);
+        const bool eachAdds = adds(fits[k], pair) && (!withoutA || adds(fits[k], *withoutA)) && (!withoutB || adds(fits[k], *withoutB));
+        const bool significant = amplitudeZ(fits[k], round.fits[a].amplitudeNames) >= m_options.minAmplitudeZ &&
+                                 amplitudeZ(fits[k], round.fits[b].amplitudeNames) >= m_options.minAmplitudeZ;
+        if (joint.accepted && eachAdds && significant && (best < 0 || joint.score > bestJoint.score)) {
+            best = static_cast<int>(k);
+            bestJoint = joint;
+        }
+    }
+    if (best < 0)
+        return false;
+    const size_t c = thirds[static_cast<size_t>(best)];
+    const std::string together = "accepted together with " + m_library[a].code + " + " + m_library[b].code + " + " + m_library[c].code +
+                                 ": no single effect and no pair passes, the three together do (held-out " +
+                                 fixedText(100.0 * bestJoint.heldoutImprovement, 0) + " % better than the model before them; " +
+                                 std::to_string(hypotheses) + " pair and triple hypotheses in the false-discovery rate) and each adds "
+                                 "to the other two";
+    Step first;
+    first.choice = {&m_library[a], round.fits[a].start};
+    first.outcome = outcomes[static_cast<size_t>(std::find(indexOf.begin(), indexOf.end(), a) - indexOf.begin())];
+    first.outcome.reasons.push_back(together);
+    first.fit = std::move(round.fits[a]);
+    first.candidatesTried = static_cast<int>(applicable);
+    Step second;
+    second.choice = {&m_library[b], pair.start};
+    second.outcome = m_acceptance.judge(m_library[b], pair, first.fit, effectiveN, train.drawingFixedEnd_mm, m_options.heldoutFdr, true);
+    second.outcome.reasons.push_back(together);
+    second.fit = std::move(pair);
+    second.candidatesTried = static_cast<int>(pairs.size());
+    Step third;
+    third.choice = {&m_library[c], fits[static_cast<size_t>(best)].start};
+    third.outcome = m_acceptance.judge(m_library[c], fits[static_cast<size_t>(best)], second.fit, effectiveN, train.drawingFixedEnd_mm,
+                                       m_options.heldoutFdr, true);
+    third.outcome.reasons.push_back(together);
+    third.fit = std::move(fits[static_cast<size_t>(best)]);
+    third.candidatesTried = static_cast<int>(thirds.size());
+    for (Step *s : {&first, &second, &third}) {
+        accepted.push_back(s->choice);
+        result.steps.push_back(std::move(*s));
+    }
     return true;
 }
 

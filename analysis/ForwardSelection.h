@@ -22,6 +22,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace driftlab {
@@ -77,6 +78,16 @@ private:
                   const std::vector<CandidateOutcome> &outcomes, const std::vector<size_t> &indexOf,
                   const DiagnosisRecording &train, double effectiveN, const Refit &refit,
                   const std::function<bool(double, const std::string &)> &tick) const;
+    // When no pair passes either: the best pair (lowest held-out RMS together) plus each other
+    // applicable candidate, refitted as triples and judged against the reference with the same
+    // rules, the Benjamini-Hochberg threshold counting every pair that could have been formed
+    // from the round's candidates plus the triples tried; each member must add (the third
+    // against the pair, each pair member against the other two's pair where that was fitted).
+    bool tryTriples(Result &result, std::vector<Choice> &accepted, const CandidateFit &reference, Round &round,
+                    const std::vector<CandidateOutcome> &outcomes, const std::vector<size_t> &indexOf,
+                    const std::vector<std::pair<size_t, size_t>> &pairs, std::vector<CandidateFit> &pairFits,
+                    const std::vector<bool> &pairOk, const DiagnosisRecording &train, double effectiveN, const Refit &refit,
+                    const std::function<bool(double, const std::string &)> &tick) const;
     Round refitAll(const std::vector<size_t> &which, const std::vector<Choice> &accepted, const CandidateFit &reference,
                    const Refit &refit, const std::function<bool(double, const std::string &)> &tick) const;
     // Runs the fit's deferred cross-validation when the candidate has a chance against

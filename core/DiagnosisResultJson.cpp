@@ -202,7 +202,31 @@ QJsonObject DiagnosisResultJson::document(const DiagnosisReport &r)
                                  {QStringLiteral("recording"), QString::fromStdString(f.recording)},
                                  {QStringLiteral("evidence"), ev}});
     }
+    // Which added measurement would decide (issue 36 item 5); "given": false when no rule fired.
+    const DecisiveTestAdvice &ad = r.advice;
+    QJsonArray tests;
+    for (const ProposedTestEvidence &t : ad.tests)
+        tests.append(QJsonObject{{QStringLiteral("test"), QString::fromStdString(t.code)},
+                                 {QStringLiteral("description"), QString::fromStdString(t.description)},
+                                 {QStringLiteral("observable"), QString::fromStdString(t.observable)},
+                                 {QStringLiteral("duration_h"), number(t.duration_h)},
+                                 {QStringLiteral("runs"), t.runs},
+                                 {QStringLiteral("points"), t.points},
+                                 {QStringLiteral("unit"), QString::fromStdString(t.unit)},
+                                 {QStringLiteral("noise"), number(t.noise)},
+                                 {QStringLiteral("rms_difference"), number(t.rmsDifference)},
+                                 {QStringLiteral("max_difference"), number(t.maxDifference)},
+                                 {QStringLiteral("expected_chi2"), number(t.expectedChi2)},
+                                 {QStringLiteral("expected_z"), number(t.expectedZ)},
+                                 {QStringLiteral("expected_heldout_gain"), number(t.expectedHeldoutGain)}});
+    const QJsonObject advice{{QStringLiteral("given"), ad.given},
+                             {QStringLiteral("trigger"), QString::fromStdString(ad.trigger)},
+                             {QStringLiteral("model_a"), QString::fromStdString(ad.modelA)},
+                             {QStringLiteral("model_b"), QString::fromStdString(ad.modelB)},
+                             {QStringLiteral("summary"), QString::fromStdString(ad.summary)},
+                             {QStringLiteral("tests"), tests}};
     return QJsonObject{{QStringLiteral("schema_version"), kSchemaVersion},
+                       {QStringLiteral("decisive_test"), advice},
                        {QStringLiteral("effect"), QString::fromStdString(r.effect)},
                        {QStringLiteral("measurement_chain"), chain},
                        {QStringLiteral("notes"), notes},

@@ -515,6 +515,23 @@ void ReportBuilder::diagnosisSection(ReportDocument &doc) const
     }
     if (!rows.isEmpty())
         doc.table({QStringLiteral("Candidate effect"), QStringLiteral("Score"), QStringLiteral("Held-out RMS (um)"), QStringLiteral("Accepted")}, rows);
+    // Which added measurement would decide between the two closest explanations (issue 36).
+    const QJsonObject advice = d.value(QStringLiteral("decisive_test")).toObject();
+    if (advice.value(QStringLiteral("given")).toBool()) {
+        doc.paragraph(QStringLiteral("Which test would decide (%1): %2")
+                          .arg(advice.value(QStringLiteral("trigger")).toString(), advice.value(QStringLiteral("summary")).toString()));
+        QVector<QStringList> tests;
+        for (const QJsonValue &v : advice.value(QStringLiteral("tests")).toArray()) {
+            const QJsonObject t = v.toObject();
+            tests.push_back({t.value(QStringLiteral("test")).toString(), t.value(QStringLiteral("description")).toString(),
+                             jsonText(t.value(QStringLiteral("expected_chi2"))),
+                             jsonText(t.value(QStringLiteral("max_difference"))) + QLatin1Char(' ') + t.value(QStringLiteral("unit")).toString(),
+                             QString::number(qRound(100.0 * t.value(QStringLiteral("expected_heldout_gain")).toDouble())) + QStringLiteral(" %")});
+        }
+        doc.table({QStringLiteral("Added test"), QStringLiteral("Programme"), QStringLiteral("Expected chi-square"),
+                   QStringLiteral("Largest difference"), QStringLiteral("Expected held-out gain")},
+                  tests);
+    }
 }
 
 void ReportBuilder::compensationSection(ReportDocument &doc) const

@@ -292,6 +292,21 @@ void DiagnosisPanel::finish(bool ok, const QString &error)
                           .arg(r.corrected.heldoutRms_um, 0, 'f', 2)
                           .arg(r.wallTime_s, 0, 'f', 1)
                           .arg(text(r.location.summary).toHtmlEscaped()));
+    if (r.advice.given) {
+        // Which added measurement would decide (issue 36 item 5): the summary and the ranking.
+        QString tests;
+        for (const ProposedTestEvidence &t : r.advice.tests)
+            tests += tr("<li><b>%1</b>: expected χ² %2 (z %3), difference up to %4 %5, expected held-out gain %6 % — %7</li>")
+                         .arg(QString::fromStdString(t.code))
+                         .arg(t.expectedChi2, 0, 'f', 1)
+                         .arg(t.expectedZ, 0, 'f', 1)
+                         .arg(t.maxDifference, 0, 'f', 2)
+                         .arg(text(t.unit))
+                         .arg(100.0 * t.expectedHeldoutGain, 0, 'f', 0)
+                         .arg(text(t.description).toHtmlEscaped());
+        m_resultText += tr("<br><b>Which test would decide</b> (%1): %2<ol>%3</ol>")
+                            .arg(text(r.advice.trigger).toHtmlEscaped(), text(r.advice.summary).toHtmlEscaped(), tests);
+    }
     updateHeading();
     m_candidates->setRowCount(static_cast<int>(r.candidates.size()));
     for (int i = 0; i < static_cast<int>(r.candidates.size()); ++i) {

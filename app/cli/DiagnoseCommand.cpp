@@ -34,8 +34,11 @@ QString DiagnoseCommand::summary() const
         "the accepted codes joined by '+'). A located discrepancy no candidate explains is fitted by an\n"
         "empirical term over the recorded temperatures and answered 'unexplained' with a hypothesis in\n"
         "words; 'none' when nothing earns its keep (the explanation says whether the residual is noise or a\n"
-        "discrepancy without enough evidence). A and B: bundle directories, .zip bundles or session ids\n"
-        "in --db.");
+        "discrepancy without enough evidence). When the answer is 'none' with a located residual, or the best\n"
+        "two explanations are close, it says which added measurement (a longer cool-down, standstill phases,\n"
+        "another feed, denser interferometer runs, a surface PT100 on the screw) would separate them best,\n"
+        "with the expected evidence (stderr and 'decisive_test' in the JSON). A and B: bundle directories,\n"
+        ".zip bundles or session ids in --db.");
 }
 
 int DiagnoseCommand::run(const QStringList &args)
@@ -170,6 +173,23 @@ int DiagnoseCommand::run(const QStringList &args)
                              .arg(report.baseline.heldoutRms_um, 0, 'f', 3)
                              .arg(report.corrected.heldoutRms_um, 0, 'f', 3)
                              .arg(report.wallTime_s, 0, 'f', 1));
+    if (report.advice.given) {
+        CliSupport::progress(QStringLiteral("which test would decide (%1): %2")
+                                 .arg(QString::fromStdString(report.advice.trigger), QString::fromStdString(report.advice.summary)));
+        int rank = 0;
+        for (const ProposedTestEvidence &t : report.advice.tests)
+            CliSupport::progress(QStringLiteral("  %1. %2: expected chi-square %3 (z %4) over %5 %6, difference up to %7 %8, "
+                                                "expected held-out gain %9 %")
+                                     .arg(++rank)
+                                     .arg(QString::fromStdString(t.code))
+                                     .arg(t.expectedChi2, 0, 'f', 1)
+                                     .arg(t.expectedZ, 0, 'f', 1)
+                                     .arg(t.runs)
+                                     .arg(t.observable == "interferometer" ? QStringLiteral("runs") : QStringLiteral("samples"))
+                                     .arg(t.maxDifference, 0, 'f', 2)
+                                     .arg(QString::fromStdString(t.unit))
+                                     .arg(100.0 * t.expectedHeldoutGain, 0, 'f', 0));
+    }
     return 0;
 }
 
