@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """Follow the diagnosis's "which test would decide" advice on the simulated rig (issue 36 item 5).
 
-usage: scripts/decisive-test-proof.py BUILD_DIR OUT_DIR
+usage: scripts/decisive-test-proof.py BUILD_DIR OUT_DIR [--follow TEST]
+
+--follow TEST follows that proposed test instead of the top-ranked one (a control: a test the
+advice ranks low should not decide).
 
 1. Makes a rig file from resources/rigs/baseline.json with holding heat (2 W at standstill) and a
    training programme with only two 3-minute pauses in 4 h, and a validation programme (3 h) with
@@ -23,6 +26,7 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 build, out = sys.argv[1], sys.argv[2]
+follow = sys.argv[4] if len(sys.argv) > 4 and sys.argv[3] == "--follow" else None
 cli = os.path.join(build, "app", "driftlab-cli")
 os.makedirs(out, exist_ok=True)
 db = os.path.join(out, "proof.sqlite")
@@ -73,13 +77,13 @@ print("first diagnosis: %s (truth %s), held-out RMS %.3f -> %.3f um" %
       (first["effect"], TRUTH, first["baseline"]["heldout_rms_um"], first["corrected"]["heldout_rms_um"]))
 if not advice.get("given"):
     sys.exit("no advice given: nothing to follow")
-top = advice["tests"][0]
+top = advice["tests"][0] if not follow else next(t for t in advice["tests"] if t["test"] == follow)
 print("advice (%s): %s" % (advice["trigger"], advice["summary"]))
 for t in advice["tests"]:
     print("  %-22s chi2 %8.1f  max diff %6.2f %s  gain %3.0f %%" %
           (t["test"], t["expected_chi2"], t["max_difference"], t["unit"], 100 * t["expected_heldout_gain"]))
 
-# Follow the top-ranked test.
+# Follow the top-ranked test (or the one asked for).
 code, desc = top["test"], top["description"]
 feed = [float(x) for x in re.findall(r"at (\d+) mm/min", desc)]
 extra, phases = None, list(TRAIN)

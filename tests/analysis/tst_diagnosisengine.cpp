@@ -114,6 +114,8 @@ void TestDiagnosisEngine::noneWhenTheBaselineIsAdequate()
     QVERIFY2(r.location.white, r.location.summary.c_str());
     QVERIFY2(r.explanation.find("adequate") != std::string::npos && r.explanation.find("measurement noise") != std::string::npos,
              r.explanation.c_str());
+    // Noise: no rival worth a test (the rule of DecisiveTestPlanner::rivals).
+    QVERIFY2(!r.advice.given, r.advice.summary.c_str());
 }
 
 void TestDiagnosisEngine::noneWithAResidualThatIsNotNoise()
@@ -132,6 +134,16 @@ void TestDiagnosisEngine::noneWithAResidualThatIsNotNoise()
         QVERIFY2(r.explanation.find("adequate") == std::string::npos, r.explanation.c_str());
         QVERIFY2(r.explanation.find("not plain noise") != std::string::npos && r.explanation.find("'structure") != std::string::npos,
                  r.explanation.c_str());
+        // `none` with a located residual: the diagnosis says which added test would separate the
+        // baseline from the candidate that came closest (issue 36 item 5), ranked by evidence.
+        QVERIFY2(r.advice.given, r.advice.summary.c_str());
+        QCOMPARE(r.advice.modelA, std::string("baseline"));
+        QVERIFY(r.advice.tests.size() >= 5);
+        for (size_t k = 0; k < r.advice.tests.size(); ++k) {
+            QVERIFY(std::isfinite(r.advice.tests[k].expectedChi2) && r.advice.tests[k].noise > 0.0);
+            QVERIFY(k == 0 || r.advice.tests[k].expectedChi2 <= r.advice.tests[k - 1].expectedChi2);
+        }
+        QVERIFY2(r.advice.summary.find(r.advice.tests.front().description) != std::string::npos, r.advice.summary.c_str());
     }
 }
 
