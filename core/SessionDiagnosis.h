@@ -36,6 +36,7 @@ struct DiagnosisRequest {
     double dt_s = 20.0;               // implicit time step of the fits, (0, 600] s
     bool priors = false;              // lambda and P_f anchored by steel and the drawing (issue 36)
     bool checkMeasurementChain = false; // sensors checked against each other before the selection (opt-in)
+    bool tryTriples = false;          // triples when no single and no pair passes (opt-in, issue 36 item 4)
 };
 
 class SessionDiagnosis {

@@ -70,7 +70,10 @@ int DiagnoseCommand::run(const QStringList &args)
     const QCommandLineOption withChain(QStringLiteral("measurement-chain"),
                                      QStringLiteral("Also check the sensors against each other first (PT100 steps, interferometer vs "
                                                     "air, probe vs interferometer; issue 36, not yet measured on the rig sweep)."));
-    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures, withPriors, withChain, force});
+    const QCommandLineOption withTriples(QStringLiteral("triples"),
+                                         QStringLiteral("When no single effect and no pair passes, also try the best pair plus one "
+                                                        "(issue 36; named wrong codes on the third simulator, see docs/diagnosis.md)."));
+    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures, withPriors, withChain, withTriples, force});
     if (!parse(p, args))
         return 0;
     if (!p.isSet(train) || !p.isSet(validate))
@@ -89,6 +92,7 @@ int DiagnoseCommand::run(const QStringList &args)
     request.dt_s = step;
     request.priors = p.isSet(withPriors);
     request.checkMeasurementChain = p.isSet(withChain);
+    request.tryTriples = p.isSet(withTriples);
     for (const QString &e : p.value(effects).split(QLatin1Char(','), Qt::SkipEmptyParts))
         request.effects.push_back(e.trimmed().toStdString());
     request.trainLabel = p.value(train);
