@@ -9,6 +9,10 @@
 //
 //   bench_modelsweep DB TARGET SESSION... [--train-range H:H --holdout-range H:H]
 //
+// Diagnostics (environment): BENCH_FOLDS=1 prints every family's nested CV RMSE per inner fold;
+// BENCH_BLEND=1 also fits dynamic and lagridge alone per held-out session and prints the
+// held-out RMSE of their blends (weight 0, 0.25 .. 1 on dynamic; docs/datadriven.md, FL ch5).
+//
 // With --train-range and --holdout-range and one SESSION: one time-ordered split of that
 // session instead (FL_THERMAL's public 60/20 anchor), with MAE besides RMSE.
 // scripts/model-sweep.sh builds the databases (FL_THERMAL cut into its on/off cycles, rig

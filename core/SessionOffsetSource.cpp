@@ -154,8 +154,12 @@ void SessionOffsetSource::choose(double t)
         else
             text = QStringLiteral("input '%1' %2, no model without it: holding %3 um").arg(name, why).arg(-m_safe_um, 0, 'f', 1);
         m_events.push_back({t, text});
-        if (m_store)
-            m_store->addEvent(m_session, EventRecord{t, QStringLiteral("compensation: ") + text});
+        try { // a busy or read-only database must not cost the offset: the event is still logged (takeEvents)
+            if (m_store)
+                m_store->addEvent(m_session, EventRecord{t, QStringLiteral("compensation: ") + text});
+        } catch (const std::exception &e) {
+            m_events.push_back({t, QStringLiteral("could not store the event in the session: %1").arg(QString::fromUtf8(e.what()))});
+        }
     }
     m_active = next;
     if (failed >= 0 || next == -1)
