@@ -106,6 +106,31 @@ struct DataDrivenModel {
     SyntheticLaw synthetic;           // synthetic
     double samplePeriod_s = 0.0;      // grid the model was fitted on (informational)
     TemperatureReference reference;   // of the terms with rise = true
+    // The stated 1-sigma uncertainty of every prediction (target unit): the RMS of the
+    // out-of-fold prediction errors of the fit's nested cross-validation (each fold predicted by
+    // a model fitted without it, hyperparameters chosen without it); NaN when unknown.
+    double predictionSigma = std::numeric_limits<double>::quiet_NaN();
+    // Reduced models (linear-lag kinds): per input, the same family with the chosen
+    // hyperparameters refitted without that input (`without` = its channel id), for a live loop
+    // whose sensor fails or leaves its training range. Empty on a reduced model itself.
+    std::string without;
+    std::vector<DataDrivenModel> reduced;
+
+    // The reduced model that does without the input `id` (nullptr when none was fitted).
+    const DataDrivenModel *reducedWithout(const std::string &id) const
+    {
+        for (const DataDrivenModel &r : reduced)
+            if (r.without == id)
+                return &r;
+        return nullptr;
+    }
+    int inputIndex(const std::string &id) const
+    {
+        for (std::size_t i = 0; i < inputs.size(); ++i)
+            if (inputs[i].id == id)
+                return static_cast<int>(i);
+        return -1;
+    }
 
     bool linearLag() const
     {

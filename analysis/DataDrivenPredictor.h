@@ -25,6 +25,9 @@ public:
     explicit DataDrivenPredictor(const DataDrivenModel &model);
 
     std::size_t inputCount() const { return m_model.inputs.size(); }
+    // The stated 1-sigma uncertainty of every prediction (DataDrivenModel::predictionSigma,
+    // target unit; NaN when the model states none).
+    double sigma() const { return m_model.predictionSigma; }
     void reset(const double *inputs);
     double step(double dt_s, const double *inputs);
     // exp: the virtual screw temperature rise of seed 001 eq. (9)-(10), state / (alpha L), in K

@@ -561,6 +561,7 @@ LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const L
         for (const TimeBlockedFold &f : folds)
             lengths.push_back(static_cast<double>(f.end - f.begin));
         fit.nestedCvRmse = nestedCv(candidateFoldSse, lengths, fit.nestedFoldRmse);
+        fit.model.predictionSigma = fit.nestedCvRmse;
     }
     const Prepared &chosenInputs = prepared[bestStructure.reference];
     fit.componentVariance = chosenInputs.componentVariance;

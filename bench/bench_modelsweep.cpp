@@ -9,6 +9,10 @@
 //
 //   bench_modelsweep DB TARGET SESSION... [--train-range H:H --holdout-range H:H]
 //
+// Diagnostics (environment): BENCH_FOLDS=1 prints every family's nested CV RMSE per inner fold;
+// BENCH_BLEND=1 also fits dynamic and lagridge alone per held-out session and prints the
+// held-out RMSE of their blends (weight 0, 0.25 .. 1 on dynamic; docs/datadriven.md, FL ch5).
+//
 // With --train-range and --holdout-range and one SESSION: one time-ordered split of that
 // session instead (FL_THERMAL's public 60/20 anchor), with MAE besides RMSE.
 // scripts/model-sweep.sh builds the databases (FL_THERMAL cut into its on/off cycles, rig
@@ -133,6 +137,33 @@ int main(int argc, char **argv)
             for (const FamilyComparison &c : r.comparison)
                 std::printf("  %s %.3f+-%.3f", qPrintable(c.model), c.nestedCvRmse, c.pairedStandardError);
             std::printf("\n");
+            if (qEnvironmentVariableIsSet("BENCH_FOLDS"))
+                for (const FamilyComparison &c : r.comparison) {
+                    std::printf("      %-9s folds:", qPrintable(c.model));
+                    for (double x : c.nestedFoldRmse)
+                        std::printf(" %.3f", x);
+                    std::printf("\n");
+                }
+            if (qEnvironmentVariableIsSet("BENCH_BLEND")) {
+                DataDrivenFitRequest a = q, b = q;
+                a.model = QStringLiteral("dynamic");
+                b.model = QStringLiteral("lagridge");
+                const DataDrivenFitResult ra = fit.fit(a), rb = fit.fit(b);
+                const ValidationSeries &sa = *ra.holdout, &sb = *rb.holdout;
+                std::printf("    blend dynamic/lagridge held-out RMSE by weight on dynamic:");
+                for (double w : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+                    double e2 = 0.0, n = 0.0;
+                    for (std::size_t k = 0; k < sa.measured.size(); ++k) {
+                        if (!std::isfinite(sa.predicted[k]) || !std::isfinite(sb.predicted[k]) || !std::isfinite(sa.measured[k]))
+                            continue;
+                        const double e = sa.measured[k] - (w * sa.predicted[k] + (1 - w) * sb.predicted[k]);
+                        e2 += e * e;
+                        n += 1;
+                    }
+                    std::printf(" %.2f:%.3f", w, std::sqrt(e2 / n));
+                }
+                std::printf("\n");
+            }
             ++choices[chosen];
             const double a = rmse[chosen];
             losesToMean += a > rmse[QStringLiteral("mean")];

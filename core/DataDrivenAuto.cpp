@@ -55,6 +55,7 @@ DataDrivenFitResult DataDrivenAuto::fit(const DataDrivenFitRequest &q, const Dat
         }
         if (r.model != QLatin1String("mlr"))
             r.autoPoints = false;
+        r.reducedModels = false; // for the chosen family only, below
         FamilyComparison row;
         row.model = names[i];
         FamilyScore score;
@@ -70,6 +71,7 @@ DataDrivenFitResult DataDrivenAuto::fit(const DataDrivenFitRequest &q, const Dat
             row.cvRmse = f.cvRmse;
             row.cvStandardError = ModelSelection::standardError(f.foldRmse);
             row.nestedCvRmse = f.nestedCvRmse;
+            row.nestedFoldRmse = f.nestedFoldRmse;
             row.parameters = f.parameters;
             row.reference = f.model.usesRises() ? QString::fromStdString(f.model.reference.label())
                                                 : QStringLiteral("absolute");
@@ -99,6 +101,11 @@ DataDrivenFitResult DataDrivenAuto::fit(const DataDrivenFitRequest &q, const Dat
         table[i].pairedStandardError = ruling.pairedStandardError[i];
     table[ruling.chosen].chosen = true;
     DataDrivenFitResult result = results[ruling.chosen];
+    if (q.reducedModels) {
+        if (progress && !progress(0.99, QStringLiteral("%1: fitting the reduced models").arg(names[static_cast<int>(ruling.chosen)])))
+            throw std::runtime_error("cancelled");
+        m_fit.addReducedModels(result, q);
+    }
     result.comparison = table;
     QJsonObject selection = DataDrivenFit::comparisonJson(table);
     selection.insert(QStringLiteral("lowest_cv"), names[static_cast<int>(ruling.lowest)]);

@@ -7,6 +7,7 @@
 #include "DataDrivenSelection.h"
 #include "DataDrivenSession.h"
 #include "DataDrivenValidator.h"
+#include "ReducedModelFitter.h"
 #include "ExponentialWarmupFitter.h"
 #include "LinearLagFitter.h"
 #include "ModelSelection.h"
@@ -431,6 +432,12 @@ DataDrivenFitResult DataDrivenFit::fitFamily(const DataDrivenFitRequest &q, cons
         result.nestedFoldRmse = f.nestedFoldRmse;
         result.foldRule = QString::fromStdString(f.foldRule);
         result.parameters = linearParameters(f.chosen);
+        result.linearOptions = o;
+        result.linearChosen = f.chosen;
+        if (q.reducedModels) {
+            stage(0.8, QStringLiteral("fitting the reduced models"));
+            addReducedModels(result, runs);
+        }
         hyper = QJsonObject{{QStringLiteral("folds"), f.folds},
                             {QStringLiteral("fold_rule"), result.foldRule},
                             {QStringLiteral("gap_s"), f.gap_s},
@@ -514,6 +521,8 @@ DataDrivenFitResult DataDrivenFit::fitFamily(const DataDrivenFitRequest &q, cons
                                   {QStringLiteral("se_inflation"), f.seInflation},
                                   {QStringLiteral("parameters"), parametersJson(f.names, f.values, f.standardErrors)}};
     }
+    if (!std::isfinite(result.model.predictionSigma)) // mean, exp: their (nested) CV RMSE; synthetic has none
+        result.model.predictionSigma = std::isfinite(result.nestedCvRmse) ? result.nestedCvRmse : result.cvRmse;
     stage(0.88, QStringLiteral("validating"));
     const ValidationSet training = validate(result.model, trainIds, q.train);
     result.trainingSessions = training.sessions;
@@ -524,6 +533,12 @@ DataDrivenFitResult DataDrivenFit::fitFamily(const DataDrivenFitRequest &q, cons
             result.model.inputs[i].trainingMin = training.pooled.inputMin[i];
             result.model.inputs[i].trainingMax = training.pooled.inputMax[i];
         }
+    for (DataDrivenModel &r : result.model.reduced)
+        for (ModelChannel &c : r.inputs)
+            if (const int i = result.model.inputIndex(c.id); i >= 0) {
+                c.trainingMin = result.model.inputs[static_cast<std::size_t>(i)].trainingMin;
+                c.trainingMax = result.model.inputs[static_cast<std::size_t>(i)].trainingMax;
+            }
     std::optional<ValidationSet> holdout;
     if (!q.heldOutSessions().isEmpty())
         holdout = validate(result.model, q.heldOutSessions(), {});
@@ -561,6 +576,41 @@ DataDrivenFitResult DataDrivenFit::fitFamily(const DataDrivenFitRequest &q, cons
     result.document = doc;
     stage(1.0, QStringLiteral("done"));
     return result;
+}
+
+} // namespace driftlab
+
+namespace driftlab {
+
+void DataDrivenFit::addReducedModels(DataDrivenFitResult &result, const std::vector<LinearLagRun> &runs) const
+{
+    if (!result.linearOptions)
+        return;
+    result.model.reduced = ReducedModelFitter::fit(runs, *result.linearOptions, result.linearChosen);
+    for (DataDrivenModel &r : result.model.reduced)
+        for (ModelChannel &c : r.inputs)
+            if (const int i = result.model.inputIndex(c.id); i >= 0) {
+                c.trainingMin = result.model.inputs[static_cast<std::size_t>(i)].trainingMin;
+                c.trainingMax = result.model.inputs[static_cast<std::size_t>(i)].trainingMax;
+            }
+    if (!result.document.isEmpty())
+        result.document.insert(QStringLiteral("reduced_models"),
+                               DataDrivenModelJson::toJson(result.model).value(QStringLiteral("reduced_models")));
+}
+
+void DataDrivenFit::addReducedModels(DataDrivenFitResult &result, const DataDrivenFitRequest &q) const
+{
+    if (!result.linearOptions)
+        return;
+    const QList<qint64> ids = q.trainingSessions();
+    std::vector<SignalTable> tables;
+    std::vector<LinearLagRun> runs;
+    tables.reserve(static_cast<std::size_t>(ids.size()));
+    for (qint64 id : ids) {
+        tables.push_back(DataDrivenSession(m_store, id).table(q.target));
+        runs.push_back({&tables.back(), tables.back().rowsIn(q.train.from_h * 3600.0, q.train.to_h * 3600.0)});
+    }
+    addReducedModels(result, runs);
 }
 
 } // namespace driftlab

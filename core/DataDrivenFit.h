@@ -13,6 +13,7 @@
 
 #include "DataDrivenModel.h"
 #include "ErrorMetrics.h"
+#include "LinearLagFitter.h"
 #include "SensitivePointSelector.h"
 
 #include <QJsonObject>
@@ -58,6 +59,9 @@ struct DataDrivenFitRequest {
     int kMin = 2, kMax = 8;
     int folds = 4;
     double scaleFloor_K = 0.5; // dynamic: inputs scaled by max(standard deviation, floor)
+    // Linear-lag families: fit and store a reduced model without each input (ReducedModelFitter)
+    // for the live loop. auto fits them for the chosen family only.
+    bool reducedModels = true;
 
     QList<qint64> trainingSessions() const;
     QList<qint64> heldOutSessions() const;
@@ -77,6 +81,10 @@ struct ValidationSeries {
     std::vector<double> inputMin, inputMax;
     QStringList extrapolated;
     std::vector<double> extrapolatedFraction;
+    // The model's stated 1-sigma uncertainty (DataDrivenModel::predictionSigma) and the share of
+    // the scored samples whose error lies within it (~68 % when the statement holds).
+    double sigma = std::numeric_limits<double>::quiet_NaN();
+    double withinSigma_pct = std::numeric_limits<double>::quiet_NaN();
 };
 
 // Validation on several sessions: every session's series and the pooled one (all samples).
@@ -94,6 +102,7 @@ struct FamilyComparison {
     // rule compares; equal to cvRmse for families without a search (mean, exp).
     double nestedCvRmse = std::numeric_limits<double>::quiet_NaN();
     double pairedStandardError = std::numeric_limits<double>::quiet_NaN(); // against the lowest
+    std::vector<double> nestedFoldRmse; // per CV fold (the folds every family shares)
     bool plainReference = false; // mean, lagridge
     int parameters = 0;
     QString reference;
@@ -119,6 +128,10 @@ struct DataDrivenFitResult {
     std::vector<FamilyComparison> comparison; // auto only
     std::optional<SelectionResult> selection;
     double wallTime_s = 0.0;
+    // Linear-lag families: the options and the chosen candidate of the fit (what the reduced
+    // models are refitted with).
+    std::optional<LinearLagOptions> linearOptions;
+    CvCandidate linearChosen;
 };
 
 class DataDrivenFit {
@@ -159,8 +172,13 @@ public:
     // validationJson), extrapolation[].
     static QJsonObject validationSetJson(const ValidationSet &set);
     static QJsonObject comparisonJson(const std::vector<FamilyComparison> &comparison);
+    // Fits the reduced models of a linear-lag result (ReducedModelFitter) on the request's
+    // training sessions and stores them in result.model and result.document ("reduced_models");
+    // does nothing for other families. Their inputs' training ranges are the full model's.
+    void addReducedModels(DataDrivenFitResult &result, const DataDrivenFitRequest &request) const;
 
 private:
+    void addReducedModels(DataDrivenFitResult &result, const std::vector<LinearLagRun> &runs) const;
     DataDrivenFitResult fitFamily(const DataDrivenFitRequest &request, const Progress &progress) const;
 
     const SessionStore &m_store;

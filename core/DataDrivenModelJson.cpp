@@ -174,6 +174,20 @@ QJsonObject DataDrivenModelJson::toJson(const DataDrivenModel &m)
                  QStringLiteral("T = mean of the temperature inputs; g = c + a (exp(b_perK (T - t0_C)) - 1); "
                                 "y(P) = g (P - p0_mm) / (p_ref_mm - p0_mm) at axis position P (P = p_ref_mm for a displacement target)"));
     }
+    if (std::isfinite(m.predictionSigma))
+        o.insert(QStringLiteral("prediction_uncertainty"),
+                 QJsonObject{{QStringLiteral("sigma"), m.predictionSigma},
+                             {QStringLiteral("unit"), QString::fromStdString(m.target.unit)},
+                             {QStringLiteral("basis"), QStringLiteral("1 sigma of every prediction: the RMS of the out-of-fold "
+                                                                      "prediction errors of the fit's nested cross-validation")}});
+    if (!m.without.empty())
+        o.insert(QStringLiteral("without"), QString::fromStdString(m.without));
+    if (!m.reduced.empty()) {
+        QJsonArray reduced;
+        for (const DataDrivenModel &r : m.reduced)
+            reduced.append(toJson(r));
+        o.insert(QStringLiteral("reduced_models"), reduced);
+    }
     return o;
 }
 
@@ -302,6 +316,31 @@ DataDrivenModel DataDrivenModelJson::fromJson(const QJsonObject &o, const QStrin
     } else {
         r.fail(QStringLiteral("model"),
                QStringLiteral("unknown model '%1' (known: mean, mlr, ridge, lagridge, dynamic, exp, synthetic)").arg(QString::fromStdString(m.kind)));
+    }
+    if (o.contains(QStringLiteral("prediction_uncertainty"))) {
+        const QJsonObject u = r.object(o, QString(), QStringLiteral("prediction_uncertainty"));
+        m.predictionSigma = r.number(u, QStringLiteral("prediction_uncertainty"), QStringLiteral("sigma"));
+        if (!(m.predictionSigma >= 0))
+            r.fail(QStringLiteral("prediction_uncertainty.sigma"), QStringLiteral("expected a number >= 0"));
+    }
+    if (o.contains(QStringLiteral("without")))
+        m.without = r.string(o, QString(), QStringLiteral("without")).toStdString();
+    if (o.contains(QStringLiteral("reduced_models"))) {
+        if (!m.without.empty())
+            r.fail(QStringLiteral("reduced_models"), QStringLiteral("a reduced model has no reduced models of its own"));
+        const QJsonArray reduced = r.array(o, QString(), QStringLiteral("reduced_models"));
+        for (int i = 0; i < reduced.size(); ++i) {
+            const QString path = QStringLiteral("reduced_models[%1]").arg(i);
+            if (!reduced[i].isObject())
+                r.fail(path, QStringLiteral("expected an object"));
+            const QJsonObject ro = reduced[i].toObject();
+            if (ro.contains(QStringLiteral("reduced_models")))
+                r.fail(path + QStringLiteral(".reduced_models"), QStringLiteral("a reduced model has no reduced models of its own"));
+            DataDrivenModel rm = fromJson(ro, source + QStringLiteral(" ") + path);
+            if (rm.without.empty() || m.inputIndex(rm.without) < 0)
+                r.fail(path + QStringLiteral(".without"), QStringLiteral("expected the id of one of the model's inputs"));
+            m.reduced.push_back(std::move(rm));
+        }
     }
     try {
         DataDrivenPredictor check(m);

@@ -46,9 +46,38 @@ QJsonObject DataDrivenValidator::metricsJson(const ErrorMetrics &m)
                        {QStringLiteral("fitting_degree_pct"), m.fittingDegree_pct}};
 }
 
+namespace {
+
+// The share (%) of the finite samples whose error is within the stated sigma (NaN without one).
+void coverage(ValidationSeries &s, double sigma)
+{
+    s.sigma = sigma;
+    if (!std::isfinite(sigma))
+        return;
+    double in = 0.0, n = 0.0;
+    for (std::size_t k = 0; k < s.measured.size() && k < s.predicted.size(); ++k)
+        if (std::isfinite(s.measured[k]) && std::isfinite(s.predicted[k])) {
+            n += 1.0;
+            in += std::abs(s.measured[k] - s.predicted[k]) <= sigma ? 1.0 : 0.0;
+        }
+    if (n > 0)
+        s.withinSigma_pct = 100.0 * in / n;
+}
+
+void insertSigma(QJsonObject &o, const ValidationSeries &s)
+{
+    if (!std::isfinite(s.sigma))
+        return;
+    o.insert(QStringLiteral("prediction_sigma_um"), s.sigma);
+    o.insert(QStringLiteral("within_1sigma_pct"), std::isfinite(s.withinSigma_pct) ? QJsonValue(s.withinSigma_pct) : QJsonValue());
+}
+
+} // namespace
+
 QJsonObject DataDrivenValidator::validationJson(const ValidationSeries &s)
 {
     QJsonObject o = metricsJson(s.metrics);
+    insertSigma(o, s);
     o.insert(QStringLiteral("session"), s.session);
     o.insert(QStringLiteral("range"), rangeJson(s.range));
     return o;
@@ -57,6 +86,7 @@ QJsonObject DataDrivenValidator::validationJson(const ValidationSeries &s)
 QJsonObject DataDrivenValidator::validationSetJson(const ValidationSet &set)
 {
     QJsonObject o = metricsJson(set.pooled.metrics);
+    insertSigma(o, set.pooled);
     o.insert(QStringLiteral("range"), rangeJson(set.pooled.range));
     QJsonArray sessions, extrapolation;
     for (const ValidationSeries &s : set.sessions) {
@@ -99,6 +129,7 @@ ValidationSeries DataDrivenValidator::validate(const DataDrivenModel &model, qin
             out.position_mm.push_back(p.position_mm);
         }
         out.metrics = ErrorMetrics::compute(out.measured, out.predicted);
+        coverage(out, model.predictionSigma);
         return out;
     }
     const QString target = QString::fromStdString(model.target.id);
@@ -159,6 +190,7 @@ ValidationSeries DataDrivenValidator::validate(const DataDrivenModel &model, qin
             out.extrapolated << QString::fromStdString(model.inputs[i].id);
             out.extrapolatedFraction.push_back(outside[i] / static_cast<double>(out.t.size()));
         }
+    coverage(out, model.predictionSigma);
     return out;
 }
 
@@ -192,6 +224,7 @@ ValidationSet DataDrivenValidator::validate(const DataDrivenModel &model, const 
                 p.extrapolated << s.extrapolated[i];
     }
     p.metrics = ErrorMetrics::compute(p.measured, p.predicted);
+    coverage(p, model.predictionSigma);
     return set;
 }
 

@@ -46,9 +46,50 @@ public:
     double offsetAt(double position_mm) const;
     double modelTime_s() const { return m_time_s > -1e299 ? m_time_s : std::nan(""); } // NaN before the first step
     double error_um() const { return m_error_um; } // the model's E at modelTime_s
+    // The stated 1-sigma uncertainty of error_um() (um) of the model in use; NaN when unknown.
+    double sigma_um() const;
+
+    // Live robustness (data-driven models): an input is failed at model time t when its newest
+    // sample is older than t - staleLimit_s (silent) or its value, as the model reads it, is
+    // outside its training range by more than DataDrivenModel::extrapolationMargin. Then the
+    // source uses the reduced model without that input (fitted and stored with the model, run
+    // alongside from the start so its lags are warm); with no such model (two inputs failed, or
+    // none stored) it holds the last offset of a model whose inputs were all sound. It goes back
+    // to the full model when the input recovers. Each switch is an event (takeEvents()).
+    void setStaleLimit(double seconds) { m_stale_s = seconds; }
+    // "full", "without T3" or "holding"
+    QString mode() const;
+    // The switches since the last call, at model time t (session seconds): "input 'T3' silent
+    // since 03:10:00 (session time): using the model without T3", "... holding -12.4 um",
+    // "input 'T3' back: using the full model".
+    struct Event {
+        double t_s = 0.0;
+        QString text;
+    };
+    QVector<Event> takeEvents();
 
 private:
+    struct Reduced {
+        DataDrivenModel model;
+        std::optional<DataDrivenPredictor> predictor;
+        std::vector<int> map;    // per reduced input: index into the full model's inputs
+        std::vector<double> held;
+        int without = -1;        // the full model's input it does without
+        double error_um = 0.0;
+        bool started = false;
+    };
     void open();
+    void stepReduced(Reduced &r, double t);
+    QString failure(int input, double t) const; // why input is failed at t ("" = sound)
+    void choose(double t);
+    double m_stale_s = 30.0;
+    std::vector<Reduced> m_reduced;
+    std::vector<double> m_heldT;       // per input: time of the held value
+    int m_active = -1;                 // -1 full model, >= 0 index into m_reduced, -2 holding
+    int m_failedInput = -1;
+    double m_safe_um = 0.0;            // last E of a model whose inputs were sound
+    double m_sigma_um = std::nan("");
+    QVector<Event> m_events;
     QVector<qint64> resolveInputs(SessionStore &store, qint64 *positionId) const;
 
     QString m_path;

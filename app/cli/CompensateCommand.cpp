@@ -139,7 +139,9 @@ int CompensateCommand::run(const QStringList &args)
     std::mutex problemMutex;
     QString problem;
     std::atomic<bool> modelFailed{false}; // the model cannot be evaluated: stop, exit 1
-    std::atomic<double> modelTime{std::nan("")}, error{std::nan("")};
+    std::atomic<double> modelTime{std::nan("")}, error{std::nan("")}, sigma{std::nan("")};
+    QVector<SessionOffsetSource::Event> modelEvents; // the source's switches (guarded by problemMutex)
+    QJsonArray modelEventsJson;
     const int axes = o.map.axes.size();
     CompensationLoop loop(o, [&](double) {
         QVector<double> offsets(axes, std::nan(""));
@@ -147,8 +149,15 @@ int CompensateCommand::run(const QStringList &args)
             const double here = source->update();
             offsets = o.map.requests(o.map.axes[axisIndex].name, here, [&](double x) { return source->offsetAt(x); });
             modelTime = source->modelTime_s();
-            if (std::isfinite(source->modelTime_s()))
+            if (std::isfinite(source->modelTime_s())) {
                 error = source->error_um();
+                sigma = source->sigma_um();
+            }
+            const QVector<SessionOffsetSource::Event> events = source->takeEvents(); // stored in the session by the source
+            if (!events.isEmpty()) {
+                std::lock_guard<std::mutex> lock(problemMutex);
+                modelEvents += events;
+            }
         } catch (const std::invalid_argument &e) {
             std::lock_guard<std::mutex> lock(problemMutex);
             problem = QString::fromUtf8(e.what());
@@ -184,6 +193,11 @@ int CompensateCommand::run(const QStringList &args)
             std::lock_guard<std::mutex> lock(problemMutex);
             if (problem != lastProblem && !problem.isEmpty())
                 CliSupport::progress(QStringLiteral("  model: %1").arg(problem));
+            for (const SessionOffsetSource::Event &e : modelEvents) {
+                CliSupport::progress(QStringLiteral("  session time %1 s: %2").arg(e.t_s, 0, 'f', 1).arg(e.text));
+                modelEventsJson.append(QJsonObject{{QStringLiteral("t_s"), e.t_s}, {QStringLiteral("what"), e.text}});
+            }
+            modelEvents.clear();
             lastProblem = problem;
         }
         if (wall.elapsed() / 1000.0 - lastReport >= 1.0) {
@@ -195,10 +209,11 @@ int CompensateCommand::run(const QStringList &args)
                                          .arg(s.connected ? QString() : QStringLiteral(" (not connected)")));
                 continue;
             }
-            CliSupport::progress(QStringLiteral("  %1 s: session time %2 s, E %3 um, offset %4 um requested, %5 um written%6")
+            CliSupport::progress(QStringLiteral("  %1 s: session time %2 s, E %3 um (1 sigma %4 um), offset %5 um requested, %6 um written%7")
                                      .arg(lastReport, 0, 'f', 0)
                                      .arg(modelTime.load(), 0, 'f', 1)
                                      .arg(error.load(), 0, 'f', 2)
+                                     .arg(sigma.load(), 0, 'f', 2)
                                      .arg(s.requested_um.value(axisIndex), 0, 'f', 2)
                                      .arg(s.written_um.value(axisIndex), 0, 'f', 0)
                                      .arg(s.connected ? QString() : QStringLiteral(" (not connected)")));
@@ -232,6 +247,8 @@ int CompensateCommand::run(const QStringList &args)
                              {QStringLiteral("reconnects"), s.reconnects},
                              {QStringLiteral("model_time_s"), jsonNumber(modelTime)},
                              {QStringLiteral("error_um"), jsonNumber(error)},
+                             {QStringLiteral("error_sigma_um"), jsonNumber(sigma)},
+                             {QStringLiteral("model_events"), modelEventsJson},
                              {QStringLiteral("axes"), written},
                              {QStringLiteral("period_mean_s"), s.meanPeriod_s},
                              {QStringLiteral("period_jitter_s"), s.periodJitter_s},

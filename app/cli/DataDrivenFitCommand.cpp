@@ -117,10 +117,13 @@ int DataDrivenFitCommand::run(const QStringList &args)
     const QCommandLineOption floor(QStringLiteral("scale-floor"),
                                    QStringLiteral("dynamic: scale inputs by max(standard deviation, FLOOR) (default 0.5 K)."),
                                    QStringLiteral("K"), QStringLiteral("0.5"));
+    const QCommandLineOption noReduced(QStringLiteral("no-reduced-models"),
+                                       QStringLiteral("Do not fit the reduced models (one per input, without it) that the "
+                                                      "compensation loop uses when a sensor fails."));
     const QCommandLineOption out = CliOptions::out(QStringLiteral("MODEL.json to write."));
     const QCommandLineOption json = CliOptions::json();
     const QCommandLineOption force = CliOptions::force();
-    p.addOptions({db, model, target, points, drive, reference, train, holdout, holdoutRange, kRange, folds, floor, out, json, force});
+    p.addOptions({db, model, target, points, drive, reference, train, holdout, holdoutRange, kRange, folds, floor, noReduced, out, json, force});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Training sessions (ids, UUIDs, A:B ranges, comma lists)."),
                             QStringLiteral("SESSION..."));
     if (!parse(p, args))
@@ -141,6 +144,7 @@ int DataDrivenFitCommand::run(const QStringList &args)
     if (!ok || q.folds < 2 || q.folds > 20)
         throw UsageError(QStringLiteral("fit: --folds must be an integer in [2, 20], got '%1'").arg(p.value(folds)));
     parseKRange(p.value(kRange), q.kMin, q.kMax, cmd);
+    q.reducedModels = !p.isSet(noReduced);
     q.scaleFloor_K = p.value(floor).toDouble(&ok);
     if (!ok || q.scaleFloor_K < 0 || q.scaleFloor_K > 100)
         throw UsageError(QStringLiteral("fit: --scale-floor must be a number in [0, 100], got '%1'").arg(p.value(floor)));
