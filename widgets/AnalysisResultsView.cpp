@@ -46,14 +46,15 @@ AnalysisResultsView::AnalysisResultsView(QWidget *parent)
       m_table(new QTableWidget(0, Columns, this)),
       m_sessions(new QTableWidget(0, 7, this)),
       m_prediction(new TimeSeriesPlot(this)),
-      m_residual(new TimeSeriesPlot(this))
+      m_residual(new TimeSeriesPlot(this)),
+      m_lower(new QTabWidget(this))
 {
     m_silhouettes->setHorizontalHeaderLabels({tr("K"), tr("silhouette")});
     m_channels->setHorizontalHeaderLabels({tr("channel"), tr("cluster"), tr("grey grade"), tr("correlation"), tr("chosen")});
     // Two-line headers keep the numeric columns narrow enough for a 1366-pixel screen.
     m_table->setHorizontalHeaderLabels({tr("model"), tr("CV\nRMSE (µm)"), tr("nested CV\nRMSE (µm)"), tr("paired\nSE (µm)"),
                                         tr("para-\nmeters"), tr("reference"), tr("training\nRMSE (µm)"),
-                                        tr("held-out RMSE (µm)\nnot used to choose"), tr("note")});
+                                        tr("held-out\nRMSE (µm)"), tr("note")});
     m_sessions->setHorizontalHeaderLabels({tr("data"), tr("RMSE\n(µm)"), tr("MAE\n(µm)"), tr("max |e|\n(µm)"),
                                            tr("fitting\ndegree (%)"), tr("samples"), tr("extrapolated\ninputs")});
     for (QTableWidget *t : {m_silhouettes, m_channels, m_table, m_sessions}) {
@@ -87,18 +88,20 @@ AnalysisResultsView::AnalysisResultsView(QWidget *parent)
     topLayout->setContentsMargins(0, 0, 0, 0);
     topLayout->addWidget(m_rule);
     topLayout->addWidget(m_warning);
-    auto *tablePair = new QSplitter(Qt::Horizontal, top);
-    tablePair->addWidget(m_table);
-    tablePair->addWidget(m_sessions);
-    tablePair->setStretchFactor(0, 3);
-    tablePair->setStretchFactor(1, 2);
-    topLayout->addWidget(tablePair, 1);
+    // The family table at the full width of the page, six rows in view (every family of auto).
+    m_table->setMinimumHeight(m_table->verticalHeader()->defaultSectionSize() * 6 + 2 * m_table->fontMetrics().height() + 16);
+    m_table->horizontalHeaderItem(HeldOutRmse)->setToolTip(tr("Shown, never used to choose"));
+    topLayout->addWidget(m_table, 1);
+    // Below it, tabs at the full width: the metrics per session, and the plots (side by side
+    // on a laptop screen the tables needed sideways scrolling and the time ticks ran together).
+    m_lower->addTab(m_sessions, tr("Per session"));
+    m_lower->addTab(m_prediction, tr("Measured and predicted"));
+    m_lower->addTab(m_residual, tr("Residual"));
     auto *modelsPage = new QSplitter(Qt::Vertical, this);
     modelsPage->addWidget(top);
-    modelsPage->addWidget(m_prediction);
-    modelsPage->addWidget(m_residual);
-    modelsPage->setStretchFactor(1, 2);
-    modelsPage->setStretchFactor(2, 1);
+    modelsPage->addWidget(m_lower);
+    modelsPage->setStretchFactor(0, 2);
+    modelsPage->setStretchFactor(1, 3);
     addTab(selectionPage, tr("Sensitive points"));
     addTab(modelsPage, tr("Model comparison"));
     connect(m_table, &QTableWidget::currentCellChanged, this, [this](int row) { showModel(row); });
@@ -193,8 +196,17 @@ void AnalysisResultsView::showModels(const std::vector<ModelRow> &rows, const QS
     m_table->resizeColumnsToContents();
     m_table->setColumnWidth(Note, std::min(m_table->columnWidth(Note), m_table->fontMetrics().horizontalAdvance(QLatin1Char('x')) * 24));
     m_table->blockSignals(false);
-    m_rule->setText(rule.isEmpty() ? QString() : tr("auto: %1. Held-out numbers are shown, never used to choose.").arg(rule));
-    m_rule->setVisible(!rule.isEmpty());
+    QString chosenName;
+    for (const ModelRow &r : m_rows)
+        if (r.comparison && r.comparison->chosen)
+            chosenName = r.model;
+    m_rule->setText(rule.isEmpty() ? tr("Each checked family fitted on its own; none is chosen (Auto chooses as fit --model auto "
+                                        "does). Held-out numbers are shown, never used to choose.")
+                                   : tr("Auto chose %1: nested CV, paired one-standard-error rule, plain references (ref) "
+                                        "first. Held-out numbers are shown, never used to choose.")
+                                         .arg(chosenName));
+    m_rule->setToolTip(rule); // the rule in full, as fit stores it
+    m_rule->setVisible(!rows.empty());
     int shown = chosen;
     if (shown < 0)
         for (int i = 0; i < static_cast<int>(m_rows.size()) && shown < 0; ++i)
@@ -215,6 +227,7 @@ void AnalysisResultsView::showModel(int row)
 {
     m_series.clear();
     m_seriesLabels.clear();
+    m_rangeFit = nullptr;
     m_sessions->blockSignals(true);
     m_sessions->setRowCount(0);
     const DataDrivenFitResult *f = row >= 0 && row < static_cast<int>(m_rows.size()) && m_rows[static_cast<std::size_t>(row)].result
@@ -247,6 +260,8 @@ void AnalysisResultsView::showModel(int row)
         add(f->training, tr("training (pooled)"));
     const bool range = f->holdout && f->holdoutSessions.size() == 1 && !f->trainingSessions.empty() &&
                        f->holdoutSessions.front().session == f->trainingSessions.front().session;
+    if (range)
+        m_rangeFit = f;
     for (const ValidationSeries &s : f->holdoutSessions)
         add(s, range ? tr("held-out hours of #%1").arg(s.session) : tr("held-out #%1").arg(s.session));
     if (f->holdoutSessions.size() > 1 && f->holdout)
@@ -272,6 +287,11 @@ void AnalysisResultsView::showSeries(int sessionRow)
     const ValidationSeries &s = *m_series[static_cast<std::size_t>(sessionRow)];
     if (s.session == 0)
         return; // pooled: sessions one after another, each on its own clock; the plots show one session
+    if (m_rangeFit) { // held-out hours of the training session: both parts on the session's clock
+        AnalysisPlots::showPrediction(*m_prediction, m_rangeFit->trainingSessions.front(), &m_rangeFit->holdoutSessions.front());
+        AnalysisPlots::showResidual(*m_residual, m_rangeFit->trainingSessions.front(), &m_rangeFit->holdoutSessions.front());
+        return;
+    }
     const QString label = m_seriesLabels[static_cast<std::size_t>(sessionRow)];
     AnalysisPlots::showSeries(*m_prediction, s, label);
     AnalysisPlots::showSeriesResidual(*m_residual, s, label);

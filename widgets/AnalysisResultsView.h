@@ -54,6 +54,8 @@ public:
     QLabel *warningLabel() const { return m_warning; }
     QLabel *ruleLabel() const { return m_rule; }
     TimeSeriesPlot *predictionPlot() const { return m_prediction; }
+    // Per session | Measured and predicted | Residual.
+    QTabWidget *lowerTabs() const { return m_lower; }
 
     // Columns of the comparison table.
     enum Column { Model, CvRmse, NestedCv, PairedSe, Parameters, Reference, TrainingRmse, HeldOutRmse, Note, Columns };
@@ -70,9 +72,11 @@ private:
     QTableWidget *m_sessions;
     TimeSeriesPlot *m_prediction;
     TimeSeriesPlot *m_residual;
+    QTabWidget *m_lower; // per session | measured and predicted | residual
     std::vector<ModelRow> m_rows;
     std::vector<const ValidationSeries *> m_series; // rows of m_sessions
     std::vector<QString> m_seriesLabels;
+    const DataDrivenFitResult *m_rangeFit = nullptr; // held out: hours of the one training session
 };
 
 } // namespace driftlab
