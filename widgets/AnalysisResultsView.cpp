@@ -150,8 +150,9 @@ void AnalysisResultsView::showSelection(const QJsonObject &selection, const Sess
 
 void AnalysisResultsView::showModels(const std::vector<ModelRow> &rows, const QString &rule)
 {
+    m_series.clear(); // they point into the rows replaced here
+    m_rangeFit = nullptr;
     m_rows = rows;
-    m_series.clear();
     m_table->blockSignals(true);
     m_table->setRowCount(static_cast<int>(m_rows.size()));
     int chosen = -1;
