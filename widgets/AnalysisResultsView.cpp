@@ -269,8 +269,8 @@ void AnalysisResultsView::showModel(int row)
         add(*f->holdout, tr("held-out (pooled)"));
     m_sessions->resizeColumnsToContents();
     m_sessions->blockSignals(false);
-    const QStringList warnings = ExtrapolationWarning::lines(f->holdoutSessions, range ? tr("held-out hours of session")
-                                                                                        : tr("held-out session"));
+    // The CLI's lines, word for word (fit prints the same for held-out hours of its session).
+    const QStringList warnings = ExtrapolationWarning::lines(f->holdoutSessions, QStringLiteral("held-out session"));
     m_warning->setText(warnings.join(QLatin1Char('\n')));
     m_warning->setVisible(!warnings.isEmpty());
     // The first held-out session, else the first training session.
