@@ -4,6 +4,7 @@
 #include "AnalysisResultKind.h"
 #include "DataDrivenFit.h"
 #include "DataDrivenModelJson.h"
+#include "ExtrapolationWarning.h"
 #include "FdmModelJson.h"
 #include "Iso230Report.h"
 #include "ReportTemplate.h"
@@ -383,10 +384,18 @@ void ReportBuilder::modelSection(ReportDocument &doc) const
             doc.keyValues(metrics);
         if (!m.model.startsWith(QLatin1String("driftlab-model/")))
             continue;
+        dataDrivenChoice(doc, m);
         // Data-driven: measured and predicted over this session.
         try {
             const DataDrivenModel model = DataDrivenModelJson::fromJson(m.parameters, QStringLiteral("stored model %1").arg(m.id));
             const ValidationSeries series = DataDrivenFit(m_store).validate(model, m_session);
+            // The extrapolation warning of the fit's held-out sessions and of this session, in
+            // the words of the CLI and the GUI (ExtrapolationWarning).
+            QStringList warnings = ExtrapolationWarning::lines(m.metrics.value(QStringLiteral("holdout")).toObject(),
+                                                               QStringLiteral("held-out session"));
+            warnings += ExtrapolationWarning::lines(std::vector<ValidationSeries>{series}, QStringLiteral("this report's session"));
+            for (const QString &w : warnings)
+                doc.html(QStringLiteral("<p><b>Warning:</b> %1</p>").arg(w.toHtmlEscaped()));
             TimeSeriesPlot plot;
             plot.resize(1600, 1000);
             AnalysisPlots::showPrediction(plot, series, nullptr);
@@ -397,6 +406,31 @@ void ReportBuilder::modelSection(ReportDocument &doc) const
             doc.leftOut(QStringLiteral("validation figure of model %1: %2").arg(m.id).arg(QString::fromUtf8(e.what())));
         }
     }
+}
+
+void ReportBuilder::dataDrivenChoice(ReportDocument &doc, const FittedModel &m) const
+{
+    // fit --model auto (either face): the comparison table it chose from, held-out shown only.
+    const QJsonObject selection = m.provenance.value(QStringLiteral("model_selection")).toObject();
+    const QJsonArray families = selection.value(QStringLiteral("families")).toArray();
+    if (families.isEmpty())
+        return;
+    QVector<QStringList> rows;
+    for (const QJsonValue &v : families) {
+        const QJsonObject f = v.toObject();
+        const QString name = f.value(QStringLiteral("model")).toString() +
+                             (f.value(QStringLiteral("plain_reference")).toBool() ? QStringLiteral(" (ref)") : QString());
+        rows.push_back({name, jsonText(f.value(QStringLiteral("cross_validation_rmse_um"))),
+                        jsonText(f.value(QStringLiteral("nested_cv_rmse_um"))), jsonText(f.value(QStringLiteral("paired_standard_error_um"))),
+                        jsonText(f.value(QStringLiteral("parameters"))), f.value(QStringLiteral("reference")).toString(),
+                        jsonText(f.value(QStringLiteral("holdout")).toObject().value(QStringLiteral("rmse_um"))),
+                        f.value(QStringLiteral("chosen")).toBool() ? QStringLiteral("chosen") : f.value(QStringLiteral("error")).toString()});
+    }
+    doc.paragraph(QStringLiteral("Chosen by fit --model auto: %1. Held-out RMSE is shown, never used to choose.")
+                      .arg(selection.value(QStringLiteral("rule")).toString()));
+    doc.table({QStringLiteral("Family"), QStringLiteral("CV RMSE (um)"), QStringLiteral("Nested CV (um)"), QStringLiteral("Paired SE (um)"),
+               QStringLiteral("Parameters"), QStringLiteral("Reference"), QStringLiteral("Held-out RMSE (um)"), QStringLiteral("Note")},
+              rows);
 }
 
 void ReportBuilder::fdmSection(ReportDocument &doc, const FittedModel &m) const

@@ -42,6 +42,7 @@ private:
     void sensitivePointSection(ReportDocument &doc) const;
     void modelSection(ReportDocument &doc) const;
     void fdmSection(ReportDocument &doc, const FittedModel &model) const;
+    void dataDrivenChoice(ReportDocument &doc, const FittedModel &model) const;
     void fdmFigure(ReportDocument &doc, const FittedModel &model) const;
     void diagnosisSection(ReportDocument &doc) const;
     void compensationSection(ReportDocument &doc) const;

@@ -1,13 +1,11 @@
 #include "AnalysisPanel.h"
 
-#include "AnalysisPlots.h"
+#include "DataDrivenFitRecord.h"
 #include "DataDrivenModelJson.h"
+#include "FitRequestCheck.h"
 #include "PointSelection.h"
 #include "SessionStore.h"
-#include "TimeSeriesPlot.h"
 #include "Workbench.h"
-
-#include <qwt_plot.h>
 
 #include <QCheckBox>
 #include <QComboBox>
@@ -17,14 +15,11 @@
 #include <QGridLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
-#include <QHeaderView>
-#include <QJsonArray>
 #include <QLabel>
+#include <QListWidget>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSpinBox>
-#include <QSplitter>
-#include <QTabWidget>
 #include <QTableWidget>
 #include <QVBoxLayout>
 
@@ -52,45 +47,61 @@ double hours(const QDoubleSpinBox *b, double open)
     return b->value() <= b->minimum() ? open : b->value();
 }
 
-QTableWidgetItem *item(const QString &text)
+QListWidget *sessionList(QWidget *parent)
 {
-    auto *i = new QTableWidgetItem(text);
-    i->setFlags(i->flags() & ~Qt::ItemIsEditable);
-    return i;
+    auto *l = new QListWidget(parent);
+    l->setSelectionMode(QAbstractItemView::NoSelection);
+    l->setMaximumHeight(l->fontMetrics().height() * 5 + 8); // about four sessions in view, then it scrolls
+    return l;
 }
 
-QString number(double v, int decimals = 3)
+QList<qint64> checked(const QListWidget *list)
 {
-    return std::isfinite(v) ? QString::number(v, 'f', decimals) : QStringLiteral("-");
+    QList<qint64> ids;
+    for (int i = 0; i < list->count(); ++i)
+        if (list->item(i)->checkState() == Qt::Checked)
+            ids << list->item(i)->data(Qt::UserRole).toLongLong();
+    return ids;
+}
+
+bool check(QListWidget *list, const QList<qint64> &ids)
+{
+    for (qint64 id : ids) {
+        bool found = false;
+        for (int i = 0; i < list->count(); ++i)
+            found = found || list->item(i)->data(Qt::UserRole).toLongLong() == id;
+        if (!found)
+            return false;
+    }
+    const QSignalBlocker block(list);
+    for (int i = 0; i < list->count(); ++i)
+        list->item(i)->setCheckState(ids.contains(list->item(i)->data(Qt::UserRole).toLongLong()) ? Qt::Checked : Qt::Unchecked);
+    return true;
 }
 
 } // namespace
 
 AnalysisPanel::AnalysisPanel(QWidget *parent)
     : QWidget(parent),
-      m_session(new QComboBox(this)),
+      m_training(sessionList(this)),
+      m_heldOut(sessionList(this)),
       m_target(new QComboBox(this)),
       m_kMin(new QSpinBox(this)),
       m_kMax(new QSpinBox(this)),
       m_trainFrom(hoursBox(tr("start"), this)),
       m_trainTo(hoursBox(tr("end"), this)),
-      m_holdout(new QComboBox(this)),
       m_holdoutFrom(hoursBox(tr("start"), this)),
       m_holdoutTo(hoursBox(tr("end"), this)),
       m_points(new QComboBox(this)),
+      m_reference(new QComboBox(this)),
       m_select(new QPushButton(tr("Select points"), this)),
-      m_fit(new QPushButton(tr("Fit models"), this)),
+      m_fit(new QPushButton(tr("Fit checked"), this)),
+      m_auto(new QPushButton(tr("Auto (choose)"), this)),
       m_cancel(new QPushButton(tr("Cancel"), this)),
       m_save(new QPushButton(tr("Save model..."), this)),
       m_progress(new QProgressBar(this)),
       m_stage(new QLabel(this)),
-      m_tabs(new QTabWidget(this)),
-      m_silhouettes(new QTableWidget(0, 2, this)),
-      m_channels(new QTableWidget(0, 5, this)),
-      m_selectionPlots(new QTabWidget(this)),
-      m_table(new QTableWidget(0, 10, this)),
-      m_prediction(new TimeSeriesPlot(this)),
-      m_residual(new TimeSeriesPlot(this))
+      m_results(new AnalysisResultsView(this))
 {
     m_kMin->setRange(2, 64);
     m_kMax->setRange(2, 64);
@@ -98,8 +109,16 @@ AnalysisPanel::AnalysisPanel(QWidget *parent)
     m_kMax->setValue(8);
     m_points->addItem(tr("model default"), QString());
     m_points->addItem(tr("sensitive points (auto)"), QStringLiteral("auto"));
+    // fit --reference: auto (by CV with several sessions), start, absolute.
+    m_reference->addItem(tr("auto (by CV)"), QStringLiteral("auto"));
+    m_reference->addItem(tr("rise from each run's start"), QStringLiteral("start"));
+    m_reference->addItem(tr("absolute"), QStringLiteral("absolute"));
+    m_training->setToolTip(tr("Training sessions (runs): with three or more, cross-validation leaves whole sessions out"));
+    m_heldOut->setToolTip(tr("Held-out sessions: validated per session and pooled, never used to fit or choose"));
+    m_holdoutFrom->setToolTip(tr("Held-out hours of the one training session (when no held-out session is checked)"));
     auto *form = new QFormLayout();
-    form->addRow(tr("Session"), m_session);
+    form->addRow(tr("Training"), m_training);
+    form->addRow(tr("Held out"), m_heldOut);
     form->addRow(tr("Target"), m_target);
     auto *k = new QHBoxLayout();
     k->addWidget(m_kMin);
@@ -110,26 +129,31 @@ AnalysisPanel::AnalysisPanel(QWidget *parent)
     train->addWidget(m_trainFrom);
     train->addWidget(m_trainTo);
     form->addRow(tr("Training hours"), train);
-    form->addRow(tr("Validate on"), m_holdout);
     auto *held = new QHBoxLayout();
     held->addWidget(m_holdoutFrom);
     held->addWidget(m_holdoutTo);
-    form->addRow(tr("Held-out hours"), held);
+    form->addRow(tr("or held-out hours"), held);
     form->addRow(tr("Temperature inputs"), m_points);
+    form->addRow(tr("Reference"), m_reference);
     auto *models = new QGroupBox(tr("Models"), this);
     auto *modelGrid = new QGridLayout(models);
-    const QStringList names = DataDrivenFit::models();
+    QStringList names = DataDrivenFit::allModels();
+    names.removeAll(QStringLiteral("auto"));
+    const QStringList byDefault{QStringLiteral("mlr"), QStringLiteral("ridge"), QStringLiteral("exp"), QStringLiteral("dynamic")};
     for (int i = 0; i < names.size(); ++i) {
         auto *box = new QCheckBox(names[i], models);
-        box->setChecked(names[i] != QLatin1String("synthetic"));
+        box->setChecked(byDefault.contains(names[i]));
         modelGrid->addWidget(box, i / 3, i % 3);
         m_modelBoxes.push_back(box);
     }
+    m_auto->setToolTip(tr("fit --model auto: every applicable family, chosen by nested cross-validation with the paired "
+                          "one-standard-error rule, plain references (mean, lagridge) first"));
     auto *buttons = new QGridLayout();
     buttons->addWidget(m_select, 0, 0);
     buttons->addWidget(m_fit, 0, 1);
+    buttons->addWidget(m_auto, 0, 2);
     buttons->addWidget(m_cancel, 1, 0);
-    buttons->addWidget(m_save, 1, 1);
+    buttons->addWidget(m_save, 1, 1, 1, 2);
     auto *left = new QVBoxLayout();
     left->addLayout(form);
     left->addWidget(models);
@@ -138,47 +162,14 @@ AnalysisPanel::AnalysisPanel(QWidget *parent)
     m_stage->setWordWrap(true);
     left->addWidget(m_stage);
     left->addStretch(1);
-
-    m_silhouettes->setHorizontalHeaderLabels({tr("K"), tr("silhouette")});
-    m_channels->setHorizontalHeaderLabels({tr("channel"), tr("cluster"), tr("grey grade"), tr("correlation"), tr("chosen")});
-    for (QTableWidget *t : {m_silhouettes, m_channels, m_table}) {
-        t->verticalHeader()->hide();
-        t->horizontalHeader()->setStretchLastSection(true);
-        t->setSelectionBehavior(QAbstractItemView::SelectRows);
-        t->setSelectionMode(QAbstractItemView::SingleSelection);
-    }
-    m_silhouettes->setMinimumHeight(160);
-    m_channels->setMinimumHeight(160);
-    auto *tables = new QSplitter(Qt::Horizontal, this);
-    tables->addWidget(m_silhouettes);
-    tables->addWidget(m_channels);
-    tables->setStretchFactor(1, 2);
-    auto *selectionPage = new QSplitter(Qt::Vertical, this);
-    selectionPage->addWidget(tables);
-    selectionPage->addWidget(m_selectionPlots);
-    selectionPage->setStretchFactor(1, 3);
-    // Two-line headers keep the numeric columns narrow enough for a 1366-pixel screen.
-    m_table->setHorizontalHeaderLabels({tr("model"), tr("inputs"), tr("training\nRMSE (µm)"), tr("CV\nRMSE (µm)"),
-                                        tr("held-out\nRMSE (µm)"), tr("held-out\nMAE (µm)"), tr("held-out\nmax |e| (µm)"),
-                                        tr("held-out fitting\ndegree (%)"), tr("fit\ntime (s)"), tr("note")});
-    m_prediction->setTitle(tr("Measured and predicted"));
-    m_residual->setTitle(tr("Residual"));
-    auto *modelsPage = new QSplitter(Qt::Vertical, this);
-    modelsPage->addWidget(m_table);
-    modelsPage->addWidget(m_prediction);
-    modelsPage->addWidget(m_residual);
-    modelsPage->setStretchFactor(1, 2);
-    modelsPage->setStretchFactor(2, 1);
-    m_tabs->addTab(selectionPage, tr("Sensitive points"));
-    m_tabs->addTab(modelsPage, tr("Model comparison"));
     auto *layout = new QHBoxLayout(this);
     layout->addLayout(left, 0);
-    layout->addWidget(m_tabs, 1);
+    layout->addWidget(m_results, 1);
 
     m_progress->setRange(0, 100);
     m_progress->setValue(0);
     setBusy(false);
-    connect(m_session, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this] { refreshTargets(); });
+    connect(m_training, &QListWidget::itemChanged, this, [this] { refreshTargets(); });
     connect(m_select, &QPushButton::clicked, this, [this] {
         if (!startSelection())
             m_stage->setText(m_lastError);
@@ -187,9 +178,13 @@ AnalysisPanel::AnalysisPanel(QWidget *parent)
         if (!startFits())
             m_stage->setText(m_lastError);
     });
+    connect(m_auto, &QPushButton::clicked, this, [this] {
+        if (!startAuto())
+            m_stage->setText(m_lastError);
+    });
     connect(m_cancel, &QPushButton::clicked, this, &AnalysisPanel::cancel);
     connect(m_save, &QPushButton::clicked, this, [this] {
-        const int row = m_table->currentRow();
+        const int row = m_results->currentModel();
         if (row < 0 || row >= static_cast<int>(m_rows.size()) || !m_rows[static_cast<std::size_t>(row)].result) {
             m_stage->setText(tr("Choose a fitted model in the comparison table first"));
             return;
@@ -199,7 +194,6 @@ AnalysisPanel::AnalysisPanel(QWidget *parent)
         if (!path.isEmpty())
             m_stage->setText(saveModel(row, path) ? tr("saved %1").arg(path) : m_lastError);
     });
-    connect(m_table, &QTableWidget::currentCellChanged, this, [this](int row) { showModel(row); });
     connect(this, &AnalysisPanel::selectionFinished, this, [this](bool ok) {
         const Workflow w = std::exchange(m_workflow, Workflow::None);
         if (w == Workflow::SelectOnly || (w == Workflow::SelectThenFit && !ok))
@@ -223,7 +217,6 @@ bool AnalysisPanel::startWorkflow(qint64 session, const QString &target, double 
     }
     m_trainFrom->setValue(m_trainFrom->minimum());
     m_trainTo->setValue(std::isfinite(trainTo_h) ? trainTo_h : m_trainTo->minimum());
-    m_holdout->setCurrentIndex(std::isfinite(trainTo_h) ? 1 : 0);
     m_holdoutFrom->setValue(std::isfinite(trainTo_h) ? trainTo_h : m_holdoutFrom->minimum());
     m_holdoutTo->setValue(m_holdoutTo->minimum());
     m_workflow = selectOnly ? Workflow::SelectOnly : Workflow::SelectThenFit;
@@ -252,7 +245,22 @@ AnalysisPanel::~AnalysisPanel()
 
 QWidget *AnalysisPanel::resultsView() const
 {
-    return m_tabs;
+    return m_results;
+}
+
+QTableWidget *AnalysisPanel::comparisonTable() const
+{
+    return m_results->comparisonTable();
+}
+
+QTableWidget *AnalysisPanel::silhouetteTable() const
+{
+    return m_results->silhouetteTable();
+}
+
+QTableWidget *AnalysisPanel::channelTable() const
+{
+    return m_results->channelTable();
 }
 
 void AnalysisPanel::setBusy(bool busy)
@@ -260,40 +268,84 @@ void AnalysisPanel::setBusy(bool busy)
     // Cancel enabled (and focused) before the buttons go: the focus must not wander down the
     // dock and scroll progress and Cancel out of view.
     m_cancel->setEnabled(busy);
-    if (busy && (m_select->hasFocus() || m_fit->hasFocus()))
+    if (busy && (m_select->hasFocus() || m_fit->hasFocus() || m_auto->hasFocus()))
         m_cancel->setFocus();
-    m_select->setEnabled(!busy && m_store);
-    m_fit->setEnabled(!busy && m_store);
-    m_session->setEnabled(!busy);
+    for (QPushButton *b : {m_select, m_fit, m_auto})
+        b->setEnabled(!busy && m_store);
+    m_training->setEnabled(!busy);
+    m_heldOut->setEnabled(!busy);
 }
 
 void AnalysisPanel::setStore(const SessionStore *store)
 {
+    const bool same = store && store == m_store;
+    const QList<qint64> training = same ? trainingSessions() : QList<qint64>{};
+    const QList<qint64> heldOut = same ? heldOutSessions() : QList<qint64>{};
     m_store = store;
-    m_session->blockSignals(true);
-    m_session->clear();
-    m_holdout->clear();
-    m_holdout->addItem(tr("nothing"), QVariant());
-    m_holdout->addItem(tr("held-out hours of this session"), QStringLiteral("range"));
-    if (store)
-        for (const SessionInfo &s : store->sessions()) {
-            const QString label = QStringLiteral("#%1  %2").arg(s.id).arg(s.name);
-            m_session->addItem(label, s.id);
-            m_holdout->addItem(tr("session %1").arg(label), s.id);
+    {
+        const QSignalBlocker a(m_training), b(m_heldOut);
+        m_training->clear();
+        m_heldOut->clear();
+        if (store)
+            for (const SessionInfo &s : store->sessions()) {
+                const QString label = QStringLiteral("#%1  %2").arg(s.id).arg(s.name);
+                for (QListWidget *list : {m_training, m_heldOut}) {
+                    auto *i = new QListWidgetItem(label, list);
+                    i->setData(Qt::UserRole, s.id);
+                    i->setFlags(Qt::ItemIsEnabled | Qt::ItemIsUserCheckable);
+                    i->setCheckState(Qt::Unchecked);
+                }
+            }
+        if (!training.isEmpty()) {
+            check(m_training, training);
+            check(m_heldOut, heldOut);
+        } else if (m_training->count() > 0) {
+            m_training->item(m_training->count() - 1)->setCheckState(Qt::Checked); // the newest session
         }
-    m_session->setCurrentIndex(m_session->count() - 1);
-    m_session->blockSignals(false);
+    }
     refreshTargets();
     setBusy(running());
+}
+
+QList<qint64> AnalysisPanel::trainingSessions() const
+{
+    return checked(m_training);
+}
+
+QList<qint64> AnalysisPanel::heldOutSessions() const
+{
+    return checked(m_heldOut);
+}
+
+bool AnalysisPanel::setTrainingSessions(const QList<qint64> &sessions)
+{
+    if (sessions.isEmpty() || !check(m_training, sessions))
+        return false;
+    refreshTargets();
+    return true;
+}
+
+bool AnalysisPanel::setHeldOutSessions(const QList<qint64> &sessions)
+{
+    return check(m_heldOut, sessions);
+}
+
+bool AnalysisPanel::setTarget(const QString &target)
+{
+    const int t = m_target->findText(target);
+    if (t >= 0)
+        m_target->setCurrentIndex(t);
+    return t >= 0;
 }
 
 void AnalysisPanel::refreshTargets()
 {
     const QString previous = m_target->currentText();
     m_target->clear();
-    if (!m_store || m_session->currentIndex() < 0)
+    const QList<qint64> training = trainingSessions();
+    if (!m_store || training.isEmpty())
         return;
-    const qint64 session = m_session->currentData().toLongLong();
+    const qint64 session = training.front();
     for (const ChannelInfo &c : m_store->channels(session))
         if (c.kind == QLatin1String("displacement"))
             m_target->addItem(c.key);
@@ -306,34 +358,34 @@ void AnalysisPanel::refreshTargets()
 
 bool AnalysisPanel::setSession(qint64 session, const QString &target)
 {
-    const int i = m_session->findData(session);
-    if (i < 0)
+    if (!check(m_training, {session}))
         return false;
-    m_session->setCurrentIndex(i);
-    if (target.isEmpty())
-        return true;
-    const int t = m_target->findText(target);
-    if (t >= 0)
-        m_target->setCurrentIndex(t);
-    return t >= 0;
+    check(m_heldOut, {});
+    refreshTargets();
+    return target.isEmpty() || setTarget(target);
 }
 
 DataDrivenFitRequest AnalysisPanel::request(const QString &model) const
 {
     DataDrivenFitRequest q;
-    q.session = m_session->currentData().toLongLong();
+    q.sessions = trainingSessions();
+    q.session = q.sessions.isEmpty() ? 0 : q.sessions.front();
     q.model = model;
     q.target = m_target->currentText();
     q.train = {hours(m_trainFrom, -std::numeric_limits<double>::infinity()), hours(m_trainTo, std::numeric_limits<double>::infinity())};
     q.kMin = m_kMin->value();
     q.kMax = m_kMax->value();
     q.autoPoints = m_points->currentData().toString() == QLatin1String("auto");
-    const QVariant holdout = m_holdout->currentData();
-    if (holdout.toString() == QLatin1String("range"))
-        q.holdoutRange = HourRange{hours(m_holdoutFrom, -std::numeric_limits<double>::infinity()),
-                                   hours(m_holdoutTo, std::numeric_limits<double>::infinity())};
-    else if (holdout.isValid())
-        q.holdoutSession = holdout.toLongLong();
+    q.reference = m_reference->currentData().toString();
+    q.holdoutSessions = heldOutSessions();
+    if (!q.holdoutSessions.isEmpty()) {
+        q.holdoutSession = q.holdoutSessions.front();
+    } else {
+        const HourRange held{hours(m_holdoutFrom, -std::numeric_limits<double>::infinity()),
+                             hours(m_holdoutTo, std::numeric_limits<double>::infinity())};
+        if (!held.all())
+            q.holdoutRange = held;
+    }
     return q;
 }
 
@@ -356,8 +408,9 @@ bool AnalysisPanel::startSelection()
         m_lastError = tr("An analysis is already running");
         return false;
     }
-    if (!m_store || m_target->currentText().isEmpty() || m_target->currentText() == QLatin1String("interferometer")) {
-        m_lastError = tr("Choose a session and a displacement channel as the target");
+    if (!m_store || trainingSessions().isEmpty() || m_target->currentText().isEmpty() ||
+        m_target->currentText() == QLatin1String("interferometer")) {
+        m_lastError = tr("Choose training sessions and a displacement channel as the target");
         return false;
     }
     const QString path = m_store->path();
@@ -368,7 +421,7 @@ bool AnalysisPanel::startSelection()
         try {
             SessionStore store(path); // this thread's own connection
             PointSelectionRequest selection;
-            selection.sessions = {q.session};
+            selection.sessions = q.sessions;
             selection.target = q.target;
             selection.hours = q.train;
             selection.kMin = q.kMin;
@@ -393,8 +446,7 @@ bool AnalysisPanel::startSelection()
                 return;
             }
             m_selection = result;
-            m_selectionSession = session;
-            showSelection();
+            m_results->showSelection(m_selection, m_store, session);
             m_progress->setValue(100);
             m_stage->setText(tr("chosen points: %1").arg(result.value(QStringLiteral("chosen")).toVariant().toStringList().join(QStringLiteral(", "))));
             emit selectionFinished(true);
@@ -405,42 +457,80 @@ bool AnalysisPanel::startSelection()
 
 bool AnalysisPanel::startFits(const QStringList &models)
 {
-    if (running()) {
-        m_lastError = tr("An analysis is already running");
-        return false;
-    }
     QStringList chosen = models;
     if (chosen.isEmpty())
         for (QCheckBox *b : m_modelBoxes)
             if (b->isChecked())
                 chosen << b->text();
-    if (!m_store || m_target->currentText().isEmpty() || chosen.isEmpty()) {
-        m_lastError = tr("Choose a session, a target and at least one model");
+    if (chosen.isEmpty() && !running()) {
+        m_lastError = tr("Check at least one model");
+        return false;
+    }
+    return startModels(chosen, false);
+}
+
+bool AnalysisPanel::startAuto()
+{
+    return startModels({QStringLiteral("auto")}, true);
+}
+
+bool AnalysisPanel::startModels(const QStringList &models, bool automatic)
+{
+    if (running()) {
+        m_lastError = tr("An analysis is already running");
+        return false;
+    }
+    if (!m_store || trainingSessions().isEmpty() || m_target->currentText().isEmpty()) {
+        m_lastError = tr("Choose training sessions and a target");
         return false;
     }
     std::vector<DataDrivenFitRequest> requests;
-    for (const QString &m : chosen)
+    for (const QString &m : models)
         requests.push_back(request(m));
     const QString path = m_store->path();
-    m_tabs->setCurrentIndex(1);
-    runInBackground([this, path, requests] {
+    m_results->setCurrentIndex(1);
+    runInBackground([this, path, requests, automatic] {
         std::vector<ModelRow> rows;
+        std::vector<qint64> stored;
+        QString rule;
         try {
             SessionStore store(path);
             const DataDrivenFit fit(store);
             for (std::size_t i = 0; i < requests.size() && !m_job.cancelled(); ++i) {
+                const DataDrivenFitRequest &q = requests[i];
                 ModelRow row;
-                row.model = requests[i].model;
+                row.model = q.model;
                 try {
-                    row.result = fit.fit(requests[i], [this, i, n = requests.size(), model = row.model](double f, const QString &stage) {
+                    // The checks `fit` makes before any work, then the same use case.
+                    FitRequestCheck::checkRanges(store, q.session, q.train, q.holdoutRange);
+                    DataDrivenFitResult r = fit.fit(q, [this, i, n = requests.size(), model = row.model](double f, const QString &stage) {
                         QMetaObject::invokeMethod(this, [this, i, n, f, stage, model] {
                             m_progress->setValue(static_cast<int>(100.0 * (static_cast<double>(i) + f) / static_cast<double>(n)));
                             m_stage->setText(QStringLiteral("%1: %2").arg(model, stage));
                         }, Qt::QueuedConnection);
                         return !m_job.cancelled();
                     });
+                    const qint64 id = DataDrivenFitRecord::store(store, r, r.document, DataDrivenFitRecord::Face::Gui);
+                    if (automatic) {
+                        rule = r.document.value(QStringLiteral("model_selection")).toObject().value(QStringLiteral("rule")).toString();
+                        for (const FamilyComparison &c : r.comparison) {
+                            ModelRow family;
+                            family.model = c.model;
+                            family.comparison = c;
+                            family.error = c.error;
+                            if (c.chosen)
+                                family.result = r;
+                            rows.push_back(std::move(family));
+                            stored.push_back(c.chosen ? id : 0);
+                        }
+                        continue;
+                    }
+                    row.model = QString::fromStdString(r.model.kind);
+                    row.result = std::move(r);
+                    stored.push_back(id);
                 } catch (const std::exception &e) {
                     row.error = m_job.cancelled() ? tr("cancelled") : QString::fromUtf8(e.what());
+                    stored.push_back(0);
                 }
                 rows.push_back(std::move(row));
             }
@@ -448,18 +538,27 @@ bool AnalysisPanel::startFits(const QStringList &models)
             ModelRow row;
             row.error = QString::fromUtf8(e.what());
             rows.push_back(row);
+            stored.push_back(0);
         }
         const bool cancelled = m_job.cancelled();
-        QMetaObject::invokeMethod(this, [this, rows = std::move(rows), cancelled]() mutable {
+        QMetaObject::invokeMethod(this, [this, rows = std::move(rows), stored = std::move(stored), rule, cancelled]() mutable {
             finishWorker();
             m_rows = std::move(rows);
-            showModels();
-            bool ok = !cancelled;
-            for (const ModelRow &r : m_rows)
-                ok = ok && r.result.has_value();
+            m_stored = std::move(stored);
+            m_results->showModels(m_rows, rule);
+            bool ok = !cancelled && !m_rows.empty();
+            bool any = false;
+            for (const ModelRow &r : m_rows) {
+                any = any || r.result.has_value();
+                ok = ok && (r.result.has_value() || (r.comparison && !r.comparison->chosen));
+            }
+            ok = ok && any;
             m_lastError = cancelled ? tr("Cancelled") : (ok ? QString() : tr("some models could not be fitted (see the table)"));
+            if (!ok && !cancelled && m_rows.size() == 1 && !m_rows.front().error.isEmpty())
+                m_lastError = m_rows.front().error;
             m_progress->setValue(cancelled ? m_progress->value() : 100);
-            m_stage->setText(cancelled ? tr("Cancelled: the models fitted before are shown") : (ok ? tr("done") : m_lastError));
+            m_stage->setText(cancelled ? tr("Cancelled: the models fitted before are shown")
+                                       : (ok ? tr("done: stored with session %1").arg(trainingSessions().value(0)) : m_lastError));
             emit fitsFinished(ok);
         }, Qt::QueuedConnection);
     });
@@ -470,105 +569,6 @@ void AnalysisPanel::cancel()
 {
     m_job.cancel();
     m_stage->setText(tr("Cancelling..."));
-}
-
-void AnalysisPanel::showSelection()
-{
-    const QJsonArray perK = m_selection.value(QStringLiteral("silhouettes")).toArray();
-    m_silhouettes->setRowCount(perK.size());
-    const int chosenK = m_selection.value(QStringLiteral("k")).toInt();
-    for (int i = 0; i < perK.size(); ++i) {
-        const QJsonObject e = perK[i].toObject();
-        const int k = e.value(QStringLiteral("k")).toInt();
-        m_silhouettes->setItem(i, 0, item(k == chosenK ? QStringLiteral("%1 (chosen)").arg(k) : QString::number(k)));
-        m_silhouettes->setItem(i, 1, item(number(e.value(QStringLiteral("silhouette")).toDouble())));
-    }
-    const QJsonArray channels = m_selection.value(QStringLiteral("channels")).toArray();
-    m_channels->setRowCount(channels.size());
-    for (int i = 0; i < channels.size(); ++i) {
-        const QJsonObject c = channels[i].toObject();
-        m_channels->setItem(i, 0, item(c.value(QStringLiteral("channel")).toString()));
-        m_channels->setItem(i, 1, item(QString::number(c.value(QStringLiteral("cluster")).toInt())));
-        m_channels->setItem(i, 2, item(number(c.value(QStringLiteral("grade")).toDouble())));
-        m_channels->setItem(i, 3, item(number(c.value(QStringLiteral("correlation")).toDouble())));
-        m_channels->setItem(i, 4, item(c.value(QStringLiteral("chosen")).toBool() ? tr("yes") : QString()));
-    }
-    m_silhouettes->resizeColumnsToContents();
-    m_channels->resizeColumnsToContents();
-    while (m_selectionPlots->count() > 0) {
-        QWidget *w = m_selectionPlots->widget(0);
-        m_selectionPlots->removeTab(0);
-        delete w;
-    }
-    const QStringList titles{tr("Grades"), tr("Clusters"), tr("Chosen points over time")};
-    const QStringList views = AnalysisPlots::selectionViews();
-    for (int i = 0; i < views.size(); ++i) {
-        try {
-            m_selectionPlots->addTab(AnalysisPlots::selectionPlot(views[i], m_selection, m_store, m_selectionSession).release(), titles[i]);
-        } catch (const std::exception &e) {
-            m_selectionPlots->addTab(new QLabel(QString::fromUtf8(e.what())), titles[i]);
-        }
-    }
-    m_tabs->setCurrentIndex(0);
-}
-
-void AnalysisPanel::showModels()
-{
-    m_table->setRowCount(static_cast<int>(m_rows.size()));
-    int best = -1;
-    double bestRmse = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < static_cast<int>(m_rows.size()); ++i) {
-        const ModelRow &r = m_rows[static_cast<std::size_t>(i)];
-        m_table->setItem(i, 0, item(r.model));
-        if (!r.result) {
-            for (int c = 1; c < 9; ++c)
-                m_table->setItem(i, c, item(QString()));
-            m_table->setItem(i, 9, item(r.error));
-            continue;
-        }
-        const DataDrivenFitResult &f = *r.result;
-        QStringList inputs;
-        for (const ModelChannel &c : f.model.inputs)
-            inputs << QString::fromStdString(c.id);
-        m_table->setItem(i, 1, item(inputs.join(QStringLiteral(", "))));
-        m_table->item(i, 1)->setToolTip(inputs.join(QStringLiteral(", ")));
-        m_table->setItem(i, 2, item(number(f.training.metrics.rmse)));
-        m_table->setItem(i, 3, item(number(f.cvRmse)));
-        const double nan = std::numeric_limits<double>::quiet_NaN();
-        const ErrorMetrics *h = f.holdout ? &f.holdout->metrics : nullptr;
-        m_table->setItem(i, 4, item(number(h ? h->rmse : nan)));
-        m_table->setItem(i, 5, item(number(h ? h->mae : nan)));
-        m_table->setItem(i, 6, item(number(h ? h->maxAbs : nan, 2)));
-        m_table->setItem(i, 7, item(number(h ? h->fittingDegree_pct : nan, 1)));
-        m_table->setItem(i, 8, item(number(f.wallTime_s, 2)));
-        m_table->setItem(i, 9, item(f.selection ? tr("sensitive points: %1").arg(inputs.join(QStringLiteral(", "))) : QString()));
-        const double score = h ? h->rmse : f.cvRmse;
-        if (std::isfinite(score) && score < bestRmse) {
-            bestRmse = score;
-            best = i;
-        }
-    }
-    m_table->resizeColumnsToContents();
-    // A long input list is elided (the full list is the cell's tooltip), not widening the table.
-    m_table->setColumnWidth(1, std::min(m_table->columnWidth(1), m_table->fontMetrics().horizontalAdvance(QLatin1Char('x')) * 28));
-    if (best >= 0)
-        m_table->selectRow(best);
-    showModel(best);
-}
-
-void AnalysisPanel::showModel(int row)
-{
-    if (row < 0 || row >= static_cast<int>(m_rows.size()) || !m_rows[static_cast<std::size_t>(row)].result) {
-        m_prediction->clearCurves();
-        m_residual->clearCurves();
-        return;
-    }
-    const DataDrivenFitResult &f = *m_rows[static_cast<std::size_t>(row)].result;
-    const ValidationSeries *holdout = f.holdout ? &*f.holdout : nullptr;
-    AnalysisPlots::showPrediction(*m_prediction, f.training, holdout);
-    AnalysisPlots::showResidual(*m_residual, f.training, holdout);
-    m_prediction->setTitle(tr("%1 model of %2: measured and predicted").arg(m_rows[static_cast<std::size_t>(row)].model,
-                                                                           QString::fromStdString(f.model.target.id)));
 }
 
 bool AnalysisPanel::saveModel(int row, const QString &path)

@@ -24,6 +24,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace driftlab {
 
@@ -301,6 +302,35 @@ void AnalysisPlots::showResidual(TimeSeriesPlot &plot, const ValidationSeries &t
     plot.addCurve(QObject::tr("residual (training)"), vec(training.t), vec(residual(training)), false);
     if (holdout)
         plot.addCurve(QObject::tr("residual (held out)"), vec(holdout->t), vec(residual(*holdout)), false);
+    plot.setAxisTitles(QObject::tr("measured - predicted (µm)"), QString());
+    plot.enableAxis(QwtPlot::yRight, false);
+    plot.zoomToData();
+}
+
+void AnalysisPlots::showSeries(TimeSeriesPlot &plot, const ValidationSeries &series, const QString &label)
+{
+    plot.clearCurves();
+    const bool points = !series.position_mm.empty();
+    for (const auto &[title, values] : {std::pair<QString, const std::vector<double> *>{QObject::tr("measured (%1)").arg(label), &series.measured},
+                                        {QObject::tr("predicted (%1)").arg(label), &series.predicted}}) {
+        QwtPlotCurve *c = plot.addCurve(title, vec(series.t), vec(*values), false);
+        if (points) {
+            c->setStyle(QwtPlotCurve::NoCurve);
+            c->setSymbol(new QwtSymbol(QwtSymbol::Ellipse, QBrush(c->pen().color()), QPen(c->pen().color()), QSize(4, 4)));
+        }
+    }
+    plot.setAxisTitles(QObject::tr("thermal error (µm)"), QString());
+    plot.enableAxis(QwtPlot::yRight, false);
+    plot.zoomToData();
+}
+
+void AnalysisPlots::showSeriesResidual(TimeSeriesPlot &plot, const ValidationSeries &series, const QString &label)
+{
+    plot.clearCurves();
+    std::vector<double> r(series.measured.size());
+    for (std::size_t i = 0; i < r.size(); ++i)
+        r[i] = series.measured[i] - series.predicted[i];
+    plot.addCurve(QObject::tr("residual (%1)").arg(label), vec(series.t), vec(r), false);
     plot.setAxisTitles(QObject::tr("measured - predicted (µm)"), QString());
     plot.enableAxis(QwtPlot::yRight, false);
     plot.zoomToData();

@@ -34,6 +34,10 @@ public:
     // Measured and predicted over time (a marker where the held-out part starts) / residual.
     static void showPrediction(TimeSeriesPlot &plot, const ValidationSeries &training, const ValidationSeries *holdout);
     static void showResidual(TimeSeriesPlot &plot, const ValidationSeries &training, const ValidationSeries *holdout);
+    // One session's measured and predicted series / residual, the curves named by `label`
+    // ("training #3", "held-out #5").
+    static void showSeries(TimeSeriesPlot &plot, const ValidationSeries &series, const QString &label);
+    static void showSeriesResidual(TimeSeriesPlot &plot, const ValidationSeries &series, const QString &label);
 };
 
 } // namespace driftlab

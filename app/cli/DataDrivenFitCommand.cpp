@@ -6,6 +6,8 @@
 #include "SessionArgument.h"
 #include "FitRequestCheck.h"
 #include "DataDrivenFit.h"
+#include "DataDrivenFitRecord.h"
+#include "ExtrapolationWarning.h"
 #include "DataDrivenModelJson.h"
 #include "SessionStore.h"
 
@@ -190,25 +192,11 @@ int DataDrivenFitCommand::run(const QStringList &args)
     }
     QJsonObject doc = r.document;
     doc.insert(QStringLiteral("database"), path);
-    for (const ValidationSeries &v : r.holdoutSessions)
-        for (int i = 0; i < v.extrapolated.size(); ++i)
-            CliSupport::progress(QStringLiteral("warning: extrapolation: held-out session %1: %2 leaves the training range "
-                                                "(+- margin) on %3 % of the samples")
-                                     .arg(v.session)
-                                     .arg(v.extrapolated[i])
-                                     .arg(100.0 * v.extrapolatedFraction[static_cast<std::size_t>(i)], 0, 'f', 1));
+    for (const QString &w : ExtrapolationWarning::lines(r.holdoutSessions, QStringLiteral("held-out session")))
+        CliSupport::progress(QStringLiteral("warning: %1").arg(w));
     DataDrivenModelJson::write(doc, p.value(out));
 
-    FittedModel fm;
-    fm.model = QStringLiteral("driftlab-model/%1").arg(QString::fromStdString(r.model.kind));
-    fm.parameters = DataDrivenModelJson::toJson(r.model);
-    fm.uncertainties = doc.value(QStringLiteral("uncertainties")).toObject();
-    fm.provenance = QJsonObject{{QStringLiteral("training"), doc.value(QStringLiteral("training"))},
-                                {QStringLiteral("hyperparameters"), doc.value(QStringLiteral("hyperparameters"))},
-                                {QStringLiteral("file"), QFileInfo(p.value(out)).absoluteFilePath()},
-                                {QStringLiteral("software"), QStringLiteral("driftlab-cli " DRIFTLAB_VERSION)}};
-    fm.metrics = doc.value(QStringLiteral("metrics")).toObject();
-    store.addFittedModel(q.session, fm);
+    DataDrivenFitRecord::store(store, r, doc, DataDrivenFitRecord::Face::Cli, p.value(out));
 
     if (p.isSet(json)) {
         QJsonObject result = doc;

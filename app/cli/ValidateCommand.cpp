@@ -5,6 +5,7 @@
 #include "FitRequestCheck.h"
 #include "OutputTarget.h"
 #include "SessionArgument.h"
+#include "ExtrapolationWarning.h"
 #include "DataDrivenFit.h"
 #include "DataDrivenFitCommand.h"
 #include "DataDrivenModelJson.h"
@@ -65,13 +66,8 @@ int ValidateCommand::run(const QStringList &args)
     } catch (const std::invalid_argument &e) {
         throw UsageError(QStringLiteral("%1: %2").arg(cmd, QString::fromUtf8(e.what())));
     }
-    for (const ValidationSeries &s : v.sessions)
-        for (int i = 0; i < s.extrapolated.size(); ++i)
-            CliSupport::progress(QStringLiteral("warning: extrapolation: session %1: %2 leaves the training range (+- margin) "
-                                                "on %3 % of the samples")
-                                     .arg(s.session)
-                                     .arg(s.extrapolated[i])
-                                     .arg(100.0 * s.extrapolatedFraction[static_cast<std::size_t>(i)], 0, 'f', 1));
+    for (const QString &w : ExtrapolationWarning::lines(v.sessions, QStringLiteral("session")))
+        CliSupport::progress(QStringLiteral("warning: %1").arg(w));
     // The layout of fit --json: metrics.holdout is the validation set.
     QJsonObject result{{QStringLiteral("model"), QString::fromStdString(model.kind)},
                        {QStringLiteral("model_file"), p.positionalArguments().at(0)},
