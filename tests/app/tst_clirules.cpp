@@ -557,6 +557,19 @@ void TestCliRules::exportModelOntoAFullDiskLeavesNothing()
     QCOMPARE(r.code, 1);
     QCOMPARE(entries(mountPoint), QStringList());
     QVERIFY2(r.err.contains("driftlab-cli export-model: cannot write " + out.toUtf8()) && r.err.contains("(nothing was left)"), r.err.constData());
+    // A small file onto a disk with no page left: before, QSaveFile committed it empty (the
+    // failed buffered write went unseen) and the command exited 0.
+    QFile filler(mountPoint + QStringLiteral("/filler"));
+    QVERIFY(filler.open(QIODevice::WriteOnly));
+    while (filler.write(QByteArray(4096, 'x')) == 4096 && filler.flush()) {
+    }
+    filler.close();
+    const QString json = mountPoint + QStringLiteral("/summary.json");
+    const clirunner::Result small = run({QStringLiteral("export-model"), m_ddModel, QStringLiteral("--target"), QStringLiteral("csv"),
+                                         QStringLiteral("--out"), path(QStringLiteral("small-tables")), QStringLiteral("--json"), json});
+    QCOMPARE(small.code, 1);
+    QVERIFY2(small.err.contains("cannot write " + json.toUtf8()), small.err.constData());
+    QCOMPARE(entries(mountPoint), QStringList{QStringLiteral("filler")});
 }
 
 void TestCliRules::oneSessionArgumentParser()
