@@ -2,6 +2,7 @@
 
 #include "JsonFields.h"
 #include "OffsetRegisterMap.h"
+#include "RigJsonBinder.h"
 
 #include "RealDevices.h"
 
@@ -11,8 +12,6 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 
-#include <functional>
-#include <limits>
 #include <stdexcept>
 
 // Q_INIT_RESOURCE must be used outside a namespace.
@@ -24,174 +23,7 @@ static void initRigResources()
 namespace driftlab {
 
 namespace {
-constexpr double kBig = std::numeric_limits<double>::max();
-
-// Reads a JSON object into a struct or writes the struct into a JSON object, with one
-// description of the fields (so reader, writer and defaults cannot drift apart).
-class Binder {
-public:
-    Binder(bool reading, QString source) : m_reading(reading), m_source(std::move(source)) {}
-    bool reading() const { return m_reading; }
-    QJsonObject &current() { return m_stack.back(); }
-
-    [[noreturn]] void fail(const QString &key, const QString &what, bool pathInMessage = false) const
-    {
-        if (pathInMessage)
-            throw std::invalid_argument(QStringLiteral("%1: %2").arg(m_source, what).toStdString());
-        throw std::invalid_argument(QStringLiteral("%1: %2: %3").arg(m_source, path(key), what).toStdString());
-    }
-    QString path(const QString &key) const
-    {
-        QStringList p;
-        for (const QString &part : m_path)
-            if (!part.isEmpty())
-                p << part;
-        if (!key.isEmpty())
-            p << key;
-        return p.isEmpty() ? QStringLiteral("(top level)") : p.join(QLatin1Char('.'));
-    }
-    static QString shown(const QJsonValue &v)
-    {
-        if (v.isString())
-            return QStringLiteral("\"%1\"").arg(v.toString());
-        QJsonArray a{v};
-        const QString s = QString::fromUtf8(QJsonDocument(a).toJson(QJsonDocument::Compact));
-        return s.mid(1, s.size() - 2);
-    }
-    bool has(const char *key)
-    {
-        const QString k = QString::fromLatin1(key);
-        m_used.back() << k;
-        return current().contains(k);
-    }
-    QJsonValue get(const char *key) { return current().value(QString::fromLatin1(key)); }
-
-    void num(const char *key, double &v, double lo = -kBig, double hi = kBig)
-    {
-        const QString k = QString::fromLatin1(key);
-        if (!m_reading) {
-            current().insert(k, v);
-            return;
-        }
-        if (!has(key))
-            return;
-        const QJsonValue j = get(key);
-        if (!j.isDouble() || j.toDouble() < lo || j.toDouble() > hi)
-            fail(k, lo == -kBig && hi == kBig ? QStringLiteral("expected a number, got %1").arg(shown(j))
-                                              : QStringLiteral("expected a number in [%1, %2], got %3")
-                                                    .arg(lo == -kBig ? QStringLiteral("-inf") : QString::number(lo))
-                                                    .arg(hi == kBig ? QStringLiteral("inf") : QString::number(hi))
-                                                    .arg(shown(j)));
-        v = j.toDouble();
-    }
-    void positive(const char *key, double &v) { num(key, v, std::numeric_limits<double>::min(), kBig); }
-    void nonNegative(const char *key, double &v) { num(key, v, 0.0, kBig); }
-    void integer(const char *key, int &v, int lo, int hi)
-    {
-        double d = v;
-        num(key, d, lo, hi);
-        if (m_reading && d != static_cast<int>(d))
-            fail(QString::fromLatin1(key), QStringLiteral("expected an integer, got %1").arg(d));
-        v = static_cast<int>(d);
-    }
-    void boolean(const char *key, bool &v)
-    {
-        if (!m_reading) {
-            current().insert(QString::fromLatin1(key), v);
-            return;
-        }
-        if (!has(key))
-            return;
-        const QJsonValue j = get(key);
-        if (!j.isBool())
-            fail(QString::fromLatin1(key), QStringLiteral("expected true or false, got %1").arg(shown(j)));
-        v = j.toBool();
-    }
-    void str(const char *key, QString &v)
-    {
-        if (!m_reading) {
-            current().insert(QString::fromLatin1(key), v);
-            return;
-        }
-        if (!has(key))
-            return;
-        const QJsonValue j = get(key);
-        if (!j.isString() || j.toString().isEmpty())
-            fail(QString::fromLatin1(key), QStringLiteral("expected a non-empty string, got %1").arg(shown(j)));
-        v = j.toString();
-    }
-    void numbers(const char *key, QVector<double> &v, int minCount, int maxCount)
-    {
-        const QString k = QString::fromLatin1(key);
-        if (!m_reading) {
-            QJsonArray a;
-            for (double d : v)
-                a.append(d);
-            current().insert(k, a);
-            return;
-        }
-        if (!has(key))
-            return;
-        const QJsonValue j = get(key);
-        if (!j.isArray() || j.toArray().size() < minCount || j.toArray().size() > maxCount)
-            fail(k, QStringLiteral("expected an array of %1..%2 numbers, got %3").arg(minCount).arg(maxCount).arg(shown(j)));
-        v.clear();
-        const QJsonArray a = j.toArray();
-        for (int i = 0; i < a.size(); ++i) {
-            if (!a[i].isDouble())
-                fail(QStringLiteral("%1[%2]").arg(k).arg(i), QStringLiteral("expected a number, got %1").arg(shown(a[i])));
-            v.push_back(a[i].toDouble());
-        }
-    }
-    // Object member: body() binds its fields.
-    void object(const char *key, const std::function<void()> &body)
-    {
-        const QString k = QString::fromLatin1(key);
-        if (m_reading) {
-            if (!has(key))
-                return;
-            const QJsonValue j = get(key);
-            if (!j.isObject())
-                fail(k, QStringLiteral("expected an object, got %1").arg(shown(j)));
-            enter(k, j.toObject());
-            body();
-            leave();
-        } else {
-            enter(k, QJsonObject());
-            body();
-            const QJsonObject o = m_stack.back();
-            leave();
-            current().insert(k, o);
-        }
-    }
-    void enter(const QString &name, const QJsonObject &o)
-    {
-        m_path << name;
-        m_stack.push_back(o);
-        m_used.push_back(QStringList());
-    }
-    // Leaves the object; when reading, unknown keys are errors.
-    void leave()
-    {
-        if (m_reading) {
-            const QStringList keys = m_stack.back().keys();
-            for (const QString &k : keys)
-                if (!m_used.back().contains(k))
-                    fail(k, QStringLiteral("unknown key"));
-        }
-        m_path.removeLast();
-        m_stack.pop_back();
-        m_used.pop_back();
-    }
-    void markUsed(const char *key) { m_used.back() << QString::fromLatin1(key); }
-
-private:
-    bool m_reading;
-    QString m_source;
-    QStringList m_path;
-    QVector<QJsonObject> m_stack;
-    QVector<QStringList> m_used;
-};
+using Binder = RigJsonBinder;
 
 void bindNode(Binder &b, const char *key, RigNode &n)
 {
@@ -242,20 +74,13 @@ void bindProgramme(Binder &b, RigConfig &c)
             c.program = FeedProgram::seed000Table2(feed, lo, hi);
             return;
         }
-        const QJsonValue pv = b.get("phases");
-        if (!pv.isArray() || pv.toArray().isEmpty())
-            b.fail(QStringLiteral("phases"), QStringLiteral("expected a non-empty array of phases"));
         QVector<FeedPhase> phases;
-        const QJsonArray a = pv.toArray();
-        for (int i = 0; i < a.size(); ++i) {
-            const QString key = QStringLiteral("phases[%1]").arg(i);
-            if (!a[i].isObject())
-                b.fail(key, QStringLiteral("expected an object"));
+        b.eachObject("phases", QStringLiteral("phases"), true, [&](const QString &key, const QJsonObject &item) {
             FeedPhase p;
             p.travelLow_mm = c.travelLow_mm;
             p.travelHigh_mm = c.travelHigh_mm;
-            p.name = QStringLiteral("phase %1").arg(i + 1);
-            b.enter(key, a[i].toObject());
+            p.name = QStringLiteral("phase %1").arg(phases.size() + 1);
+            b.enter(key, item);
             b.str("name", p.name);
             p.duration_s = -1.0;
             b.num("duration_s", p.duration_s, 0.0, 1e7);
@@ -265,7 +90,7 @@ void bindProgramme(Binder &b, RigConfig &c)
             bindTravel(b, p.travelLow_mm, p.travelHigh_mm);
             b.leave();
             phases.push_back(p);
-        }
+        });
         c.program = FeedProgram(phases);
     });
 }
@@ -288,18 +113,11 @@ void bindSensors(Binder &b, RigConfig &c)
             }
             b.current().insert(QStringLiteral("pt100"), a);
         } else if (b.has("pt100")) {
-            const QJsonValue v = b.get("pt100");
-            if (!v.isArray())
-                b.fail(QStringLiteral("pt100"), QStringLiteral("expected an array of channels"));
             c.pt100.clear();
-            const QJsonArray a = v.toArray();
             QStringList ids;
-            for (int i = 0; i < a.size(); ++i) {
-                const QString key = QStringLiteral("pt100[%1]").arg(i);
-                if (!a[i].isObject())
-                    b.fail(key, QStringLiteral("expected an object"));
+            b.eachObject("pt100", QStringLiteral("channels"), false, [&](const QString &key, const QJsonObject &item) {
                 Pt100Config p;
-                b.enter(key, a[i].toObject());
+                b.enter(key, item);
                 b.str("id", p.id);
                 b.str("location", p.location);
                 if (p.id.isEmpty() || p.location.isEmpty())
@@ -314,7 +132,7 @@ void bindSensors(Binder &b, RigConfig &c)
                 b.integer("dropout_max_samples", p.dropoutMaxSamples, 1, 1000000);
                 b.leave();
                 c.pt100.push_back(p);
-            }
+            });
         }
         b.object("probe", [&] {
             b.boolean("enabled", c.probe.enabled);
@@ -375,17 +193,10 @@ void bindDevices(Binder &b, RigConfig &c)
     }
     if (!b.has("devices"))
         return;
-    const QJsonValue v = b.get("devices");
-    if (!v.isArray() || v.toArray().isEmpty())
-        b.fail(QStringLiteral("devices"), QStringLiteral("expected a non-empty array of devices"));
-    const QJsonArray a = v.toArray();
     QStringList ids;
     int camera = -1;
-    for (int i = 0; i < a.size(); ++i) {
-        const QString key = QStringLiteral("devices[%1]").arg(i);
-        if (!a[i].isObject())
-            b.fail(key, QStringLiteral("expected an object"));
-        QJsonObject o = a[i].toObject();
+    b.eachObject("devices", QStringLiteral("devices"), true, [&](const QString &key, const QJsonObject &item) {
+        QJsonObject o = item;
         DeviceConfig d;
         const QJsonValue id = o.take(QStringLiteral("id"));
         const QJsonValue type = o.take(QStringLiteral("type"));
@@ -404,7 +215,7 @@ void bindDevices(Binder &b, RigConfig &c)
             if (camera >= 0)
                 b.fail(key + QStringLiteral(".type"),
                        QStringLiteral("only one infrared camera per rig (a session has one infrared calibration); devices[%1] is one").arg(camera));
-            camera = i;
+            camera = ids.size() - 1;
         }
         try {
             RealDevices::validate(d.type, d.settings, b.path(key));
@@ -412,7 +223,7 @@ void bindDevices(Binder &b, RigConfig &c)
             b.fail(QString(), QString::fromUtf8(e.what()), true);
         }
         c.devices.push_back(d);
-    }
+    });
 }
 
 void bindCompensationServer(Binder &b, RigConfig &c)

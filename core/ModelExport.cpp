@@ -4,6 +4,7 @@
 #include "ModelExportWriter.h"
 
 #include <QDir>
+#include <QFile>
 #include <QFileInfo>
 #include <QJsonArray>
 
@@ -19,20 +20,30 @@ qint64 ModelExport::Result::bytes() const
     return n;
 }
 
-ModelExport::Result ModelExport::prepare(const Request &q, const Progress &progress) const
+void ModelExport::check(const Request &q) const
 {
-    const ModelExporter *exporter = m_registry.find(q.target.toStdString());
-    if (!exporter)
+    if (!m_registry.find(q.target.toStdString()))
         throw std::invalid_argument(QStringLiteral("--target: unknown target '%1' (known: %2)")
                                         .arg(q.target, QString::fromStdString(m_registry.names()))
                                         .toStdString());
-    if (progress && !progress(QStringLiteral("reading %1").arg(q.modelPath)))
+    const QString name = QString::fromStdString(q.options.baseName);
+    if (name.isEmpty() || name.contains(QLatin1Char('/')))
+        throw std::invalid_argument(QStringLiteral("--name must be a plain file name, got '%1'").arg(name).toStdString());
+}
+
+ModelExport::Result ModelExport::prepare(const Request &q, const Progress &progress) const
+{
+    check(q);
+    const ModelExporter *exporter = m_registry.find(q.target.toStdString());
+    const QString from = q.stored ? q.stored->source : q.modelPath;
+    if (progress && !progress(QStringLiteral("reading %1").arg(from)))
         throw Cancelled();
-    const ExportableModel model = ExportableModelJson::read(q.modelPath);
+    const ExportableModel model = q.stored ? ExportableModelJson::fromStored(q.stored->model, q.stored->machine, q.stored->source)
+                                           : ExportableModelJson::read(q.modelPath);
     if (progress && !progress(QStringLiteral("exporting for %1").arg(q.target)))
         throw Cancelled();
     Result r;
-    r.modelPath = q.modelPath;
+    r.modelPath = from;
     r.kind = QString::fromStdString(model.kind());
     r.target = QString::fromStdString(exporter->name());
     r.source = QString::fromStdString(exporter->reference());
@@ -44,14 +55,27 @@ void ModelExport::write(Result &r, const QString &folder, const Progress &progre
 {
     if (progress && !progress(QStringLiteral("writing %1 file(s) into %2").arg(r.exported.files.size()).arg(folder)))
         throw Cancelled();
-    // Each file is written whole (QSaveFile); a folder this export made is not left half-filled.
+    // Each file is written whole (QSaveFile); a failed export leaves nothing it added: a folder
+    // it made is removed, files it added to an existing folder are deleted (a file it replaced
+    // keeps its new, whole content).
     const bool existed = QFileInfo::exists(folder);
+    QStringList added;
+    for (const ExportFile &f : r.exported.files) {
+        const QString path = QDir(folder).filePath(QString::fromStdString(f.name));
+        if (!QFileInfo::exists(path))
+            added << path;
+    }
     try {
         r.paths = ModelExportWriter::write(r.exported, folder);
     } catch (const std::runtime_error &e) {
         if (!existed)
             QDir(folder).removeRecursively();
-        throw std::runtime_error(std::string(e.what()) + (existed ? "" : " (nothing was left)"));
+        else
+            for (const QString &path : added)
+                QFile::remove(path);
+        const bool replaced = added.size() != static_cast<int>(r.exported.files.size());
+        throw std::runtime_error(std::string(e.what()) +
+                                 (replaced ? " (the files it added were removed)" : " (nothing was left)"));
     }
 }
 

@@ -1,34 +1,48 @@
 #pragma once
-// Exporting a fitted model (MODEL.json, ExportableModelJson) for a CNC controller as one use
-// case, run the same way by `driftlab-cli export-model` and the GUI's Export dialog, in two
-// steps so that a face can show or bound what will be written before anything is:
-//   prepare(): reads the model and runs the target's exporter in memory (no file touched);
-//              an unknown target or a bad model throws std::invalid_argument naming the file
-//              and field, a model the target cannot express throws ExportRefused.
+// Exporting a fitted model (MODEL.json or a model stored with a session, ExportableModelJson)
+// for a CNC controller as one use case, run the same way by `driftlab-cli export-model` and the
+// GUI's Export dialog (ModelExportDialog), in two steps so that a face can show or bound what
+// will be written before anything is:
+//   check():   the request alone (no file read): an unknown target or a base name that is not a
+//              plain file name throws std::invalid_argument naming the option (--target, --name).
+//   prepare(): check(), reads the model and runs the target's exporter in memory (no file
+//              touched); a bad model throws std::invalid_argument naming the file and field, a
+//              model the target cannot express throws ExportRefused.
 //   write():   writes the files into the folder (created if missing), each atomically
-//              (ModelExportWriter); std::runtime_error naming the file on failure.
+//              (ModelExportWriter); on failure std::runtime_error naming the file, and nothing
+//              this call added is left (a folder it made is removed, files it added deleted).
 // run() does both. A progress callback returning false cancels before the files are written
 // (ExportCancelled: nothing written). summaryJson() is the --json summary the CLI prints.
 
 #include "ExportableModel.h"
 #include "ModelExporter.h"
 #include "ModelExporterRegistry.h"
+#include "StorageTypes.h"
 
 #include <QJsonObject>
 #include <QString>
 #include <QStringList>
 
 #include <functional>
+#include <optional>
 #include <stdexcept>
 
 namespace driftlab {
 
 class ModelExport {
 public:
+    // A fitted model stored with a session (SessionStore::fittedModels), with the session's
+    // machine block (the screw of a seed-000 model) and its name in errors ("session 3, model 7").
+    struct StoredModel {
+        FittedModel model;
+        QJsonObject machine;
+        QString source;
+    };
     struct Request {
-        QString modelPath; // MODEL.json
+        QString modelPath; // MODEL.json (ignored when `stored` is set)
         QString target;    // an exporter name (ModelExporterRegistry)
         ExportOptions options;
+        std::optional<StoredModel> stored = std::nullopt;
     };
     struct Result {
         QString modelPath;
@@ -47,6 +61,7 @@ public:
 
     const ModelExporterRegistry &registry() const { return m_registry; }
 
+    void check(const Request &request) const;
     Result prepare(const Request &request, const Progress &progress = {}) const;
     void write(Result &result, const QString &folder, const Progress &progress = {}) const;
     Result run(const Request &request, const QString &folder, const Progress &progress = {}) const;

@@ -1,5 +1,6 @@
 #include "CentralSchema.h"
 
+#include "SqlTransaction.h"
 #include "StorageError.h"
 
 #include <QSqlError>
@@ -236,34 +237,25 @@ void CentralSchema::install(QSqlDatabase &db)
                                .toStdString());
     if (have == currentVersion())
         return;
-    if (!db.transaction())
-        throw StorageError(QStringLiteral("%1: cannot begin: %2").arg(db.databaseName(), db.lastError().text()).toStdString());
-    try {
-        QSqlQuery q(db);
-        if (!q.exec(QStringLiteral("SELECT quote_ident(current_schema())")) || !q.next())
-            throw StorageError(QStringLiteral("%1: cannot read the schema name: %2").arg(db.databaseName(), q.lastError().text()).toStdString());
-        const QString schema = q.value(0).toString();
-        q.finish();
-        for (QString s : statements())
-            exec(db, s.replace(QStringLiteral("@S@"), schema));
-        for (const char *table : {"channels", "ir_frames", "interferometer_points", "events", "fitted_models", "analysis_results"})
-            exec(db, QStringLiteral("CREATE TRIGGER driftlab_guard BEFORE INSERT OR UPDATE OR DELETE ON %1 FOR EACH ROW "
-                                    "EXECUTE FUNCTION driftlab_guard_session_rows()")
-                         .arg(QLatin1String(table)));
-        for (const char *table : {"sample_blocks", "sample_levels", "samples"})
-            exec(db, QStringLiteral("CREATE TRIGGER driftlab_guard BEFORE INSERT OR UPDATE OR DELETE ON %1 FOR EACH ROW "
-                                    "EXECUTE FUNCTION driftlab_guard_channel_rows()")
-                         .arg(QLatin1String(table)));
-        exec(db, QStringLiteral("CREATE TABLE driftlab_central_schema (version INTEGER NOT NULL)"));
-        exec(db, QStringLiteral("INSERT INTO driftlab_central_schema(version) VALUES (%1)").arg(currentVersion()));
-    } catch (...) {
-        db.rollback();
-        throw;
-    }
-    if (!db.commit())
-        throw StorageError(QStringLiteral("%1: the central store's ownership rules failed to commit: %2")
-                               .arg(db.databaseName(), db.lastError().text())
-                               .toStdString());
+    SqlTransaction tx(db, QStringLiteral("cannot begin"));
+    QSqlQuery q(db);
+    if (!q.exec(QStringLiteral("SELECT quote_ident(current_schema())")) || !q.next())
+        throw StorageError(QStringLiteral("%1: cannot read the schema name: %2").arg(db.databaseName(), q.lastError().text()).toStdString());
+    const QString schema = q.value(0).toString();
+    q.finish();
+    for (QString s : statements())
+        exec(db, s.replace(QStringLiteral("@S@"), schema));
+    for (const char *table : {"channels", "ir_frames", "interferometer_points", "events", "fitted_models", "analysis_results"})
+        exec(db, QStringLiteral("CREATE TRIGGER driftlab_guard BEFORE INSERT OR UPDATE OR DELETE ON %1 FOR EACH ROW "
+                                "EXECUTE FUNCTION driftlab_guard_session_rows()")
+                     .arg(QLatin1String(table)));
+    for (const char *table : {"sample_blocks", "sample_levels", "samples"})
+        exec(db, QStringLiteral("CREATE TRIGGER driftlab_guard BEFORE INSERT OR UPDATE OR DELETE ON %1 FOR EACH ROW "
+                                "EXECUTE FUNCTION driftlab_guard_channel_rows()")
+                     .arg(QLatin1String(table)));
+    exec(db, QStringLiteral("CREATE TABLE driftlab_central_schema (version INTEGER NOT NULL)"));
+    exec(db, QStringLiteral("INSERT INTO driftlab_central_schema(version) VALUES (%1)").arg(currentVersion()));
+    tx.commit(QStringLiteral("the central store's ownership rules failed to commit"));
 }
 
 } // namespace driftlab

@@ -1,6 +1,7 @@
 #include "SchemaMigrator.h"
 
 #include "CentralSchema.h"
+#include "SqlTransaction.h"
 #include "StorageError.h"
 
 #include <QSqlError>
@@ -215,51 +216,38 @@ void SchemaMigrator::migrateLocked(QSqlDatabase &db, const DataStep &dataStep)
                                .arg(currentVersion())
                                .toStdString());
     for (int v = have; v < currentVersion(); ++v) {
-        if (!db.transaction())
-            throw StorageError(QStringLiteral("%1: cannot begin migration: %2")
-                                   .arg(db.databaseName(), db.lastError().text())
-                                   .toStdString());
-        try {
-            // QSqlQuery runs one statement at a time.
-            const bool pg = isPostgres(db);
-            const QString ddl = pg ? forPostgres(migrations().at(v)) : migrations().at(v);
-            const QStringList statements = ddl.split(QLatin1Char(';'), Qt::SkipEmptyParts);
-            for (const QString &s : statements) {
-                if (!s.trimmed().isEmpty())
-                    exec(db, s);
-            }
-            if (dataStep)
-                dataStep(v + 1);
-            if (!pg) {
-                exec(db, QStringLiteral("PRAGMA user_version = %1").arg(v + 1));
-            } else {
-                // Sample blocks, mipmap rows and frames are compressed by DriftLab already (or do
-                // not compress): the server stores them out of line without compressing again
-                // (pglz on every block would cost more than sending it).
-                QSqlQuery cols(db);
-                if (!cols.exec(QStringLiteral("SELECT table_name, column_name FROM information_schema.columns "
-                                              "WHERE table_schema = current_schema() AND data_type = 'bytea'")))
-                    throw StorageError(QStringLiteral("%1: cannot list bytea columns: %2").arg(db.databaseName(), cols.lastError().text()).toStdString());
-                QStringList alter;
-                while (cols.next())
-                    alter << QStringLiteral("ALTER TABLE %1 ALTER COLUMN %2 SET STORAGE EXTERNAL").arg(cols.value(0).toString(), cols.value(1).toString());
-                for (const QString &a : alter)
-                    exec(db, a);
-                if (v == 0)
-                    exec(db, QStringLiteral("CREATE TABLE driftlab_schema (version INTEGER NOT NULL)"));
-                exec(db, QStringLiteral("DELETE FROM driftlab_schema"));
-                exec(db, QStringLiteral("INSERT INTO driftlab_schema(version) VALUES (%1)").arg(v + 1));
-            }
-        } catch (...) {
-            db.rollback();
-            throw;
+        SqlTransaction tx(db, QStringLiteral("cannot begin migration"));
+        // QSqlQuery runs one statement at a time.
+        const bool pg = isPostgres(db);
+        const QString ddl = pg ? forPostgres(migrations().at(v)) : migrations().at(v);
+        const QStringList statements = ddl.split(QLatin1Char(';'), Qt::SkipEmptyParts);
+        for (const QString &s : statements) {
+            if (!s.trimmed().isEmpty())
+                exec(db, s);
         }
-        if (!db.commit())
-            throw StorageError(QStringLiteral("%1: migration to version %2 failed to commit: %3")
-                                   .arg(db.databaseName())
-                                   .arg(v + 1)
-                                   .arg(db.lastError().text())
-                                   .toStdString());
+        if (dataStep)
+            dataStep(v + 1);
+        if (!pg) {
+            exec(db, QStringLiteral("PRAGMA user_version = %1").arg(v + 1));
+        } else {
+            // Sample blocks, mipmap rows and frames are compressed by DriftLab already (or do
+            // not compress): the server stores them out of line without compressing again
+            // (pglz on every block would cost more than sending it).
+            QSqlQuery cols(db);
+            if (!cols.exec(QStringLiteral("SELECT table_name, column_name FROM information_schema.columns "
+                                          "WHERE table_schema = current_schema() AND data_type = 'bytea'")))
+                throw StorageError(QStringLiteral("%1: cannot list bytea columns: %2").arg(db.databaseName(), cols.lastError().text()).toStdString());
+            QStringList alter;
+            while (cols.next())
+                alter << QStringLiteral("ALTER TABLE %1 ALTER COLUMN %2 SET STORAGE EXTERNAL").arg(cols.value(0).toString(), cols.value(1).toString());
+            for (const QString &a : alter)
+                exec(db, a);
+            if (v == 0)
+                exec(db, QStringLiteral("CREATE TABLE driftlab_schema (version INTEGER NOT NULL)"));
+            exec(db, QStringLiteral("DELETE FROM driftlab_schema"));
+            exec(db, QStringLiteral("INSERT INTO driftlab_schema(version) VALUES (%1)").arg(v + 1));
+        }
+        tx.commit(QStringLiteral("migration to version %1 failed to commit").arg(v + 1));
     }
 }
 

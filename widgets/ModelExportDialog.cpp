@@ -1,7 +1,5 @@
 #include "ModelExportDialog.h"
 
-#include "ExportableModelJson.h"
-#include "ModelExportWriter.h"
 #include "ScreenFit.h"
 #include "SessionStore.h"
 
@@ -38,7 +36,7 @@ ModelExportDialog::ModelExportDialog(QWidget *parent) : QDialog(parent)
     modelRow->addWidget(m_model, 1);
     modelRow->addWidget(browseModel);
     m_target = new QComboBox(this);
-    for (const auto &e : m_registry.exporters())
+    for (const auto &e : m_exporting.registry().exporters())
         m_target->addItem(QStringLiteral("%1 - %2").arg(QString::fromStdString(e->name()), QString::fromStdString(e->description())),
                           QString::fromStdString(e->name()));
     // Long exporter descriptions must not widen the dialog past a laptop screen (it opened
@@ -165,6 +163,11 @@ void ModelExportDialog::setTarget(const QString &name)
     refresh();
 }
 
+void ModelExportDialog::setAxis(const QString &axis)
+{
+    m_axis->setCurrentText(axis); // refreshes through currentIndexChanged
+}
+
 void ModelExportDialog::setFolder(const QString &folder)
 {
     m_folder->setText(folder);
@@ -188,33 +191,33 @@ void ModelExportDialog::refresh()
 {
     m_preview->clear();
     m_ok = false;
-    m_result = ExportResult{};
-    const ModelExporter *exporter = m_registry.find(m_target->currentData().toString().toStdString());
+    m_result = ModelExport::Result{};
+    const QString target = m_target->currentData().toString();
     const int stored = m_storedChoice->currentIndex() - 1;
-    if ((stored < 0 && m_model->text().isEmpty()) || !exporter) {
+    if ((stored < 0 && m_model->text().isEmpty()) || target.isEmpty()) {
         m_message->setText(m_stored.isEmpty() ? tr("Choose a fitted model (MODEL.json) with Browse...")
                                               : tr("Choose a fitted model above, or a MODEL.json with Browse..."));
         m_export->setEnabled(false);
         return;
     }
-    ExportOptions options;
-    options.axis = m_axis->currentText().toStdString();
-    options.baseName = m_name->text().trimmed().toStdString();
+    ModelExport::Request request{m_model->text(), target, ExportOptions{}};
+    request.options.axis = m_axis->currentText().toStdString();
+    request.options.baseName = m_name->text().trimmed().toStdString();
+    if (stored >= 0)
+        request.stored = m_stored[stored];
     try {
-        const ExportableModel model = stored >= 0 ? ExportableModelJson::fromStored(m_stored[stored].model, m_stored[stored].machine,
-                                                                                     m_stored[stored].source)
-                                                  : ExportableModelJson::read(m_model->text());
-        m_result = exporter->exportModel(model, options);
+        m_result = m_exporting.prepare(request);
         m_ok = true;
-        QStringList lines{tr("%1 -> %2: %n file(s), approximation error %3 um", nullptr, static_cast<int>(m_result.files.size()))
-                              .arg(QString::fromStdString(model.kind()), QString::fromStdString(exporter->name()))
-                              .arg(m_result.approximationError_um, 0, 'g', 4)};
-        for (const std::string &n : m_result.notes)
+        const ExportResult &exported = m_result.exported;
+        QStringList lines{tr("%1 -> %2: %n file(s), approximation error %3 um", nullptr, static_cast<int>(exported.files.size()))
+                              .arg(m_result.kind, m_result.target)
+                              .arg(exported.approximationError_um, 0, 'g', 4)};
+        for (const std::string &n : exported.notes)
             lines << QStringLiteral("- ") + QString::fromStdString(n);
-        lines << tr("Source: %1").arg(QString::fromStdString(exporter->reference()));
+        lines << tr("Source: %1").arg(m_result.source);
         m_message->setStyleSheet(QString());
         m_message->setText(lines.join(QLatin1Char('\n')));
-        for (const ExportFile &f : m_result.files) {
+        for (const ExportFile &f : exported.files) {
             auto *text = new QPlainTextEdit(QString::fromStdString(f.content), m_preview);
             text->setReadOnly(true);
             text->setLineWrapMode(QPlainTextEdit::NoWrap);
@@ -223,7 +226,7 @@ void ModelExportDialog::refresh()
         }
     } catch (const ExportRefused &e) {
         m_message->setStyleSheet(QStringLiteral("color: #b00020"));
-        m_message->setText(tr("%1 refuses this model: %2").arg(QString::fromStdString(exporter->name()), QString::fromUtf8(e.what())));
+        m_message->setText(tr("%1 refuses this model: %2").arg(target, QString::fromUtf8(e.what())));
     } catch (const std::exception &e) {
         m_message->setStyleSheet(QStringLiteral("color: #b00020"));
         m_message->setText(QString::fromUtf8(e.what()));
@@ -262,8 +265,8 @@ bool ModelExportDialog::exportFiles()
     if (!canExport())
         return false;
     try {
-        const QStringList paths = ModelExportWriter::write(m_result, m_folder->text().trimmed());
-        m_message->setText(tr("Wrote %1").arg(paths.join(QStringLiteral(", "))));
+        m_exporting.write(m_result, m_folder->text().trimmed()); // a failed write leaves nothing it added
+        m_message->setText(tr("Wrote %1").arg(m_result.paths.join(QStringLiteral(", "))));
         return true;
     } catch (const std::exception &e) {
         m_message->setStyleSheet(QStringLiteral("color: #b00020"));

@@ -4,10 +4,10 @@
 // --json, fit --model ... --out, or the Analysis dock's "save MODEL.json"), a target from the export registry, axis and base
 // name; the preview shows exactly the files that will be written (one tab each), the notes and
 // the approximation error, or why the target refuses the model. Export writes them into a
-// folder through ModelExportWriter, as 'driftlab-cli export-model' does.
+// folder. Both steps are core/ModelExport's (prepare, write), as 'driftlab-cli export-model'
+// runs them: the same request check, the same bytes, nothing left behind by a failed write.
 
-#include "ModelExporterRegistry.h"
-#include "StorageTypes.h"
+#include "ModelExport.h"
 
 #include <QJsonObject>
 #include <QVector>
@@ -39,6 +39,7 @@ public:
     void selectStoredModel(int index);
     void setModelPath(const QString &path);
     void setTarget(const QString &name);
+    void setAxis(const QString &axis); // X, Y or Z
     void setFolder(const QString &folder);
     // What the preview currently shows (for tests): file names and contents, or the error.
     QStringList previewFileNames() const;
@@ -53,15 +54,10 @@ private:
     void browseFolder();
     void refresh();
 
-    ModelExporterRegistry m_registry;
-    ExportResult m_result;
+    ModelExport m_exporting;
+    ModelExport::Result m_result;
     bool m_ok = false;
-    struct Stored {
-        FittedModel model;
-        QJsonObject machine;
-        QString source;
-    };
-    QVector<Stored> m_stored;
+    QVector<ModelExport::StoredModel> m_stored;
     QComboBox *m_storedChoice = nullptr;
     QLineEdit *m_model = nullptr;
     QComboBox *m_target = nullptr;

@@ -101,7 +101,7 @@ bool Workbench::openDatabase(const QString &path)
     emit recentDatabasesChanged();
     emit storeChanged(m_store.get());
     refreshSessions(0);
-    emit message(tr("%1: %n session(s)", nullptr, m_sessions.size()).arg(m_store->path()));
+    emit message(tr("Opened %1").arg(m_store->path())); // the count is the window's permanent summary
     return true;
 }
 

@@ -96,20 +96,25 @@ int ExportModelCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("export-model: give exactly one MODEL.json"));
     if (!p.isSet(target))
         throw UsageError(QStringLiteral("export-model: --target is required (%1)").arg(targets));
-    const ModelExporter *exporter = registry.find(p.value(target).toStdString());
-    if (!exporter)
-        throw UsageError(QStringLiteral("export-model: --target: unknown target '%1' (known: %2)").arg(p.value(target), targets));
+    ModelExport::Request request{p.positionalArguments().front(), p.value(target), ExportOptions{}};
+    const auto checked = [&] { // the use case's own request check: the same text as the dialog's
+        try {
+            exporting.check(request);
+        } catch (const std::invalid_argument &e) {
+            throw UsageError(QStringLiteral("export-model: %1").arg(QString::fromUtf8(e.what())));
+        }
+    };
+    checked();
     if (!p.isSet(out))
         throw UsageError(QStringLiteral("export-model: --out DIR is required"));
     OutputTarget(p.value(out), QStringLiteral("--out"), OutputTarget::Kind::Folder).check(p.isSet(force));
     if (p.isSet(json))
         OutputTarget::json(p.value(json)).check(p.isSet(force));
 
-    ExportOptions options;
+    ExportOptions &options = request.options;
     options.axis = p.value(axis).toUpper().toStdString();
     options.baseName = p.value(base).toStdString();
-    if (options.baseName.empty() || p.value(base).contains(QLatin1Char('/')))
-        throw UsageError(QStringLiteral("export-model: --name must be a plain file name, got '%1'").arg(p.value(base)));
+    checked();
     if (p.isSet(positions))
         options.positions = range(p.value(positions), QStringLiteral("--positions"));
     options.temperatures = range(p.value(temperatures), QStringLiteral("--temperatures"));
@@ -122,7 +127,6 @@ int ExportModelCommand::run(const QStringList &args)
             throw UsageError(QStringLiteral("export-model: --first-variable must be an integer >= 0, got '%1'").arg(p.value(first)));
     }
 
-    ModelExport::Request request{p.positionalArguments().front(), p.value(target), options};
     ModelExport::Result result;
     try {
         result = exporting.prepare(request);

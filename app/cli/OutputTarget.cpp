@@ -150,7 +150,9 @@ void OutputTarget::writeFile(const QString &path, const QByteArray &bytes)
     announce(path, bytes.size());
     QSaveFile file(path); // atomic: never a half-written output
     errno = 0;
-    if (!file.open(QIODevice::WriteOnly) || file.write(bytes) != bytes.size() || !file.commit()) {
+    // flush() before commit(): QSaveFile::commit() does not see a failure of the buffered write
+    // (a small file onto a full disk was committed empty, exit 0).
+    if (!file.open(QIODevice::WriteOnly) || file.write(bytes) != bytes.size() || !file.flush() || !file.commit()) {
         // QSaveFile says "Unknown error" for a full disk: the system's reason is clearer.
         const int why = errno;
         QString reason = file.errorString();

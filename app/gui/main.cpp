@@ -58,6 +58,17 @@ qint64 sessionArg(const MainWindow &window, const QString &text)
     return 0;
 }
 
+// Shows the dock of a use case started from the command line, in front, with 55 % of the
+// window's height (its plots need it).
+void showTall(MainWindow &window, const QString &dockName)
+{
+    if (QDockWidget *d = window.dock(dockName)) {
+        d->show();
+        d->raise();
+        QTimer::singleShot(0, &window, [&window, d] { window.resizeDocks({d}, {window.height() * 11 / 20}, Qt::Vertical); });
+    }
+}
+
 } // namespace
 
 int main(int argc, char **argv)
@@ -211,7 +222,13 @@ int main(int argc, char **argv)
             QApplication::exit(ok ? 0 : 1);
         });
     };
-    bool waiting = false;
+    bool waiting = false; // a started use case takes the screenshot when it finishes
+    const auto screenshotWhen = [&](auto *panel, auto finished) {
+        if (p.isSet(screenshot) && !waiting) {
+            waiting = true;
+            QObject::connect(panel, finished, &window, takeScreenshot);
+        }
+    };
     if (p.isSet(fit)) {
         const QStringList parts = p.value(fit).split(QLatin1Char(':'));
         QVector<qint64> training;
@@ -224,15 +241,10 @@ int main(int argc, char **argv)
         qint64 heldOut = 0;
         if (parts.size() > 2 || (parts.size() == 2 && !(heldOut = sessionArg(window, parts.at(1)))))
             return usageError(QStringLiteral("--fit: expected IDS[:HELDOUT] with session ids of %1, got '%2'").arg(path, p.value(fit)));
-        if (QDockWidget *d = window.dock(QStringLiteral("ModelsDock"))) {
-            d->show();
-            QTimer::singleShot(0, &window, [&window, d] { window.resizeDocks({d}, {window.height() * 11 / 20}, Qt::Vertical); });
-        }
+        showTall(window, QStringLiteral("ModelsDock"));
         if (!window.models()->startFit(training, heldOut))
             return usageError(QStringLiteral("cannot fit: %1").arg(window.models()->lastError()));
-        waiting = p.isSet(screenshot);
-        if (waiting)
-            QObject::connect(window.models(), &ModelsPanel::fitFinished, &window, takeScreenshot);
+        screenshotWhen(window.models(), &ModelsPanel::fitFinished);
     }
     if (p.isSet(diagnose)) {
         const QStringList ids = p.value(diagnose).split(QLatin1Char(':'));
@@ -240,17 +252,10 @@ int main(int argc, char **argv)
         const qint64 validate = ids.size() == 2 ? sessionArg(window, ids.at(1)) : 0;
         if (!train || !validate)
             return usageError(QStringLiteral("--diagnose: expected TRAIN:VALIDATE session ids of %1, got '%2'").arg(path, p.value(diagnose)));
-        if (QDockWidget *d = window.dock(QStringLiteral("DiagnosisDock"))) {
-            d->show();
-            d->raise();
-            QTimer::singleShot(0, &window, [&window, d] { window.resizeDocks({d}, {window.height() * 11 / 20}, Qt::Vertical); });
-        }
+        showTall(window, QStringLiteral("DiagnosisDock"));
         if (!window.diagnosis()->start(train, validate))
             return usageError(QStringLiteral("cannot diagnose: %1").arg(window.diagnosis()->lastError()));
-        if (p.isSet(screenshot) && !waiting) {
-            waiting = true;
-            QObject::connect(window.diagnosis(), &DiagnosisPanel::finished, &window, takeScreenshot);
-        }
+        screenshotWhen(window.diagnosis(), &DiagnosisPanel::finished);
     }
     if (p.isSet(analysis)) {
         const QStringList a = p.value(analysis).split(QLatin1Char(':'));
@@ -261,17 +266,10 @@ int main(int argc, char **argv)
             (a.size() == 4 && a.at(3) != QLatin1String("select")))
             return usageError(QStringLiteral("--analysis: expected ID:TARGET[:TRAIN_H[:select]] with a session id of %1, got '%2'")
                                   .arg(path, p.value(analysis)));
-        if (QDockWidget *d = window.dock(QStringLiteral("AnalysisDock"))) {
-            d->show();
-            d->raise();
-            QTimer::singleShot(0, &window, [&window, d] { window.resizeDocks({d}, {window.height() * 11 / 20}, Qt::Vertical); });
-        }
+        showTall(window, QStringLiteral("AnalysisDock"));
         if (!window.analysis()->startWorkflow(id, a.at(1), trainHours, a.size() == 4))
             return usageError(QStringLiteral("cannot analyse: %1").arg(window.analysis()->lastError()));
-        if (p.isSet(screenshot) && !waiting) {
-            waiting = true;
-            QObject::connect(window.analysis(), &AnalysisPanel::workflowFinished, &window, takeScreenshot);
-        }
+        screenshotWhen(window.analysis(), &AnalysisPanel::workflowFinished);
     }
     if (p.isSet(screenshot) && !waiting)
         takeScreenshot();

@@ -53,6 +53,15 @@ QStringList entries(const QString &dir)
     return QDir(dir).entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot, QDir::Name);
 }
 
+// An output that exists already: a folder holding "keep", or a file reading "old output".
+bool occupy(Kind kind, const QString &out)
+{
+    if (kind == Kind::Folder)
+        return QDir().mkpath(out + QStringLiteral("/keep"));
+    QFile f(out);
+    return f.open(QIODevice::WriteOnly) && f.write("old output") == 10;
+}
+
 } // namespace
 
 class TestCliRules : public QObject {
@@ -291,13 +300,7 @@ void TestCliRules::existingOutput()
     QFETCH(int, index);
     const Case &c = m_cases[index];
     const QString out = fresh(QStringLiteral("taken")) + c.suffix;
-    if (c.kind == Kind::Folder) {
-        QVERIFY(QDir().mkpath(out + QStringLiteral("/keep")));
-    } else {
-        QFile f(out);
-        QVERIFY(f.open(QIODevice::WriteOnly));
-        f.write("old output");
-    }
+    QVERIFY(occupy(c.kind, out));
     const clirunner::Result r = run(c.args(out), 30000);
     QVERIFY2(r.code == 2, qPrintable(QStringLiteral("exit %1: %2").arg(r.code).arg(QString::fromUtf8(r.err))));
     const bool neverReplaced = c.force == Force::NeverReplaced || c.name == QLatin1String("new-bundle DIR");
@@ -326,13 +329,7 @@ void TestCliRules::existingOutputWithForce()
     QFETCH(int, index);
     const Case &c = m_cases[index];
     const QString out = fresh(QStringLiteral("replaced")) + c.suffix;
-    if (c.kind == Kind::Folder) {
-        QVERIFY(QDir().mkpath(out + QStringLiteral("/keep")));
-    } else {
-        QFile f(out);
-        QVERIFY(f.open(QIODevice::WriteOnly));
-        f.write("old output");
-    }
+    QVERIFY(occupy(c.kind, out));
     const clirunner::Result r = run(c.args(out) + QStringList{QStringLiteral("--force")}, 120000);
     if (c.force == Force::NeverReplaced) { // a bundle is a record: never replaced
         QVERIFY2(r.code == 2 && r.err.contains(out.toUtf8() + " already exists (choose a new name)"), r.err.constData());
@@ -557,6 +554,19 @@ void TestCliRules::exportModelOntoAFullDiskLeavesNothing()
     QCOMPARE(r.code, 1);
     QCOMPARE(entries(mountPoint), QStringList());
     QVERIFY2(r.err.contains("driftlab-cli export-model: cannot write " + out.toUtf8()) && r.err.contains("(nothing was left)"), r.err.constData());
+    // A small file onto a disk with no page left: before, QSaveFile committed it empty (the
+    // failed buffered write went unseen) and the command exited 0.
+    QFile filler(mountPoint + QStringLiteral("/filler"));
+    QVERIFY(filler.open(QIODevice::WriteOnly));
+    while (filler.write(QByteArray(4096, 'x')) == 4096 && filler.flush()) {
+    }
+    filler.close();
+    const QString json = mountPoint + QStringLiteral("/summary.json");
+    const clirunner::Result small = run({QStringLiteral("export-model"), m_ddModel, QStringLiteral("--target"), QStringLiteral("csv"),
+                                         QStringLiteral("--out"), path(QStringLiteral("small-tables")), QStringLiteral("--json"), json});
+    QCOMPARE(small.code, 1);
+    QVERIFY2(small.err.contains("cannot write " + json.toUtf8()), small.err.constData());
+    QCOMPARE(entries(mountPoint), QStringList{QStringLiteral("filler")});
 }
 
 void TestCliRules::oneSessionArgumentParser()

@@ -15,6 +15,7 @@
 #include <QtTest>
 
 #include "../support/CliRunner.h"
+#include "../support/Iso230Rig.h"
 
 #include <cmath>
 #include <map>
@@ -43,19 +44,8 @@ void TestIso230Cli::initTestCase()
 {
     QVERIFY(m_dir.isValid());
     m_db = m_dir.filePath(QStringLiteral("rig.sqlite"));
-    QFile preset(QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/rigs/seed002-instruments.json"));
-    QVERIFY(preset.open(QIODevice::ReadOnly));
-    QJsonObject rig = QJsonDocument::fromJson(preset.readAll()).object();
+    const QJsonObject rig = testrigs::iso230WarmUpRig();
     QCOMPARE(rig.value(QStringLiteral("sensors")).toObject().value(QStringLiteral("interferometer")).toObject().value(QStringLiteral("cycles")).toInt(), 3);
-    rig.insert(QStringLiteral("programme"),
-               QJsonObject{{QStringLiteral("phases"),
-                            QJsonArray{QJsonObject{{QStringLiteral("name"), QStringLiteral("cold")}, {QStringLiteral("duration_s"), 600}},
-                                       QJsonObject{{QStringLiteral("name"), QStringLiteral("warm-up")},
-                                                   {QStringLiteral("duration_s"), 6000},
-                                                   {QStringLiteral("feed_mm_min"), 6000}}}}});
-    QJsonObject sensors = rig.value(QStringLiteral("sensors")).toObject();
-    sensors.insert(QStringLiteral("infrared"), QJsonObject{{QStringLiteral("enabled"), false}}); // not needed here: saves time
-    rig.insert(QStringLiteral("sensors"), sensors);
     const QString rigFile = m_dir.filePath(QStringLiteral("rig.json"));
     QFile out(rigFile);
     QVERIFY(out.open(QIODevice::WriteOnly));

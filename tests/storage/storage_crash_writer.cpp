@@ -4,6 +4,7 @@
 // session and its channel are committed.
 //   storage_crash_writer DB [SIZE_LIMIT_BYTES]
 
+#include "../support/OneChannelSession.h"
 #include "SessionWriter.h"
 #include "StorageError.h"
 
@@ -37,15 +38,11 @@ int main(int argc, char **argv)
         const qint64 start = QDateTime::currentMSecsSinceEpoch();
         QElapsedTimer clock;
         clock.start();
-        SessionInfo info;
-        info.name = QStringLiteral("crash test");
-        info.started = QDateTime::fromMSecsSinceEpoch(start, Qt::UTC).toString(Qt::ISODateWithMs);
-        info.notes = QString::number(start);
-        const qint64 session = writer.createSession(info);
-        ChannelInfo c;
-        c.key = QStringLiteral("sig");
-        c.kind = QStringLiteral("other");
-        const qint64 channel = writer.addChannel(session, c);
+        qint64 channel = 0;
+        const qint64 session = teststore::oneChannelSession(
+            writer, &channel,
+            {QStringLiteral("crash test"), QDateTime::fromMSecsSinceEpoch(start, Qt::UTC).toString(Qt::ISODateWithMs),
+             QStringLiteral("sig"), QStringLiteral("other"), QString::number(start)});
         writer.flush();
         std::printf("ready %lld %lld\n", static_cast<long long>(session), static_cast<long long>(start));
         std::fflush(stdout);

@@ -7,6 +7,7 @@
 #include "DuplicateSessionError.h"
 #include "IrFrameCodec.h"
 #include "SessionStore.h"
+#include "../support/DatabaseHash.h"
 
 #include <QCryptographicHash>
 #include <QDir>
@@ -206,39 +207,7 @@ Truth writeBaseBundle(const QString &dir)
     return tr;
 }
 
-// Content hash of every table of a database (through its own connection).
-QByteArray contentHash(const QString &path)
-{
-    QByteArray h;
-    {
-        QSqlDatabase d = QSqlDatabase::addDatabase(QStringLiteral("QSQLITE"), QStringLiteral("hash"));
-        d.setDatabaseName(path);
-        if (!d.open())
-            qFatal("cannot open %s", qPrintable(path));
-        QCryptographicHash hash(QCryptographicHash::Sha256);
-        QSqlQuery tables(d);
-        tables.exec(QStringLiteral("SELECT name FROM sqlite_master WHERE type = 'table' ORDER BY name"));
-        QStringList names;
-        while (tables.next())
-            names << tables.value(0).toString();
-        tables.finish();
-        for (const QString &t : names) {
-            QSqlQuery q(d);
-            q.exec(QStringLiteral("SELECT * FROM %1 ORDER BY rowid").arg(t));
-            int rows = 0;
-            while (q.next()) {
-                ++rows;
-                for (int i = 0; i < q.record().count(); ++i)
-                    hash.addData(q.value(i).toByteArray() + '\x1f');
-            }
-            hash.addData(t.toUtf8() + QByteArray::number(rows));
-        }
-        h = hash.result();
-        d.close();
-    }
-    QSqlDatabase::removeDatabase(QStringLiteral("hash"));
-    return h;
-}
+using testdb::contentHash;
 
 // store: entries uncompressed, so that a test can find and change their bytes in the zip.
 void zipEntries(const QString &zipPath, const QVector<QPair<QString, QByteArray>> &entries, bool store = false)

@@ -7,6 +7,7 @@
 #include "CsvError.h"
 #include "CsvImporter.h"
 #include "SessionStore.h"
+#include "../support/DatabaseHash.h"
 
 #include <QCryptographicHash>
 #include <QJsonArray>
@@ -24,34 +25,7 @@ using namespace driftlab;
 
 namespace {
 
-// Content hash of every table (own connection), to prove a refused import changed nothing.
-QByteArray contentHash(const QString &path)
-{
-    QByteArray h;
-    {
-        QSqlDatabase d = QSqlDatabase::addDatabase(QStringLiteral("QSQLITE"), QStringLiteral("hash"));
-        d.setDatabaseName(path);
-        if (!d.open())
-            qFatal("cannot open %s", qPrintable(path));
-        QCryptographicHash hash(QCryptographicHash::Sha256);
-        QSqlQuery tables(QStringLiteral("SELECT name FROM sqlite_master WHERE type = 'table' ORDER BY name"), d);
-        QStringList names;
-        while (tables.next())
-            names << tables.value(0).toString();
-        for (const QString &t : names) {
-            QSqlQuery q(QStringLiteral("SELECT * FROM %1 ORDER BY rowid").arg(t), d);
-            while (q.next()) {
-                for (int i = 0; i < q.record().count(); ++i)
-                    hash.addData(q.value(i).toByteArray() + '\x1f');
-            }
-            hash.addData(t.toUtf8());
-        }
-        h = hash.result();
-        d.close();
-    }
-    QSqlDatabase::removeDatabase(QStringLiteral("hash"));
-    return h;
-}
+using testdb::contentHash;
 
 CsvColumnMap mapOf(const QByteArray &json)
 {

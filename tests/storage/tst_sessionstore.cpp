@@ -3,6 +3,7 @@
 
 #include "IrFrameCodec.h"
 #include "SchemaMigrator.h"
+#include "../support/OneChannelSession.h"
 #include "SessionStore.h"
 #include "StorageError.h"
 
@@ -25,18 +26,7 @@ private:
     QTemporaryDir m_dir;
     QString db(const QString &name) const { return m_dir.filePath(name); }
 
-    static qint64 makeSession(SessionStore &s, qint64 *channel)
-    {
-        SessionInfo info;
-        info.name = QStringLiteral("test");
-        info.started = QStringLiteral("2026-11-20T08:00:00Z");
-        const qint64 id = s.createSession(info);
-        ChannelInfo c;
-        c.key = QStringLiteral("S1");
-        c.kind = QStringLiteral("displacement");
-        *channel = s.addChannel(id, c);
-        return id;
-    }
+    static qint64 makeSession(SessionStore &s, qint64 *channel) { return teststore::oneChannelSession(s, channel); }
 
 private slots:
     void schemaVersionIsThree()

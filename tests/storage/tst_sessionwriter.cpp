@@ -1,5 +1,6 @@
 // SessionWriter: batched commits on its own thread, readers reading while it records.
 
+#include "../support/OneChannelSession.h"
 #include "SessionStore.h"
 #include "SessionWriter.h"
 #include "StorageError.h"
@@ -26,14 +27,8 @@ private slots:
     {
         const QString db = m_dir.filePath(QStringLiteral("live.sqlite"));
         SessionWriter writer(db);
-        SessionInfo info;
-        info.name = QStringLiteral("live");
-        info.started = QStringLiteral("2026-11-22T00:00:00Z");
-        const qint64 session = writer.createSession(info);
-        ChannelInfo c;
-        c.key = QStringLiteral("S1");
-        c.kind = QStringLiteral("displacement");
-        const qint64 channel = writer.addChannel(session, c);
+        qint64 channel = 0;
+        const qint64 session = teststore::oneChannelSession(writer, &channel, {QStringLiteral("live"), QStringLiteral("2026-11-22T00:00:00Z"), QStringLiteral("S1"), QStringLiteral("displacement")});
         writer.flush();
 
         SessionStore reader(db); // a second connection, as the GUI would open
@@ -91,14 +86,8 @@ private slots:
         SessionWriter::Options o;
         o.queueCapacity = 4;
         SessionWriter writer(db, o);
-        SessionInfo info;
-        info.name = QStringLiteral("b");
-        info.started = QStringLiteral("2026-11-22T00:00:00Z");
-        const qint64 session = writer.createSession(info);
-        ChannelInfo c;
-        c.key = QStringLiteral("x");
-        c.kind = QStringLiteral("other");
-        const qint64 channel = writer.addChannel(session, c);
+        qint64 channel = 0;
+        const qint64 session = teststore::oneChannelSession(writer, &channel, {QStringLiteral("b"), QStringLiteral("2026-11-22T00:00:00Z"), QStringLiteral("x"), QStringLiteral("other")});
         for (int block = 0; block < 200; ++block) {
             QVector<double> t(500);
             QVector<double> v(500);
@@ -119,14 +108,8 @@ private slots:
     {
         const QString db = m_dir.filePath(QStringLiteral("err.sqlite"));
         SessionWriter writer(db);
-        SessionInfo info;
-        info.name = QStringLiteral("e");
-        info.started = QStringLiteral("2026-11-22T00:00:00Z");
-        const qint64 session = writer.createSession(info);
-        ChannelInfo c;
-        c.key = QStringLiteral("x");
-        c.kind = QStringLiteral("other");
-        const qint64 channel = writer.addChannel(session, c);
+        qint64 channel = 0;
+        teststore::oneChannelSession(writer, &channel, {QStringLiteral("e"), QStringLiteral("2026-11-22T00:00:00Z"), QStringLiteral("x"), QStringLiteral("other")});
         writer.appendSamples(channel, {1.0, 2.0}, {1.0, 2.0});
         writer.flush();
         writer.appendSamples(channel, {0.5}, {1.0}); // time going backwards: the batch fails

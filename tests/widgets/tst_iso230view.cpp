@@ -16,6 +16,8 @@
 #include "Workbench.h"
 
 #include "../support/CliRunner.h"
+#include "../support/Iso230Rig.h"
+#include "../support/WidgetTestSetup.h"
 
 #include <QComboBox>
 #include <QFile>
@@ -76,21 +78,11 @@ QJsonObject TestIso230View::cli(const QStringList &extra)
 void TestIso230View::initTestCase()
 {
     QVERIFY(m_dir.isValid());
-    QSettings::setDefaultFormat(QSettings::IniFormat);
-    QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, m_dir.filePath(QStringLiteral("settings")));
+    widgettest::privateSettings(m_dir);
     m_db = m_dir.filePath(QStringLiteral("iso.sqlite"));
-    QFile preset(QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/rigs/seed002-instruments.json"));
-    QVERIFY(preset.open(QIODevice::ReadOnly));
-    QJsonObject rig = QJsonDocument::fromJson(preset.readAll()).object();
-    rig.insert(QStringLiteral("programme"),
-               QJsonObject{{QStringLiteral("phases"),
-                            QJsonArray{QJsonObject{{QStringLiteral("name"), QStringLiteral("cold")}, {QStringLiteral("duration_s"), 600}},
-                                       QJsonObject{{QStringLiteral("name"), QStringLiteral("warm-up")},
-                                                   {QStringLiteral("duration_s"), 6000},
-                                                   {QStringLiteral("feed_mm_min"), 6000}}}}});
+    QJsonObject rig = testrigs::iso230WarmUpRig();
+    QVERIFY(!rig.isEmpty());
     QJsonObject sensors = rig.value(QStringLiteral("sensors")).toObject();
-    sensors.insert(QStringLiteral("infrared"), QJsonObject{{QStringLiteral("enabled"), false}});
-    rig.insert(QStringLiteral("sensors"), sensors);
     SessionStore store(m_db);
     {
         SimulatedRig simulated(RigConfigLoader::fromJson(rig));

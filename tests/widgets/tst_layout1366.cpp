@@ -18,6 +18,7 @@
 #include "SessionStore.h"
 #include "SimulatedRig.h"
 #include "Workbench.h"
+#include "../support/WidgetTestSetup.h"
 
 #include <QAbstractButton>
 #include <QComboBox>
@@ -139,14 +140,11 @@ private:
 void TestLayout1366::initTestCase()
 {
     QVERIFY(m_dir.isValid());
-    QSettings::setDefaultFormat(QSettings::IniFormat);
-    QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, m_dir.filePath(QStringLiteral("settings")));
+    widgettest::privateSettings(m_dir);
     ScreenFit::simulateScreen(kScreen.size());
     m_db = m_dir.filePath(QStringLiteral("layout.sqlite"));
     SessionStore store(m_db);
-    RigConfig config;
-    config.program = FeedProgram::seed000Table2(6000.0);
-    SimulatedRig rig(config);
+    SimulatedRig rig(widgettest::baselineRig());
     RigRecorder recorder(store, rig);
     QVERIFY(recorder.record(QStringLiteral("layout test"), 600.0) > 0);
     QVERIFY(recorder.record(QStringLiteral("second"), 300.0) > 0);

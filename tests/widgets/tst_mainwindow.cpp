@@ -12,6 +12,7 @@
 #include "SimulatedRig.h"
 #include "TimeSeriesPlot.h"
 #include "Workbench.h"
+#include "../support/WidgetTestSetup.h"
 
 #include <QAction>
 #include <QApplication>
@@ -57,16 +58,10 @@ private:
 void TestMainWindow::initTestCase()
 {
     QVERIFY(m_dir.isValid());
-    // Keep the user's settings out of it.
-    QSettings::setDefaultFormat(QSettings::IniFormat);
-    QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, m_dir.filePath(QStringLiteral("settings")));
+    widgettest::privateSettings(m_dir);
     m_db = m_dir.filePath(QStringLiteral("gui.sqlite"));
     SessionStore store(m_db);
-    RigConfig config;
-    config.program = FeedProgram::seed000Table2(6000.0);
-    SimulatedRig rig(config);
-    RigRecorder recorder(store, rig);
-    m_session = recorder.record(QStringLiteral("gui test"), 600.0);
+    m_session = widgettest::record(store, widgettest::baselineRig(), QStringLiteral("gui test"), 600.0);
     QVERIFY(m_session > 0);
 }
 

@@ -1,12 +1,17 @@
 // The Export dialog previews exactly what export-model writes: the same files and bytes as the
 // exporter, the notes and approximation error, or the refusal with its reason (Export disabled);
-// Export writes the previewed files.
+// Export writes the previewed files. Issue 34: the dialog runs core/ModelExport as
+// 'driftlab-cli export-model' does: the same folder, byte for byte, for the same model and
+// target, and a write that fails on a full disk leaves nothing behind in either face.
 
+#include "ModelExport.h"
 #include "ModelExportDialog.h"
 #include "ModelExporterRegistry.h"
 
 #include "ExportableModelJson.h"
 #include "SessionStore.h"
+
+#include "../support/CliRunner.h"
 
 #include <QComboBox>
 #include <QJsonDocument>
@@ -14,7 +19,9 @@
 
 #include <QDir>
 #include <QFile>
+#include <QProcess>
 #include <QPushButton>
+#include <QScopeGuard>
 #include <QTemporaryDir>
 #include <QtTest>
 
@@ -27,6 +34,9 @@ private slots:
     void previewEqualsExportAndWrites();
     void refusalDisablesExport();
     void listsTheModelsStoredWithTheSessions();
+    void writesTheSameFolderAsTheCli_data();
+    void writesTheSameFolderAsTheCli();
+    void failedWriteLeavesNothingInBothFaces();
 
 private:
     QString write(const QString &name, const QByteArray &bytes);
@@ -178,6 +188,129 @@ void TestModelExportDialog::listsTheModelsStoredWithTheSessions()
     QVERIFY(other.storedModels().isEmpty());
     QVERIFY(!other.canExport());
     QVERIFY(other.message().contains(QStringLiteral("Browse")));
+}
+
+namespace {
+
+const QByteArray kSynthetic = R"({"format": "driftlab-model", "version": 1, "model": "synthetic",
+    "target": {"channel": "interferometer"}, "inputs": [{"channel": "t1"}],
+    "synthetic": {"temperatures": [0], "a": 6.5, "b_perK": 0.045, "c": -1.2, "t0_C": 20, "p0_mm": -141, "p_ref_mm": 550}})";
+
+// name -> bytes of every file in a folder (sub-folders are not expected).
+QMap<QString, QByteArray> contents(const QString &folder)
+{
+    QMap<QString, QByteArray> files;
+    const QDir dir(folder);
+    for (const QString &name : dir.entryList(QDir::AllEntries | QDir::NoDotAndDotDot | QDir::Hidden)) {
+        QFile f(dir.filePath(name));
+        files.insert(name, f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray("(not a readable file)"));
+    }
+    return files;
+}
+
+} // namespace
+
+void TestModelExportDialog::writesTheSameFolderAsTheCli_data()
+{
+    QTest::addColumn<QString>("target");
+    QTest::addColumn<QString>("axis");
+    QTest::addColumn<bool>("namesAxis"); // the files name the axis (C code and a csv table do not)
+    for (const char *t : {"840d", "linuxcnc", "heidenhain"})
+        QTest::newRow(t) << QString::fromLatin1(t) << QStringLiteral("Y") << true;
+    QTest::newRow("c") << QStringLiteral("c") << QStringLiteral("Z") << false;
+    QTest::newRow("csv") << QStringLiteral("csv") << QStringLiteral("Z") << false;
+}
+
+void TestModelExportDialog::writesTheSameFolderAsTheCli()
+{
+    QFETCH(QString, target);
+    QFETCH(QString, axis);
+    QFETCH(bool, namesAxis);
+    const QString model = write(QStringLiteral("faces.json"), kSynthetic);
+    const QString cliOut = m_dir.filePath(QStringLiteral("cli-") + target);
+    const clirunner::Result r = clirunner::run({QStringLiteral("export-model"), model, QStringLiteral("--target"), target,
+                                                QStringLiteral("--axis"), axis, QStringLiteral("--out"), cliOut});
+    QVERIFY2(r.code == 0, r.err.constData());
+    ModelExportDialog dialog;
+    dialog.setModelPath(model);
+    dialog.setAxis(axis);
+    dialog.setTarget(target);
+    const QString guiOut = m_dir.filePath(QStringLiteral("gui-") + target);
+    dialog.setFolder(guiOut);
+    QVERIFY2(dialog.exportFiles(), qPrintable(dialog.message()));
+    const QMap<QString, QByteArray> cli = contents(cliOut), gui = contents(guiOut);
+    QVERIFY(!cli.isEmpty());
+    QCOMPARE(gui.keys(), cli.keys());
+    for (const QString &name : cli.keys())
+        QVERIFY2(gui.value(name) == cli.value(name), qPrintable(name));
+    // The axis really reached both faces: the files differ from the default (X) export.
+    const ModelExport::Result defaultAxis = ModelExport().prepare({model, target, ExportOptions{}});
+    bool differs = false;
+    for (const ExportFile &f : defaultAxis.exported.files)
+        differs = differs || cli.value(QString::fromStdString(f.name)) != QByteArray::fromStdString(f.content);
+    QCOMPARE(differs, namesAxis);
+}
+
+// A model whose 840d table does not fit: the tmpfs has room for the first file only. Before,
+// the dialog wrote through ModelExportWriter alone and left the first file (and the folder).
+void TestModelExportDialog::failedWriteLeavesNothingInBothFaces()
+{
+    const QString mountPoint = m_dir.filePath(QStringLiteral("tiny"));
+    QDir().mkpath(mountPoint);
+    QProcess mount;
+    mount.start(QStringLiteral("mount"), {QStringLiteral("-t"), QStringLiteral("tmpfs"), QStringLiteral("-o"), QStringLiteral("size=256k"),
+                                          QStringLiteral("tmpfs"), mountPoint});
+    if (!mount.waitForFinished(10000) || mount.exitStatus() != QProcess::NormalExit || mount.exitCode() != 0)
+        QSKIP("cannot mount a small tmpfs here (needs root and mount permission)");
+    const auto unmount = qScopeGuard([&] { QProcess::execute(QStringLiteral("umount"), {QStringLiteral("-l"), mountPoint}); });
+    const QString model = write(QStringLiteral("full.json"), kSynthetic);
+    ModelExportDialog dialog;
+    dialog.setModelPath(model);
+    dialog.setTarget(QStringLiteral("840d"));
+    const QStringList names = dialog.previewFileNames();
+    QCOMPARE(names.size(), 2);
+    // Fill the disk so that the first file fits (its pages) and the second does not.
+    const qint64 page = 4096;
+    const qint64 first = dialog.previewText(names[0]).toUtf8().size();
+    QVERIFY(first > 0 && dialog.previewText(names[1]).toUtf8().size() > 0);
+    QFile filler(mountPoint + QStringLiteral("/filler"));
+    QVERIFY(filler.open(QIODevice::WriteOnly));
+    filler.write(QByteArray(256 * 1024 - (first + page - 1) / page * page, 'x'));
+    filler.close();
+    const QStringList before = QDir(mountPoint).entryList(QDir::AllEntries | QDir::NoDotAndDotDot);
+    QCOMPARE(before, QStringList{QStringLiteral("filler")});
+    // The first file alone fits (the check that the disk is as full as meant).
+    {
+        QFile probe(mountPoint + QStringLiteral("/probe"));
+        QVERIFY(probe.open(QIODevice::WriteOnly));
+        QCOMPARE(probe.write(dialog.previewText(names[0]).toUtf8()), first);
+        QVERIFY(probe.flush());
+        probe.close();
+        QVERIFY(probe.remove());
+    }
+    // The CLI: exit 1, the folder it made is gone.
+    const QString cliOut = mountPoint + QStringLiteral("/cli");
+    const clirunner::Result r = clirunner::run({QStringLiteral("export-model"), model, QStringLiteral("--target"), QStringLiteral("840d"),
+                                                QStringLiteral("--out"), cliOut});
+    QCOMPARE(r.code, 1);
+    QVERIFY2(r.err.contains("(nothing was left)"), r.err.constData());
+    QCOMPARE(QDir(mountPoint).entryList(QDir::AllEntries | QDir::NoDotAndDotDot), before);
+    // The dialog: a folder it makes, and an existing (empty) folder: nothing it added stays.
+    for (const bool existing : {false, true}) {
+        const QString guiOut = mountPoint + QStringLiteral("/gui");
+        if (existing)
+            QVERIFY(QDir().mkpath(guiOut));
+        dialog.setFolder(guiOut);
+        QVERIFY(dialog.canExport());
+        QVERIFY(!dialog.exportFiles());
+        QVERIFY2(dialog.message().contains(QStringLiteral("cannot write")) && dialog.message().contains(QStringLiteral("(nothing was left)")),
+                 qPrintable(dialog.message()));
+        if (existing) {
+            QCOMPARE(contents(guiOut).keys(), QStringList());
+            QVERIFY(QDir(guiOut).removeRecursively());
+        }
+        QCOMPARE(QDir(mountPoint).entryList(QDir::AllEntries | QDir::NoDotAndDotDot), before);
+    }
 }
 
 QTEST_MAIN(TestModelExportDialog)

@@ -13,6 +13,7 @@
 #include "SessionStore.h"
 #include "SimulatedRig.h"
 #include "Workbench.h"
+#include "../support/WidgetTestSetup.h"
 
 #include <QDockWidget>
 #include <QHeaderView>
@@ -60,19 +61,14 @@ private:
 void TestSessionBrowser::initTestCase()
 {
     QVERIFY(m_dir.isValid());
-    QSettings::setDefaultFormat(QSettings::IniFormat);
-    QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, m_dir.filePath(QStringLiteral("settings")));
+    widgettest::privateSettings(m_dir);
     m_db = m_dir.filePath(QStringLiteral("sessions.sqlite"));
     SessionStore store(m_db);
-    RigConfig config;
-    config.name = QStringLiteral("baseline");
-    config.program = FeedProgram::seed000Table2(6000.0);
+    const RigConfig config = widgettest::baselineRig(QStringLiteral("baseline"));
     const QStringList names{QStringLiteral("beta"), QStringLiteral("Alpha"), QStringLiteral("Gamma")};
     const double lengths[] = {60.0, 300.0, 1200.0};
     for (int i = 0; i < 3; ++i) {
-        SimulatedRig rig(config);
-        RigRecorder recorder(store, rig);
-        const qint64 id = recorder.record(names[i], lengths[i]);
+        const qint64 id = widgettest::record(store, config, names[i], lengths[i]);
         QVERIFY(id > 0);
         m_recorded << id;
     }

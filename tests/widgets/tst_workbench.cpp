@@ -14,6 +14,7 @@
 #include "Workbench.h"
 
 #include <QPushButton>
+#include <QStatusBar>
 #include <QUndoStack>
 #include <QSettings>
 #include <QSignalSpy>
@@ -34,6 +35,7 @@ private slots:
     void welcomeOffersAFirstSession();
     void guardsKeepTheDatabase();
     void signalsOnOpen();
+    void statusBarCountsTheSessionsOnce();
     void backgroundJobRunsOneAtATime();
 
 private:
@@ -45,6 +47,20 @@ void TestWorkbench::initTestCase()
     QVERIFY(m_dir.isValid());
     QSettings::setDefaultFormat(QSettings::IniFormat);
     QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, m_dir.filePath(QStringLiteral("settings")));
+}
+
+// The count stands in the permanent summary at the right of the status bar; opening a
+// database said it a second time as the status message ("x.sqlite: 0 session(s)" twice).
+void TestWorkbench::statusBarCountsTheSessionsOnce()
+{
+    const QString db = m_dir.filePath(QStringLiteral("once/counted.sqlite"));
+    MainWindow window;
+    QVERIFY2(window.workbench()->newDatabase(db), qPrintable(window.workbench()->lastError()));
+    QVERIFY2(window.workbench()->openDatabase(db), qPrintable(window.workbench()->lastError()));
+    QVERIFY2(window.storeSummary().contains(QStringLiteral(": 0 session")), qPrintable(window.storeSummary()));
+    const QString said = window.statusBar()->currentMessage();
+    QVERIFY2(!said.contains(QStringLiteral("session")), qPrintable(said));
+    QVERIFY2(said.contains(QFileInfo(db).fileName()), qPrintable(said)); // it still says what was opened
 }
 
 void TestWorkbench::recordingIsListedWhileItRuns()

@@ -1,0 +1,43 @@
+#pragma once
+// Set-up shared by the widget tests that open a window on a recorded database (tst_mainwindow,
+// tst_sessionbrowser, tst_layout1366, tst_iso230view): the user's settings kept out of the
+// test, and short recordings of the baseline simulated rig.
+
+#include "RigConfig.h"
+#include "RigRecorder.h"
+#include "SessionStore.h"
+#include "SimulatedRig.h"
+
+#include <QSettings>
+#include <QString>
+#include <QTemporaryDir>
+
+namespace widgettest {
+
+// QSettings (recent databases, window state, dock layout) in INI files under dir/settings.
+inline void privateSettings(const QTemporaryDir &dir)
+{
+    QSettings::setDefaultFormat(QSettings::IniFormat);
+    QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, dir.filePath(QStringLiteral("settings")));
+}
+
+// The baseline rig running the seed-000 programme at 6000 mm/min; `rigName` as stored with the
+// session (empty: the preset's default).
+inline driftlab::RigConfig baselineRig(const QString &rigName = QString())
+{
+    driftlab::RigConfig config;
+    if (!rigName.isEmpty())
+        config.name = rigName;
+    config.program = driftlab::FeedProgram::seed000Table2(6000.0);
+    return config;
+}
+
+// Records `seconds` of `config` as a session named `name`; its id (0 on failure).
+inline qint64 record(driftlab::SessionStore &store, const driftlab::RigConfig &config, const QString &name, double seconds)
+{
+    driftlab::SimulatedRig rig(config);
+    driftlab::RigRecorder recorder(store, rig);
+    return recorder.record(name, seconds);
+}
+
+} // namespace widgettest
