@@ -51,16 +51,6 @@ private:
                           const DiagnosisRecording &train, const DiagnosisRecording &validate,
                           const IdentificationOptions &options, double effectiveN);
     IdentificationOptions baselineOptions(const DiagnosisRecording &train) const;
-    void assemble(DiagnosisReport &report, const ForwardSelection::Result &selection, const CandidateFit &base,
-                  const DiagnosisRecording &train, const DiagnosisRecording &validate) const;
-    // Tries the empirical discrepancy term on the final model's residual; when it passes, the
-    // answer gains "unexplained" and the corrected predictions include it. Returns the term's
-    // value at B's interferometer points (empty when not accepted).
-    std::vector<double> explainRest(DiagnosisReport &report, const CandidateFit &final, const DiagnosisRecording &train,
-                                    const DiagnosisRecording &validate) const;
-    // The explanation of `none`: the driver terms that could not be placed, or a residual that
-    // is not plain noise, or noise (ResidualLocator::isLocated on the baseline's residual).
-    static std::string noneExplanation(const DiagnosisReport &report, const std::vector<CandidateOutcome> &empiricalRound);
     // Which added measurement would decide between the two closest explanations
     // (DecisiveTestPlanner::rivals): both refitted, simulated on the proposed programmes.
     void adviseTest(DiagnosisReport &report, const ForwardSelection::Result &selection, const CandidateFit &base,

@@ -1,12 +1,11 @@
 #include "ForwardSelection.h"
 
+#include "EmpiricalSearch.h"
 #include "FixedText.h"
+#include "ParallelJobs.h"
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
-#include <thread>
 
 namespace driftlab {
 
@@ -27,51 +26,6 @@ bool ForwardSelection::excluded(size_t c, const std::vector<Choice> &accepted) c
             return true;
     }
     return false;
-}
-
-bool ForwardSelection::parallel(size_t n, const std::function<void(size_t)> &job, const std::function<std::string(size_t)> &label,
-                                const std::function<bool(double, const std::string &)> &tick) const
-{
-    std::atomic<size_t> next{0};
-    std::atomic<bool> stop{false};
-    std::atomic<int> finished{0};
-    int threads = m_options.threads > 0 ? m_options.threads : static_cast<int>(std::thread::hardware_concurrency());
-    threads = std::clamp(threads, 1, std::max(1, static_cast<int>(n)));
-    if (threads == 1) {
-        // Serial: progress between jobs from this thread.
-        for (size_t k = 0; k < n; ++k) {
-            if (!tick(static_cast<double>(k) / static_cast<double>(std::max<size_t>(1, n)), label(k)))
-                return false;
-            job(k);
-        }
-        return true;
-    }
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t)
-        pool.emplace_back([&] {
-            for (;;) {
-                const size_t k = next++;
-                if (k >= n || stop)
-                    return;
-                job(k);
-                ++finished;
-            }
-        });
-    // This thread reports progress and honours cancel.
-    int reported = -1, polls = 0;
-    while (finished < static_cast<int>(n) && !stop) {
-        if (finished != reported || ++polls % 10 == 0) {
-            reported = finished;
-            const size_t running = std::min(next.load(), n - 1);
-            if (!tick(static_cast<double>(reported) / static_cast<double>(n),
-                      std::to_string(reported) + " of " + std::to_string(n) + " refitted, now " + label(running)))
-                stop = true;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    for (std::thread &t : pool)
-        t.join();
-    return !stop;
 }
 
 void ForwardSelection::crossValidateIfUseful(CandidateFit &fit, const CandidateFit &reference) const
@@ -102,7 +56,7 @@ ForwardSelection::Round ForwardSelection::refitAll(const std::vector<size_t> &wh
     // does not change them.
     std::vector<size_t> order = which;
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return m_library[a].starts > m_library[b].starts; });
-    round.cancelled = !parallel(
+    round.cancelled = !ParallelJobs(m_options.threads).run(
         order.size(),
         [&](size_t k) {
             const size_t c = order[k];
@@ -147,7 +101,7 @@ bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, c
         return false;
     std::vector<CandidateFit> fits(pairs.size());
     std::vector<bool> ok(pairs.size(), false);
-    const bool done = parallel(
+    const bool done = ParallelJobs(m_options.threads).run(
         pairs.size(),
         [&](size_t k) {
             std::vector<Choice> with = accepted;
@@ -259,7 +213,7 @@ bool ForwardSelection::tryTriples(Result &result, std::vector<Choice> &accepted,
         return false;
     std::vector<CandidateFit> fits(thirds.size());
     std::vector<bool> ok(thirds.size(), false);
-    if (!parallel(
+    if (!ParallelJobs(m_options.threads).run(
             thirds.size(),
             [&](size_t k) {
                 try {
@@ -470,102 +424,14 @@ ForwardSelection::Result ForwardSelection::run(const CandidateFit &baseline, con
     if (m_options.empiricalTerms) {
         // Continues the progress from where the last round's share ended (never backwards).
         const double from = share(static_cast<int>(result.rounds.size()));
-        tryEmpirical(result, baseline, train, validate, effectiveN, refit,
-                     [&](double f, const std::string &stage) { return tick(from + (1.0 - from) * f, "empirical terms: " + stage); });
+        EmpiricalSearch(m_options).run(result, baseline, train, validate, effectiveN, refit, [&](double f, const std::string &stage) {
+            return tick(from + (1.0 - from) * f, "empirical terms: " + stage);
+        });
         if (result.cancelled)
             return result;
     }
     tick(1.0, "selection done");
     return result;
-}
-
-void ForwardSelection::tryEmpirical(Result &result, const CandidateFit &baseline, const DiagnosisRecording &train,
-                                    const DiagnosisRecording &validate, double effectiveN, const Refit &refit,
-                                    const std::function<bool(double, const std::string &)> &tick) const
-{
-    if (static_cast<int>(result.steps.size()) >= std::max(1, m_options.maxEffects))
-        return;
-    auto library = std::make_shared<std::vector<CandidateEffect>>(CandidateEffectLibrary::empirical(train, validate));
-    result.empirical = library;
-    if (library->empty())
-        return;
-    std::vector<Choice> accepted;
-    for (const Step &s : result.steps)
-        accepted.push_back(s.choice);
-    const CandidateFit &reference = result.steps.empty() ? baseline : result.steps.back().fit;
-    std::vector<CandidateFit> fits(library->size());
-    std::vector<std::string> failure(library->size());
-    if (!parallel(
-            library->size(),
-            [&](size_t k) {
-                try {
-                    fits[k] = refit(accepted, (*library)[k]);
-                } catch (const std::exception &ex) {
-                    failure[k] = ex.what();
-                }
-            },
-            [&](size_t k) { return (*library)[k].code; }, tick)) {
-        result.cancelled = true;
-        return;
-    }
-    std::vector<const CandidateFit *> fitted;
-    for (size_t k = 0; k < library->size(); ++k)
-        fitted.push_back(failure[k].empty() ? &fits[k] : nullptr);
-    const double threshold = m_acceptance.discoveryThreshold(fitted, reference);
-    int best = -1;
-    for (size_t k = 0; k < library->size(); ++k) {
-        CandidateOutcome out;
-        if (!failure[k].empty()) {
-            out.effect = (*library)[k].code;
-            out.explanation = (*library)[k].explanation;
-            out.applicable = false;
-            out.notApplicableReason = failure[k];
-            out.reasons.push_back("refit failed: " + failure[k]);
-        } else {
-            out = m_acceptance.judge((*library)[k], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, threshold, true);
-        }
-        if (out.accepted && (best < 0 || out.score > result.empiricalRound[static_cast<size_t>(best)].score))
-            best = static_cast<int>(k);
-        result.empiricalRound.push_back(std::move(out));
-    }
-    if (best < 0)
-        return;
-    // Located at one driver: when several drivers' terms help about as much, the discrepancy
-    // is a general shortfall of the model (any warming channel follows it), not something
-    // near one sensor. The winner must gain at least twice what any other driver gains.
-    double runnerUp = 0.0;
-    for (size_t k = 0; k < result.empiricalRound.size(); ++k)
-        if (static_cast<int>(k) != best && result.empiricalRound[k].applicable)
-            runnerUp = std::max(runnerUp, result.empiricalRound[k].heldoutImprovement);
-    CandidateOutcome &winner = result.empiricalRound[static_cast<size_t>(best)];
-    if (winner.heldoutImprovement < 2.0 * runnerUp) {
-        // Then no driver's term is located either (each has one at least half as good beside
-        // it): every term that passed the other rules is withdrawn, so the round agrees with
-        // the answer.
-        for (CandidateOutcome &o : result.empiricalRound)
-            if (o.accepted) {
-                o.accepted = false;
-                o.notLocated = true;
-                o.reasons.push_back("not located at one driver: the best driver's term gains " + fixedText(100.0 * winner.heldoutImprovement, 0) +
-                                    " % on the held-out run, the next best " + fixedText(100.0 * runnerUp, 0) +
-                                    " % (half or less needed)");
-            }
-        return;
-    }
-    winner.reasons.push_back("located at one driver: the next best driver's term gains " + fixedText(100.0 * runnerUp, 0) + " %");
-    Step step;
-    step.choice = {&(*library)[static_cast<size_t>(best)], fits[static_cast<size_t>(best)].start};
-    step.fit = std::move(fits[static_cast<size_t>(best)]);
-    // Judged without one (the 50 % held-out gain stood in for it); the final model reports its
-    // cross-validation like any other.
-    tick(1.0, "cross-validating " + step.choice.effect->code);
-    step.fit.crossValidate();
-    step.outcome = result.empiricalRound[static_cast<size_t>(best)];
-    if (std::isfinite(step.fit.eval.cvRms_um))
-        step.outcome.reasons.push_back("cross-validated once accepted (not part of the decision): RMS " + fixedText(step.fit.eval.cvRms_um, 3) +
-                                       " um vs " + fixedText(reference.eval.cvRms_um, 3) + " um for the model before it");
-    step.candidatesTried = static_cast<int>(library->size());
-    result.steps.push_back(std::move(step));
 }
 
 void ForwardSelection::simplify(Result &result, const Refit &refit) const

@@ -69,9 +69,6 @@ private:
         std::vector<std::string> failure;
         bool cancelled = false;
     };
-    // Runs job(0..n-1) on the pool; label(k) names job k for progress. False when cancelled.
-    bool parallel(size_t n, const std::function<void(size_t)> &job, const std::function<std::string(size_t)> &label,
-                  const std::function<bool(double, const std::string &)> &tick) const;
     // When no candidate passes alone: the pairs of candidates with partial evidence, each
     // refitted together; the best pair that passes together is accepted as two steps.
     bool tryPairs(Result &result, std::vector<Choice> &accepted, const CandidateFit &reference, Round &round,
@@ -98,10 +95,6 @@ private:
     // Index into `outcomes` of the winner after the parsimony rule, -1 for none.
     int winner(std::vector<CandidateOutcome> &outcomes) const;
     bool excluded(size_t c, const std::vector<Choice> &accepted) const;
-    // When the library is exhausted: the empirical terms on top of the final model, judged
-    // as a later step (paired held-out test too); the best accepted one is appended.
-    void tryEmpirical(Result &result, const CandidateFit &baseline, const DiagnosisRecording &train, const DiagnosisRecording &validate,
-                      double effectiveN, const Refit &refit, const std::function<bool(double, const std::string &)> &tick) const;
     // After the last round: a larger effect replaced by a simpler one it contains when the
     // final model does as well with it (AICc).
     void simplify(Result &result, const Refit &refit) const;
