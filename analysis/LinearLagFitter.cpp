@@ -1,6 +1,7 @@
 #include "LinearLagFitter.h"
 
 #include "BlockGram.h"
+#include "LinearLagDesign.h"
 #include "DataDrivenPredictor.h"
 #include "NonlinearUncertainty.h"
 
@@ -9,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <set>
 #include <stdexcept>
 
@@ -20,25 +20,6 @@ namespace {
 using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
-
-// NaN -> the last finite value (the first finite value before it), as DataDrivenPredictor::run.
-std::vector<double> held(const std::vector<double> &v)
-{
-    std::vector<double> out(v);
-    double last = std::numeric_limits<double>::quiet_NaN();
-    for (double x : v)
-        if (std::isfinite(x)) {
-            last = x;
-            break;
-        }
-    for (double &x : out) {
-        if (std::isfinite(x))
-            last = x;
-        else
-            x = last;
-    }
-    return out;
-}
 
 using Sums = DesignSums;
 
@@ -72,25 +53,6 @@ Solution solve(const Sums &t, double lambda, const VectorXd &prior)
     r.intercept = ybar - r.mu.dot(r.c);
     return r;
 }
-
-struct Structure {
-    int components = 0;
-    std::vector<double> temperatureLags{0.0};
-    std::vector<double> driveLags;
-    std::size_t reference = 0; // index into the candidate references
-};
-
-struct Row {
-    std::size_t run = 0, k = 0;
-};
-
-// Inputs under one temperature reference: normalised values on every run's grid.
-struct Prepared {
-    std::vector<double> offset, scale;
-    std::vector<std::vector<std::vector<double>>> z; // run, input, grid row
-    Eigen::MatrixXd W;                               // dynamic: components x inputs
-    std::vector<double> componentVariance;
-};
 
 } // namespace
 
@@ -173,157 +135,20 @@ LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const L
         if (!unique.insert(id).second)
             throw std::invalid_argument("input '" + id + "' given twice");
     }
+
+    LinearLagDesign d(runs, o);
     const std::size_t R = runs.size();
-    const std::size_t nInputs = o.inputs.size();
-    const bool hasDrive = !o.drive.empty();
-
-    // Columns of every run and the training rows (target and every input present).
-    std::vector<const SignalColumn *> targets(R), drives(R, nullptr);
-    std::vector<std::vector<const SignalColumn *>> inputs(R);
-    std::vector<Row> rows;
-    std::vector<std::size_t> rowCounts;
-    for (std::size_t ri = 0; ri < R; ++ri) {
-        const SignalTable &table = *runs[ri].table;
-        const std::string where = R > 1 ? "run " + std::to_string(ri) + ": " : std::string();
-        if (!runs[ri].rows.empty() && runs[ri].rows.size() != table.t.size())
-            throw std::invalid_argument(where + "training rows do not match the grid");
-        targets[ri] = &table.column(o.target);
-        for (const std::string &id : o.inputs)
-            inputs[ri].push_back(&table.column(id));
-        if (hasDrive)
-            drives[ri] = &table.column(o.drive);
-        std::size_t count = 0;
-        for (std::size_t k = 0; k < table.t.size(); ++k) {
-            if ((!runs[ri].rows.empty() && !runs[ri].rows[k]) || !std::isfinite(targets[ri]->v[k]))
-                continue;
-            bool ok = !hasDrive || std::isfinite(drives[ri]->v[k]);
-            for (const SignalColumn *c : inputs[ri])
-                ok = ok && std::isfinite(c->v[k]);
-            if (ok) {
-                rows.push_back({ri, k});
-                ++count;
-            }
-        }
-        if (R > 1 && count == 0)
-            throw std::invalid_argument(where + "no training sample has the target and every input");
-        rowCounts.push_back(count);
-    }
-    const std::size_t minRows = std::max<std::size_t>(20, static_cast<std::size_t>(5 * std::max(o.folds, 2)));
-    if (rows.size() < minRows)
-        throw std::invalid_argument(o.kind + ": " + std::to_string(rows.size()) +
-                                    " training samples have the target and every input; at least " +
-                                    std::to_string(minRows) + " are needed");
-    const Index n = static_cast<Index>(rows.size());
-    const Index nT = static_cast<Index>(nInputs);
-
-    // Held inputs on every run's grid (lag states and references run from each run's start).
-    std::vector<std::vector<std::vector<double>>> heldInputs(R);
-    for (std::size_t ri = 0; ri < R; ++ri)
-        for (const SignalColumn *c : inputs[ri])
-            heldInputs[ri].push_back(held(c->v));
-    std::vector<Prepared> prepared(o.references.size());
-    for (std::size_t ci = 0; ci < o.references.size(); ++ci) {
-        const TemperatureReference &ref = o.references[ci];
-        if (ref.kind != "absolute" && ref.kind != "start")
-            throw std::invalid_argument(o.kind + ": unknown temperature reference '" + ref.kind + "'");
-        Prepared &p = prepared[ci];
-        p.offset.resize(nInputs);
-        p.scale.resize(nInputs);
-        p.z.assign(R, std::vector<std::vector<double>>(nInputs));
-        std::vector<std::vector<std::vector<double>>> x(R, std::vector<std::vector<double>>(nInputs));
-        for (std::size_t ri = 0; ri < R; ++ri)
-            for (std::size_t i = 0; i < nInputs; ++i) {
-                const std::vector<double> &h = heldInputs[ri][i];
-                const std::vector<double> r = DataDrivenPredictor::referenceSeries(ref, runs[ri].table->t, h);
-                x[ri][i].resize(h.size());
-                for (std::size_t k = 0; k < h.size(); ++k)
-                    x[ri][i][k] = h[k] - r[k];
-            }
-        for (std::size_t i = 0; i < nInputs; ++i) {
-            double mean = 0.0, var = 0.0;
-            for (const Row &r : rows)
-                mean += x[r.run][i][r.k];
-            mean /= static_cast<double>(n);
-            for (const Row &r : rows)
-                var += (x[r.run][i][r.k] - mean) * (x[r.run][i][r.k] - mean);
-            const double sd = std::sqrt(var / static_cast<double>(n));
-            if (!(sd > 1e-9 * (1.0 + std::fabs(mean)))) {
-                if (ref.kind == "absolute" || o.references.size() == 1)
-                    throw std::invalid_argument("input '" + o.inputs[i] + "' is constant over the training samples");
-            }
-            p.offset[i] = mean;
-            p.scale[i] = std::max({sd, o.scaleFloor, 1e-12});
-            for (std::size_t ri = 0; ri < R; ++ri) {
-                std::vector<double> &zz = p.z[ri][i];
-                zz.resize(x[ri][i].size());
-                for (std::size_t k = 0; k < zz.size(); ++k)
-                    zz[k] = (x[ri][i][k] - mean) / p.scale[i];
-            }
-        }
-    }
-    double driveScale = 1.0;
-    std::vector<std::vector<double>> driveHeld(R);
-    if (hasDrive) {
-        driveScale = 0.0;
-        for (std::size_t ri = 0; ri < R; ++ri)
-            driveHeld[ri] = held(drives[ri]->v);
-        for (const Row &r : rows)
-            driveScale = std::max(driveScale, std::fabs(driveHeld[r.run][r.k]));
-        if (!(driveScale > 0))
-            throw std::invalid_argument("drive '" + o.drive + "' is zero over the training samples");
-    }
-    VectorXd y(n);
-    for (Index r = 0; r < n; ++r) {
-        const Row &row = rows[static_cast<std::size_t>(r)];
-        y(r) = targets[row.run]->v[row.k];
-    }
-
-    // Lagged normalised temperatures at the training rows, per reference and time constant.
-    std::map<std::pair<std::size_t, double>, MatrixXd> lagged;
-    auto laggedZ = [&](std::size_t ci, double tau) -> const MatrixXd & {
-        const auto key = std::make_pair(ci, tau);
-        auto it = lagged.find(key);
-        if (it != lagged.end())
-            return it->second;
-        MatrixXd m(n, nT);
-        for (Index i = 0; i < nT; ++i) {
-            std::vector<std::vector<double>> x(R);
-            for (std::size_t ri = 0; ri < R; ++ri)
-                x[ri] = DataDrivenPredictor::lagSeries(runs[ri].table->t, prepared[ci].z[ri][static_cast<std::size_t>(i)], tau);
-            for (Index r = 0; r < n; ++r) {
-                const Row &row = rows[static_cast<std::size_t>(r)];
-                m(r, i) = x[row.run][row.k];
-            }
-        }
-        return lagged.emplace(key, std::move(m)).first->second;
-    };
-    std::map<std::pair<int, double>, VectorXd> laggedDrive;
-    auto driveFeature = [&](int power, double tau) -> const VectorXd & {
-        const auto key = std::make_pair(power, tau);
-        auto it = laggedDrive.find(key);
-        if (it != laggedDrive.end())
-            return it->second;
-        std::vector<std::vector<double>> x(R);
-        for (std::size_t ri = 0; ri < R; ++ri) {
-            std::vector<double> g(driveHeld[ri].size());
-            for (std::size_t k = 0; k < g.size(); ++k) {
-                const double v = driveHeld[ri][k] / driveScale;
-                g[k] = power == 2 ? v * v : v;
-            }
-            x[ri] = DataDrivenPredictor::lagSeries(runs[ri].table->t, g, tau);
-        }
-        VectorXd out(n);
-        for (Index r = 0; r < n; ++r) {
-            const Row &row = rows[static_cast<std::size_t>(r)];
-            out(r) = x[row.run][row.k];
-        }
-        return laggedDrive.emplace(key, std::move(out)).first->second;
-    };
+    const Index n = d.n, nT = d.nT;
+    const bool hasDrive = d.hasDrive;
+    const std::vector<LinearLagDesign::Row> &rows = d.rows;
+    const std::vector<std::size_t> &rowCounts = d.rowCounts;
+    const VectorXd &y = d.y;
+    std::vector<LinearLagDesign::Prepared> &prepared = d.prepared;
 
     LinearLagFit fit;
     fit.trainingRows = rows.size();
     fit.runs = R;
-    std::vector<Structure> structures;
+    std::vector<LinearLagStructure> structures;
     auto checkBank = [&](const std::vector<double> &bank) {
         if (bank.empty())
             throw std::invalid_argument(o.kind + ": a temperature lag bank is empty");
@@ -334,7 +159,7 @@ LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const L
     for (std::size_t ci = 0; ci < o.references.size(); ++ci) {
         if (o.kind == "dynamic") {
             // Principal components of the z-scored temperatures over the training rows.
-            const MatrixXd &Z0 = laggedZ(ci, 0.0);
+            const MatrixXd &Z0 = d.laggedZ(ci, 0.0);
             Eigen::JacobiSVD<MatrixXd> svd(Z0, Eigen::ComputeThinV);
             prepared[ci].W = svd.matrixV().transpose();
             const VectorXd s2 = svd.singularValues().array().square();
@@ -381,75 +206,10 @@ LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const L
         if (!(l >= 0))
             throw std::invalid_argument(o.kind + ": penalties must be >= 0");
 
-    auto design = [&](const Structure &s) {
-        const Index perLag = s.components == 0 ? nT : s.components;
-        const Index p = static_cast<Index>(s.temperatureLags.size()) * perLag + 2 * static_cast<Index>(s.driveLags.size());
-        MatrixXd X(n, p);
-        Index j = 0;
-        for (double tau : s.temperatureLags) {
-            const MatrixXd &L = laggedZ(s.reference, tau);
-            if (s.components == 0)
-                X.middleCols(j, nT) = L;
-            else
-                X.middleCols(j, perLag).noalias() = L * prepared[s.reference].W.topRows(s.components).transpose();
-            j += perLag;
-        }
-        for (int power : {1, 2})
-            for (double tau : s.driveLags)
-                X.col(j++) = driveFeature(power, tau);
-        return X;
-    };
-
-    // The same design as blocks for BlockGram: lagged temperatures (projected on the components)
-    // and a selection of the drive features, which are columns of one matrix.
-    MatrixXd driveMatrix;
-    std::map<std::pair<int, double>, Index> driveColumn;
-    if (hasDrive) {
-        std::set<double> taus;
-        for (const std::vector<double> &bank : o.driveLags)
-            taus.insert(bank.begin(), bank.end());
-        driveMatrix.resize(n, 2 * static_cast<Index>(taus.size()));
-        Index j = 0;
-        for (int power : {1, 2})
-            for (double tau : taus) {
-                driveMatrix.col(j) = driveFeature(power, tau);
-                driveColumn[{power, tau}] = j++;
-            }
-    }
-    auto designBlocks = [&](const Structure &s) {
-        std::vector<BlockGram::Block> blocks;
-        for (double tau : s.temperatureLags) {
-            BlockGram::Block b;
-            b.matrix = &laggedZ(s.reference, tau);
-            if (s.components > 0)
-                b.projection = prepared[s.reference].W.topRows(s.components).transpose();
-            blocks.push_back(std::move(b));
-        }
-        if (!s.driveLags.empty()) {
-            BlockGram::Block b;
-            b.matrix = &driveMatrix;
-            b.projection = MatrixXd::Zero(driveMatrix.cols(), 2 * static_cast<Index>(s.driveLags.size()));
-            Index j = 0;
-            for (int power : {1, 2})
-                for (double tau : s.driveLags)
-                    b.projection(driveColumn.at({power, tau}), j++) = 1.0;
-            blocks.push_back(std::move(b));
-        }
-        return blocks;
-    };
+    d.buildDriveMatrix();
     BlockGram gram(y);
 
-    // Scales of the features in the ridge penalty: 0 = the feature's own standard deviation.
-    auto priorScale = [&](const Structure &s, Index columns) {
-        VectorXd prior = VectorXd::Zero(columns);
-        if (s.components > 0 && !o.standardizeComponents)
-            prior.head(static_cast<Index>(s.temperatureLags.size()) * s.components).setOnes();
-        return prior;
-    };
-
-    std::vector<double> times(rows.size());
-    for (std::size_t r = 0; r < rows.size(); ++r)
-        times[r] = runs[rows[r].run].table->t[rows[r].k];
+    const std::vector<double> times = d.times();
     fit.gap_s = R > 1 ? 0.0 : (o.gap_s >= 0 ? o.gap_s : TimeBlockedFolds::defaultGap(times, o.folds));
     const std::vector<TimeBlockedFold> folds =
         LinearLagFitter::folds(rowCounts, times, o.folds, fit.gap_s, o.maxRunFolds, fit.foldRule);
@@ -483,16 +243,16 @@ LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const L
 
     CvCandidate best;
     best.cvRmse = std::numeric_limits<double>::infinity();
-    Structure bestStructure;
+    LinearLagStructure bestStructure;
     // Every candidate's squared error per fold, for the nested estimate below.
     std::vector<std::vector<double>> candidateFoldSse;
     for (std::size_t si = 0; si < structures.size(); ++si) {
-        const Structure &s = structures[si];
-        const std::vector<BlockGram::Block> blocks = designBlocks(s);
+        const LinearLagStructure &s = structures[si];
+        const std::vector<BlockGram::Block> blocks = d.designBlocks(s);
         Index columns = 0;
         for (const BlockGram::Block &b : blocks)
             columns += b.projection.size() == 0 ? b.matrix->cols() : b.projection.cols();
-        const VectorXd prior = priorScale(s, columns);
+        const VectorXd prior = d.priorScale(s, columns);
         // Leave-runs-out folds partition the rows: each fold's sums give both its training sums
         // (total minus it) and its squared error. Time-blocked folds leave a gap: the training
         // sums are the total minus the excluded range, the error from the fold's own sums.
@@ -563,14 +323,14 @@ LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const L
         fit.nestedCvRmse = nestedCv(candidateFoldSse, lengths, fit.nestedFoldRmse);
         fit.model.predictionSigma = fit.nestedCvRmse;
     }
-    const Prepared &chosenInputs = prepared[bestStructure.reference];
+    const LinearLagDesign::Prepared &chosenInputs = prepared[bestStructure.reference];
     fit.componentVariance = chosenInputs.componentVariance;
     const MatrixXd &W = chosenInputs.W;
 
     // Final fit on every training sample.
-    const MatrixXd X = design(bestStructure);
+    const MatrixXd X = d.design(bestStructure);
     const Sums total = Sums::of(X, y, 0, n);
-    const Solution sol = solve(total, best.lambda, priorScale(bestStructure, X.cols()));
+    const Solution sol = solve(total, best.lambda, d.priorScale(bestStructure, X.cols()));
     const VectorXd residual = y - X * sol.c - VectorXd::Constant(n, sol.intercept);
     // Degrees of freedom and the sandwich covariance of the standardised coefficients.
     const Eigen::CompleteOrthogonalDecomposition<MatrixXd> Ainv(sol.A);
@@ -587,17 +347,17 @@ LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const L
     // Expand into per-channel terms: rows of M map feature coefficients to term coefficients.
     DataDrivenModel &model = fit.model;
     model.kind = o.kind;
-    const SignalColumn &target = *targets.front();
+    const SignalColumn &target = *d.targets.front();
     model.target = {target.id, target.unit, target.kind};
     const std::size_t nTl = bestStructure.temperatureLags.size();
     const bool rise = o.references[bestStructure.reference].kind == "start";
     if (nTl > 0) {
         model.reference = o.references[bestStructure.reference];
-        for (const SignalColumn *c : inputs.front())
+        for (const SignalColumn *c : d.inputs.front())
             model.inputs.push_back({c->id, c->unit, c->kind});
     }
     if (hasDrive && !bestStructure.driveLags.empty())
-        model.inputs.push_back({drives.front()->id, drives.front()->unit, drives.front()->kind});
+        model.inputs.push_back({d.drives.front()->id, d.drives.front()->unit, d.drives.front()->kind});
     model.samplePeriod_s = SignalTable::medianInterval(std::vector<double>(times.begin(), times.begin() + static_cast<std::ptrdiff_t>(rowCounts.front())));
     const Index p = X.cols();
     std::vector<VectorXd> mapRows;
@@ -630,7 +390,7 @@ LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const L
         term.input = static_cast<int>(model.inputs.size()) - 1;
         term.power = power;
         term.offset = 0.0;
-        term.scale = driveScale;
+        term.scale = d.driveScale;
         term.lags_s = bestStructure.driveLags;
         for (std::size_t l = 0; l < bestStructure.driveLags.size(); ++l) {
             VectorXd row = VectorXd::Zero(p);
@@ -666,7 +426,7 @@ LinearLagFit LinearLagFitter::fit(const std::vector<LinearLagRun> &runs, const L
             columns.push_back(table.column(c.id).v);
         const std::vector<double> pr = DataDrivenPredictor::run(model, table.t, columns);
         for (std::size_t r = r0; r < r0 + rowCounts[ri]; ++r) {
-            measured.push_back(targets[ri]->v[rows[r].k]);
+            measured.push_back(d.targets[ri]->v[rows[r].k]);
             predicted.push_back(pr[rows[r].k]);
         }
         r0 += rowCounts[ri];

@@ -180,24 +180,6 @@ ValidationSet DataDrivenFit::validate(const DataDrivenModel &model, const QList<
 
 namespace {
 
-std::vector<TemperatureReference> referenceCandidates(const QString &text, int sessions)
-{
-    const TemperatureReference absolute{"absolute", 0.0}, start{"start", 0.0};
-    if (text.isEmpty() || text == QLatin1String("auto"))
-        return sessions > 1 ? std::vector<TemperatureReference>{start, absolute} : std::vector<TemperatureReference>{absolute};
-    if (text == QLatin1String("absolute"))
-        return {absolute};
-    if (text == QLatin1String("start"))
-        return {start};
-    if (text.startsWith(QLatin1String("start:"))) {
-        bool ok = false;
-        const double minutes = text.mid(6).toDouble(&ok);
-        if (ok && minutes > 0 && minutes <= 24 * 60)
-            return {TemperatureReference{"start", minutes * 60.0}};
-    }
-    bad(QStringLiteral("--reference: expected auto, absolute, start or start:MINUTES (0 < MINUTES <= 1440), got '%1'").arg(text));
-}
-
 int linearParameters(const CvCandidate &c)
 {
     return static_cast<int>(c.features) + 1;
@@ -207,70 +189,7 @@ int linearParameters(const CvCandidate &c)
 
 void DataDrivenFit::check(const DataDrivenFitRequest &q) const
 {
-    if (!allModels().contains(q.model))
-        bad(QStringLiteral("--model: unknown model '%1' (known: fdm, %2)").arg(q.model, allModels().join(QStringLiteral(", "))));
-    const QList<qint64> train = q.trainingSessions(), held = q.heldOutSessions();
-    if (train.isEmpty() || train.contains(0))
-        bad(QStringLiteral("give at least one training SESSION"));
-    for (int i = 0; i < train.size(); ++i)
-        if (train.indexOf(train[i]) != i)
-            bad(QStringLiteral("session %1 is given twice").arg(train[i]));
-    for (qint64 h : held) {
-        if (train.contains(h))
-            bad(QStringLiteral("--holdout: session %1 is a training session; held-out data must be a session the model was "
-                               "not fitted to (or use --holdout-range)")
-                    .arg(h));
-        if (held.count(h) > 1)
-            bad(QStringLiteral("--holdout: session %1 is given twice").arg(h));
-    }
-    if (!held.isEmpty() && q.holdoutRange)
-        bad(QStringLiteral("give --holdout SESSION or --holdout-range H:H, not both"));
-    if (q.holdoutRange && train.size() > 1)
-        bad(QStringLiteral("--holdout-range: with several training sessions hold out whole sessions (--holdout SESSION)"));
-    referenceCandidates(q.reference, static_cast<int>(train.size()));
-    const bool laser = q.target == QLatin1String("interferometer");
-    if (laser && q.model != QLatin1String("synthetic"))
-        bad(QStringLiteral("--target interferometer: only the synthetic model fits interferometer runs"));
-    if (q.model == QLatin1String("synthetic") && train.size() > 1)
-        bad(QStringLiteral("--model synthetic fits one session (seed 002's laser runs); give one SESSION"));
-    if (q.model == QLatin1String("exp") && (!q.points.isEmpty() || q.autoPoints))
-        bad(QStringLiteral("--points: the exp model (seed 001) is driven by the drive channel alone; name it with --drive"));
-    const bool needsDrive = q.model == QLatin1String("exp");
-    QList<qint64> all = train;
-    all += held;
-    QString drive;
-    for (qint64 id : all) {
-        const DataDrivenSession s(m_store, id);
-        if (!laser) // one rule for what a target is (FitRequestCheck), every session
-            FitRequestCheck::checkTarget(m_store, id, q.target);
-        for (const QString &p : q.points)
-            if (!s.hasChannel(p))
-                bad(QStringLiteral("--points: session %1 has no channel '%2'").arg(id).arg(p));
-        const bool driveModel = q.model == QLatin1String("exp") || q.model == QLatin1String("dynamic") ||
-                                q.model == QLatin1String("auto");
-        if (driveModel && !q.drive.isEmpty() && q.drive != QLatin1String("none")) {
-            if (!s.hasChannel(q.drive))
-                bad(QStringLiteral("--drive: session %1 has no channel '%2'").arg(id).arg(q.drive));
-            if (!s.isDrive(q.drive))
-                bad(QStringLiteral("--drive: channel '%1' of session %2 is not a drive (kind %3): a drive is a channel of kind "
-                                   "feed or speed, or with role spindle or feed_rate, and not a temperature")
-                        .arg(q.drive)
-                        .arg(id)
-                        .arg(s.kindOf(q.drive)));
-        }
-        if (driveModel && q.drive.isEmpty()) {
-            if (id == train.front())
-                drive = s.driveChannel();
-            else if (!drive.isEmpty() && !s.hasChannel(drive))
-                bad(QStringLiteral("session %1 has no channel '%2' (the drive of session %3)").arg(id).arg(drive).arg(train.front()));
-        }
-        if (needsDrive && q.drive.isEmpty() && id == train.front() && drive.isEmpty())
-            bad(QStringLiteral("--model exp: session %1 has no drive channel (role spindle or feed_rate, or kind feed or speed, "
-                               "not a temperature); name one with --drive")
-                    .arg(id));
-        if (needsDrive && q.drive == QLatin1String("none"))
-            bad(QStringLiteral("--drive none: the exp model (seed 001) needs a drive channel"));
-    }
+    FitRequestCheck::check(m_store, q);
 }
 
 DataDrivenFitResult DataDrivenFit::fit(const DataDrivenFitRequest &q, const Progress &progress) const
@@ -410,7 +329,7 @@ DataDrivenFitResult DataDrivenFit::fitFamily(const DataDrivenFitRequest &q, cons
         o.drive = drive.toStdString();
         o.folds = q.folds;
         o.scaleFloor = q.scaleFloor_K;
-        o.references = referenceCandidates(q.reference, static_cast<int>(trainIds.size()));
+        o.references = FitRequestCheck::referenceCandidates(q.reference, static_cast<int>(trainIds.size()));
         std::vector<LinearLagRun> runs;
         for (std::size_t r = 0; r < tables.size(); ++r)
             runs.push_back({&tables[r], trainRows[r]});

@@ -9,6 +9,7 @@
 #include <QString>
 
 #include <optional>
+#include <vector>
 
 namespace driftlab {
 
@@ -26,6 +27,12 @@ public:
     // --target: a displacement (or unclassified) channel of the session, or "interferometer";
     // a temperature, position or feed channel, or no channel at all, is refused.
     static void checkTarget(const SessionStore &store, qint64 session, const QString &target);
+    // --reference (auto, absolute, start or start:MINUTES) as the candidate temperature references
+    // of a linear-lag fit on `sessions` training sessions (auto: start and absolute with several).
+    static std::vector<TemperatureReference> referenceCandidates(const QString &text, int sessions);
+    // The whole request (DataDrivenFit::check): models, sessions, hold-out, reference, target,
+    // points and drive of every training and held-out session.
+    static void check(const SessionStore &store, const DataDrivenFitRequest &request);
 };
 
 } // namespace driftlab
