@@ -391,8 +391,10 @@ void DataDrivenModelJson::write(const QJsonObject &document, const QString &path
     QSaveFile f(path);
     if (!f.open(QIODevice::WriteOnly))
         throw std::runtime_error(QStringLiteral("%1: cannot write: %2").arg(path, f.errorString()).toStdString());
-    f.write(QJsonDocument(document).toJson(QJsonDocument::Indented));
-    if (!f.commit())
+    // flush() first: QSaveFile::commit() does not see a buffered write that fails on close
+    // (a full disk), and would keep an empty file.
+    const QByteArray bytes = QJsonDocument(document).toJson(QJsonDocument::Indented);
+    if (f.write(bytes) != bytes.size() || !f.flush() || !f.commit())
         throw std::runtime_error(QStringLiteral("%1: cannot write: %2").arg(path, f.errorString()).toStdString());
 }
 

@@ -258,7 +258,7 @@ void ReportWriter::write(const QString &path) const
         writePdf(&file);
     else
         file.write(html());
-    if (!file.commit())
+    if (!file.flush() || !file.commit())
         throw std::runtime_error(QStringLiteral("%1: cannot write (%2)").arg(path, file.errorString()).toStdString());
 }
 

@@ -447,7 +447,7 @@ bool CsvImportDialog::saveMap(const QString &path)
     }
     QSaveFile f(path);
     const QByteArray bytes = QJsonDocument(map.toJson()).toJson(QJsonDocument::Indented);
-    if (!f.open(QIODevice::WriteOnly) || f.write(bytes) != bytes.size() || !f.commit()) {
+    if (!f.open(QIODevice::WriteOnly) || f.write(bytes) != bytes.size() || !f.flush() || !f.commit()) {
         showError(tr("%1: cannot write: %2").arg(path, f.errorString()));
         return false;
     }

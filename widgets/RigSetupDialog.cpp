@@ -520,8 +520,8 @@ bool RigSetupDialog::saveTo(const QString &path)
         m_validation = tr("%1: cannot write: %2").arg(path, f.errorString());
         return false;
     }
-    f.write(QJsonDocument(RigConfigLoader::toJson(rig())).toJson(QJsonDocument::Indented));
-    if (!f.commit()) {
+    const QByteArray bytes = QJsonDocument(RigConfigLoader::toJson(rig())).toJson(QJsonDocument::Indented);
+    if (f.write(bytes) != bytes.size() || !f.flush() || !f.commit()) {
         m_validation = tr("%1: cannot write: %2").arg(path, f.errorString());
         return false;
     }

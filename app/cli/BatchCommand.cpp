@@ -158,6 +158,7 @@ private:
         QSaveFile log(dir.filePath(s.log)); // the command, its output and its messages; never half-written
         if (log.open(QIODevice::WriteOnly)) {
             log.write("$ driftlab-cli " + args.join(QLatin1Char(' ')).toUtf8() + '\n' + p.readAllStandardOutput() + err);
+            log.flush();
             log.commit();
         }
         s.seconds = timer.elapsed() / 1000.0;

@@ -46,7 +46,7 @@ int NewBundleCommand::run(const QStringList &args)
             throw std::runtime_error(QStringLiteral("new-bundle: cannot create %1").arg(to).toStdString());
         QSaveFile out(to);
         const QByteArray data = in.readAll();
-        if (!out.open(QIODevice::WriteOnly) || out.write(data) != data.size() || !out.commit())
+        if (!out.open(QIODevice::WriteOnly) || out.write(data) != data.size() || !out.flush() || !out.commit())
             throw std::runtime_error(QStringLiteral("new-bundle: cannot write %1: %2").arg(to, out.errorString()).toStdString());
     }
     QTextStream(stdout) << "template bundle written to " << dir << " (" << files.size()

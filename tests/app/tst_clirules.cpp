@@ -567,6 +567,15 @@ void TestCliRules::exportModelOntoAFullDiskLeavesNothing()
     QCOMPARE(small.code, 1);
     QVERIFY2(small.err.contains("cannot write " + json.toUtf8()), small.err.constData());
     QCOMPARE(entries(mountPoint), QStringList{QStringLiteral("filler")});
+    // The same for fit --out (MODEL.json through DataDrivenModelJson::write): before, an empty
+    // MODEL.json was kept and fit exited 0.
+    const QString model = mountPoint + QStringLiteral("/model.json");
+    const clirunner::Result fit = run({QStringLiteral("fit"), QStringLiteral("1"), QStringLiteral("--db"), m_db, QStringLiteral("--model"),
+                                       QStringLiteral("mlr"), QStringLiteral("--target"), QStringLiteral("S1"), QStringLiteral("--points"),
+                                       QStringLiteral("T_nut"), QStringLiteral("--out"), model});
+    QCOMPARE(fit.code, 1);
+    QVERIFY2(fit.err.contains(model.toUtf8() + ": cannot write"), fit.err.constData());
+    QCOMPARE(entries(mountPoint), QStringList{QStringLiteral("filler")});
 }
 
 void TestCliRules::oneSessionArgumentParser()
