@@ -1,0 +1,378 @@
+#include "LiveRecordingView.h"
+
+#include "SessionStore.h"
+#include "TimeSeriesPlot.h"
+
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QJsonDocument>
+#include <QLabel>
+#include <QLocale>
+#include <QMessageBox>
+#include <QPushButton>
+#include <QSettings>
+#include <QSplitter>
+#include <QTableWidget>
+#include <QVBoxLayout>
+
+#include <qwt_plot_curve.h>
+#include <qwt_scale_widget.h>
+
+#include <cmath>
+#include <limits>
+
+namespace driftlab {
+
+namespace {
+enum Column { ColChannel, ColValue, ColLow, ColHigh, ColCount };
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+QString hms(double s)
+{
+    const qint64 t = static_cast<qint64>(std::floor(std::max(0.0, s)));
+    return QStringLiteral("%1:%2:%3").arg(t / 3600).arg((t / 60) % 60, 2, 10, QLatin1Char('0')).arg(t % 60, 2, 10, QLatin1Char('0'));
+}
+
+QString limitText(double v)
+{
+    return std::isnan(v) ? QString() : QLocale().toString(v, 'g', 6);
+}
+
+double parseLimit(const QString &text)
+{
+    const QString s = text.trimmed();
+    if (s.isEmpty())
+        return kNaN;
+    bool ok = false;
+    double v = QLocale().toDouble(s, &ok);
+    if (!ok)
+        v = s.toDouble(&ok);
+    return ok ? v : kNaN;
+}
+
+bool isTemperature(const ChannelInfo &c)
+{
+    return c.kind == QLatin1String("temperature");
+}
+
+QString settingsKey(const QString &rig)
+{
+    QString key = rig;
+    key.replace(QLatin1Char('/'), QLatin1Char('_')).replace(QLatin1Char('\\'), QLatin1Char('_'));
+    return QStringLiteral("liveLimits/") + key;
+}
+} // namespace
+
+LiveRecordingView::LiveRecordingView(QWidget *parent) : QWidget(parent)
+{
+    setObjectName(QStringLiteral("LiveRecordingView"));
+    m_title = new QLabel(tr("No recording"), this);
+    QFont bold = m_title->font();
+    bold.setBold(true);
+    m_title->setFont(bold);
+    m_clock = new QLabel(this);
+    m_alarm = new QLabel(this);
+    m_alarm->setObjectName(QStringLiteral("LiveAlarm"));
+    m_alarm->setWordWrap(true);
+    m_alarm->setStyleSheet(QStringLiteral("QLabel { background: #b00020; color: white; padding: 4px; font-weight: bold; }"));
+    m_alarm->hide();
+    m_stop = new QPushButton(tr("Stop recording..."), this);
+    m_stop->setEnabled(false);
+    m_table = new QTableWidget(0, ColCount, this);
+    m_table->setHorizontalHeaderLabels({tr("Channel"), tr("Value"), tr("Low limit"), tr("High limit")});
+    m_table->verticalHeader()->hide();
+    m_table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    m_table->horizontalHeader()->setStretchLastSection(true);
+    m_table->setToolTip(tr("Tick the channels to plot; a value outside the low or high limit raises an alarm, "
+                           "stored as an event of the session (empty: no limit)"));
+    m_silent = new QDoubleSpinBox(this);
+    m_silent->setRange(0.0, 86400.0);
+    m_silent->setDecimals(0);
+    m_silent->setSuffix(tr(" s"));
+    m_silent->setSpecialValueText(tr("not watched"));
+    m_silent->setToolTip(tr("A channel with a limit that delivers no sample for this long (session time) raises "
+                            "\"sensor silent\""));
+    m_plot = new TimeSeriesPlot(this);
+    m_plot->insertLegend(nullptr); // the channel table is the legend (64 channels would bury the plot)
+    m_plot->setAxisTitles(tr("temperature (°C)"), tr("elongation (µm)"));
+    m_plot->setAxisScale(QwtPlot::yLeft, 15.0, 35.0);
+    m_plot->setAxisScale(QwtPlot::yRight, -5.0, 50.0);
+    m_plot->setAxisScale(QwtPlot::xBottom, 0.0, 60.0);
+
+    auto *top = new QHBoxLayout;
+    top->addWidget(m_title);
+    top->addSpacing(12);
+    top->addWidget(m_clock, 1);
+    top->addWidget(m_stop);
+    auto *side = new QWidget(this);
+    auto *sideLayout = new QVBoxLayout(side);
+    sideLayout->setContentsMargins(0, 0, 0, 0);
+    sideLayout->addWidget(m_table, 1);
+    auto *silentForm = new QFormLayout;
+    silentForm->addRow(tr("Sensor silent after"), m_silent);
+    sideLayout->addLayout(silentForm);
+    auto *split = new QSplitter(Qt::Horizontal, this);
+    split->addWidget(side);
+    split->addWidget(m_plot);
+    split->setStretchFactor(0, 0);
+    split->setStretchFactor(1, 1);
+    split->setChildrenCollapsible(false);
+    split->setSizes({240, 1000});
+    auto *layout = new QVBoxLayout(this);
+    layout->addLayout(top);
+    layout->addWidget(m_alarm);
+    layout->addWidget(split, 1);
+
+    m_ask = [](QWidget *parent) {
+        return QMessageBox::question(parent, tr("Stop recording"),
+                                     tr("Stop the recording? The session is closed and cannot be continued."),
+                                     QMessageBox::Yes | QMessageBox::No, QMessageBox::No) == QMessageBox::Yes;
+    };
+    connect(m_stop, &QPushButton::clicked, this, &LiveRecordingView::requestStop);
+    connect(m_table, &QTableWidget::itemChanged, this, [this](QTableWidgetItem *item) {
+        if (m_filling)
+            return;
+        if (item->column() == ColChannel) {
+            const QString key = item->data(Qt::UserRole).toString();
+            if (QwtPlotCurve *c = m_plot->curve(key)) {
+                c->setVisible(item->checkState() == Qt::Checked);
+                m_plot->replot();
+            }
+        } else if (item->column() == ColLow || item->column() == ColHigh) {
+            readLimitsFromTable(item->row());
+        }
+    });
+    connect(m_silent, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, [this](double) {
+        if (m_filling)
+            return;
+        for (int r = 0; r < m_table->rowCount(); ++r)
+            readLimitsFromTable(r);
+    });
+}
+
+void LiveRecordingView::begin(const QString &title, const QString &rig, double end_s)
+{
+    m_rig = rig;
+    m_end_s = end_s;
+    m_active = true;
+    m_refreshes = 0;
+    m_title->setText(title);
+    m_stop->setEnabled(true);
+    m_plot->clearCurves();
+    for (int axis : {QwtPlot::yLeft, QwtPlot::yRight, QwtPlot::xBottom})
+        m_plot->setAxisAutoScale(axis, true);
+    m_channels.clear();
+    m_tracked.clear();
+    m_filling = true;
+    m_table->setRowCount(0);
+    m_filling = false;
+    m_monitor.reset();
+    m_monitor.fromJson(QJsonDocument::fromJson(QSettings().value(settingsKey(rig)).toByteArray()).object());
+    double silent = 0.0;
+    for (const QString &key : m_monitor.limitedChannels())
+        silent = std::max(silent, m_monitor.limit(key).silent_s);
+    m_filling = true;
+    m_silent->setValue(silent);
+    m_filling = false;
+    showAlarms();
+    setClock(0.0, false);
+}
+
+void LiveRecordingView::finish(const QString &message)
+{
+    m_active = false;
+    m_stop->setEnabled(false);
+    m_clock->setText(message);
+}
+
+void LiveRecordingView::setClock(double now_s, bool paused)
+{
+    QString text = tr("%1 elapsed").arg(hms(now_s));
+    if (m_end_s > 0)
+        text += tr(", %1 remaining").arg(hms(std::max(0.0, m_end_s - now_s)));
+    else
+        text += tr(", until Stop");
+    if (paused)
+        text += tr(" (paused)");
+    m_clock->setText(text);
+}
+
+QString LiveRecordingView::clockText() const
+{
+    return m_clock->text();
+}
+
+void LiveRecordingView::rebuildTable(const QVector<ChannelInfo> &channels)
+{
+    m_channels = channels;
+    m_filling = true;
+    m_table->setRowCount(channels.size());
+    for (int r = 0; r < channels.size(); ++r) {
+        const ChannelInfo &c = channels[r];
+        m_monitor.setChannel(c.key, c.unit, isTemperature(c));
+        auto *name = new QTableWidgetItem(c.unit.isEmpty() ? c.key : QStringLiteral("%1 (%2)").arg(c.key, c.unit));
+        name->setData(Qt::UserRole, c.key);
+        name->setFlags(Qt::ItemIsEnabled | Qt::ItemIsUserCheckable | Qt::ItemIsSelectable);
+        const bool plotted = isTemperature(c) || c.kind == QLatin1String("displacement");
+        name->setCheckState(plotted ? Qt::Checked : Qt::Unchecked);
+        m_table->setItem(r, ColChannel, name);
+        auto *value = new QTableWidgetItem;
+        value->setFlags(Qt::ItemIsEnabled);
+        value->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
+        m_table->setItem(r, ColValue, value);
+        const LiveLimitMonitor::Limit l = m_monitor.limit(c.key);
+        m_table->setItem(r, ColLow, new QTableWidgetItem(limitText(l.low)));
+        m_table->setItem(r, ColHigh, new QTableWidgetItem(limitText(l.high)));
+        if (!m_tracked.contains(c.key))
+            m_tracked.insert(c.key, {c.id, c.unit, isTemperature(c), -std::numeric_limits<double>::infinity(), kNaN});
+    }
+    m_filling = false;
+}
+
+void LiveRecordingView::readLimitsFromTable(int row)
+{
+    const QTableWidgetItem *name = m_table->item(row, ColChannel);
+    if (!name)
+        return;
+    LiveLimitMonitor::Limit l;
+    l.low = parseLimit(m_table->item(row, ColLow) ? m_table->item(row, ColLow)->text() : QString());
+    l.high = parseLimit(m_table->item(row, ColHigh) ? m_table->item(row, ColHigh)->text() : QString());
+    l.silent_s = m_silent->value();
+    m_monitor.setLimit(name->data(Qt::UserRole).toString(), l);
+    saveLimits();
+}
+
+void LiveRecordingView::setLimit(const QString &key, const LiveLimitMonitor::Limit &limit)
+{
+    m_monitor.setLimit(key, limit);
+    m_filling = true;
+    for (int r = 0; r < m_table->rowCount(); ++r) {
+        if (m_table->item(r, ColChannel)->data(Qt::UserRole).toString() != key)
+            continue;
+        m_table->item(r, ColLow)->setText(limitText(limit.low));
+        m_table->item(r, ColHigh)->setText(limitText(limit.high));
+    }
+    m_filling = false;
+    saveLimits();
+}
+
+void LiveRecordingView::saveLimits()
+{
+    if (!m_rig.isEmpty())
+        QSettings().setValue(settingsKey(m_rig), QJsonDocument(m_monitor.toJson()).toJson(QJsonDocument::Compact));
+}
+
+void LiveRecordingView::setChannelShown(const QString &key, bool shown)
+{
+    for (int r = 0; r < m_table->rowCount(); ++r)
+        if (m_table->item(r, ColChannel)->data(Qt::UserRole).toString() == key)
+            m_table->item(r, ColChannel)->setCheckState(shown ? Qt::Checked : Qt::Unchecked);
+}
+
+bool LiveRecordingView::channelShown(const QString &key) const
+{
+    for (int r = 0; r < m_table->rowCount(); ++r)
+        if (m_table->item(r, ColChannel)->data(Qt::UserRole).toString() == key)
+            return m_table->item(r, ColChannel)->checkState() == Qt::Checked;
+    return false;
+}
+
+QStringList LiveRecordingView::channelKeys() const
+{
+    QStringList keys;
+    for (const ChannelInfo &c : m_channels)
+        keys << c.key;
+    return keys;
+}
+
+void LiveRecordingView::update(const SessionStore &reader, qint64 sessionId, double now_s)
+{
+    if (sessionId <= 0)
+        return;
+    // Channels are created when the recording starts; re-read until there are some.
+    if (m_channels.isEmpty()) {
+        const QVector<ChannelInfo> channels = reader.channels(sessionId);
+        if (channels.isEmpty())
+            return;
+        rebuildTable(channels);
+    }
+    const double t1 = std::max(1.0, now_s);
+    const int buckets = std::max(100, m_plot->canvas()->width() / 2);
+    QVector<LiveLimitMonitor::Alarm> alarms;
+    for (int r = 0; r < m_channels.size(); ++r) {
+        const ChannelInfo &c = m_channels[r];
+        Tracked &tr = m_tracked[c.key];
+        QTableWidgetItem *name = m_table->item(r, ColChannel);
+        const bool shown = name->checkState() == Qt::Checked;
+        double last = kNaN;
+        if (shown) {
+            const DecimatedSeries d = reader.decimated(c.id, 0.0, t1, buckets);
+            QVector<double> x, y;
+            TimeSeriesPlot::envelopePoints(d, x, y);
+            QwtPlotCurve *curve = m_plot->curve(c.key);
+            if (curve) {
+                curve->setSamples(x, y);
+            } else {
+                curve = m_plot->addCurve(c.key, x, y, !tr.temperature);
+                curve->setRenderHint(QwtPlotItem::RenderAntialiased, false);
+                m_filling = true;
+                name->setForeground(curve->pen().color());
+                m_filling = false;
+            }
+            if (!d.tLast.isEmpty()) {
+                tr.lastSample_t = std::isnan(tr.lastSample_t) ? d.tLast.last() : std::max(tr.lastSample_t, d.tLast.last());
+                last = d.max.last();
+            }
+        }
+        if (m_monitor.limit(c.key).any()) {
+            const double from = std::nextafter(tr.checked_t, std::numeric_limits<double>::infinity());
+            const SampleBlock fresh = reader.samples(c.id, from, 1e300);
+            if (!fresh.t.isEmpty()) {
+                tr.checked_t = fresh.t.last();
+                tr.lastSample_t = std::isnan(tr.lastSample_t) ? fresh.t.last() : std::max(tr.lastSample_t, fresh.t.last());
+                last = fresh.v.last();
+            }
+            alarms += m_monitor.observe(c.key, fresh.t, fresh.v, tr.lastSample_t, now_s);
+        }
+        if (!std::isnan(last)) {
+            m_filling = true;
+            m_table->item(r, ColValue)->setText(QLocale().toString(last, 'f', 2));
+            m_table->item(r, ColValue)->setBackground(m_monitor.inAlarm(c.key) ? QColor(255, 205, 210) : QColor(Qt::transparent));
+            m_filling = false;
+        }
+    }
+    m_plot->replot();
+    ++m_refreshes;
+    for (const LiveLimitMonitor::Alarm &a : alarms)
+        emit alarmRaised(a.label);
+    showAlarms();
+}
+
+void LiveRecordingView::showAlarms()
+{
+    const QStringList active = m_monitor.activeAlarms();
+    m_alarm->setText(active.join(QLatin1Char('\n')));
+    m_alarm->setVisible(!active.isEmpty());
+}
+
+QString LiveRecordingView::alarmText() const
+{
+    return m_alarm->isHidden() ? QString() : m_alarm->text();
+}
+
+bool LiveRecordingView::alarmVisible() const
+{
+    return !m_alarm->isHidden();
+}
+
+bool LiveRecordingView::requestStop()
+{
+    if (!m_active || !m_ask(this))
+        return false;
+    emit stopRequested();
+    return true;
+}
+
+} // namespace driftlab
