@@ -1,5 +1,6 @@
 #include "LiveRecordingView.h"
 
+#include "PlotInteraction.h"
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
 
@@ -163,6 +164,8 @@ void LiveRecordingView::begin(const QString &title, const QString &rig, double e
     m_plot->clearCurves();
     for (int axis : {QwtPlot::yLeft, QwtPlot::yRight, QwtPlot::xBottom})
         m_plot->setAxisAutoScale(axis, true);
+    if (PlotInteraction *i = PlotInteraction::of(m_plot))
+        i->clearZoomHistory();
     m_channels.clear();
     m_tracked.clear();
     m_filling = true;
