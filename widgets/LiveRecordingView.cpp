@@ -84,7 +84,9 @@ LiveRecordingView::LiveRecordingView(QWidget *parent) : QWidget(parent)
     m_table = new QTableWidget(0, ColCount, this);
     m_table->setHorizontalHeaderLabels({tr("Channel"), tr("Value"), tr("Low limit"), tr("High limit")});
     m_table->verticalHeader()->hide();
-    m_table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    // Column widths are set once per recording: ResizeToContents would measure every row at
+    // every value change (10 times a second, 68 rows).
+    m_table->horizontalHeader()->setSectionResizeMode(QHeaderView::Interactive);
     m_table->horizontalHeader()->setStretchLastSection(true);
     m_table->setToolTip(tr("Tick the channels to plot; a value outside the low or high limit raises an alarm, "
                            "stored as an event of the session (empty: no limit)"));
@@ -228,9 +230,18 @@ void LiveRecordingView::rebuildTable(const QVector<ChannelInfo> &channels)
         const LiveLimitMonitor::Limit l = m_monitor.limit(c.key);
         m_table->setItem(r, ColLow, new QTableWidgetItem(limitText(l.low)));
         m_table->setItem(r, ColHigh, new QTableWidgetItem(limitText(l.high)));
-        if (!m_tracked.contains(c.key))
-            m_tracked.insert(c.key, {c.id, c.unit, isTemperature(c), -std::numeric_limits<double>::infinity(), kNaN});
+        m_table->item(r, ColValue)->setText(QStringLiteral("-0000.00")); // sized for, below
+        if (!m_tracked.contains(c.key)) {
+            Tracked t;
+            t.id = c.id;
+            t.unit = c.unit;
+            t.temperature = isTemperature(c);
+            m_tracked.insert(c.key, t);
+        }
     }
+    m_table->resizeColumnsToContents();
+    for (int r = 0; r < channels.size(); ++r)
+        m_table->item(r, ColValue)->setText(QString());
     m_filling = false;
 }
 
@@ -301,52 +312,69 @@ void LiveRecordingView::update(const SessionStore &reader, qint64 sessionId, dou
             return;
         rebuildTable(channels);
     }
-    const double t1 = std::max(1.0, now_s);
-    const int buckets = std::max(100, m_plot->canvas()->width() / 2);
     QVector<LiveLimitMonitor::Alarm> alarms;
+    bool changed = false;
     for (int r = 0; r < m_channels.size(); ++r) {
         const ChannelInfo &c = m_channels[r];
-        Tracked &tr = m_tracked[c.key];
-        QTableWidgetItem *name = m_table->item(r, ColChannel);
-        const bool shown = name->checkState() == Qt::Checked;
+        Tracked &ch = m_tracked[c.key];
         double last = kNaN;
-        if (shown) {
-            const DecimatedSeries d = reader.decimated(c.id, 0.0, t1, buckets);
-            QVector<double> x, y;
-            TimeSeriesPlot::envelopePoints(d, x, y);
+        if (!ch.seeded) {
+            // The first look: what is stored so far, decimated (a session opened late, or long).
+            ch.seeded = true;
+            const DecimatedSeries d = reader.decimated(c.id, 0.0, std::max(1.0, now_s), ch.envelope.capacity() / 2);
+            for (int i = 0; i < d.min.size(); ++i)
+                ch.envelope.appendRange(0.5 * (d.tFirst[i] + d.tLast[i]), d.min[i], d.max[i]);
+            if (!d.tLast.isEmpty()) {
+                ch.checked_t = d.tLast.last();
+                ch.lastSample_t = d.tLast.last();
+                last = d.max.last();
+                changed = true;
+            }
+        }
+        // Only what is new since the last look.
+        const SampleBlock fresh = reader.samples(c.id, std::nextafter(ch.checked_t, std::numeric_limits<double>::infinity()), 1e300);
+        if (!fresh.t.isEmpty()) {
+            ch.checked_t = fresh.t.last();
+            ch.lastSample_t = std::isnan(ch.lastSample_t) ? fresh.t.last() : std::max(ch.lastSample_t, fresh.t.last());
+            ch.envelope.append(fresh.t, fresh.v);
+            last = fresh.v.last();
+            changed = true;
+        }
+        if (m_monitor.limit(c.key).any())
+            alarms += m_monitor.observe(c.key, fresh.t, fresh.v, ch.lastSample_t, now_s);
+        if (!fresh.t.isEmpty() || !ch.envelope.filled()) {
+            QTableWidgetItem *name = m_table->item(r, ColChannel);
             QwtPlotCurve *curve = m_plot->curve(c.key);
+            QVector<double> x, y;
+            ch.envelope.points(x, y);
             if (curve) {
                 curve->setSamples(x, y);
-            } else {
-                curve = m_plot->addCurve(c.key, x, y, !tr.temperature);
+            } else if (!x.isEmpty()) {
+                curve = m_plot->addCurve(c.key, x, y, !ch.temperature);
                 curve->setRenderHint(QwtPlotItem::RenderAntialiased, false);
+                QPen pen = curve->pen();
+                pen.setWidth(0); // cosmetic 1-px pen: the fast raster path
+                curve->setPen(pen);
+                curve->setVisible(name->checkState() == Qt::Checked);
                 m_filling = true;
-                name->setForeground(curve->pen().color());
+                name->setForeground(pen.color());
                 m_filling = false;
             }
-            if (!d.tLast.isEmpty()) {
-                tr.lastSample_t = std::isnan(tr.lastSample_t) ? d.tLast.last() : std::max(tr.lastSample_t, d.tLast.last());
-                last = d.max.last();
-            }
         }
-        if (m_monitor.limit(c.key).any()) {
-            const double from = std::nextafter(tr.checked_t, std::numeric_limits<double>::infinity());
-            const SampleBlock fresh = reader.samples(c.id, from, 1e300);
-            if (!fresh.t.isEmpty()) {
-                tr.checked_t = fresh.t.last();
-                tr.lastSample_t = std::isnan(tr.lastSample_t) ? fresh.t.last() : std::max(tr.lastSample_t, fresh.t.last());
-                last = fresh.v.last();
-            }
-            alarms += m_monitor.observe(c.key, fresh.t, fresh.v, tr.lastSample_t, now_s);
-        }
-        if (!std::isnan(last)) {
+        // The table repaints only what changed.
+        const QString text = std::isnan(last) ? ch.shownValue : QLocale().toString(last, 'f', 2);
+        const bool alarm = m_monitor.inAlarm(c.key);
+        if (text != ch.shownValue || alarm != ch.shownAlarm) {
             m_filling = true;
-            m_table->item(r, ColValue)->setText(QLocale().toString(last, 'f', 2));
-            m_table->item(r, ColValue)->setBackground(m_monitor.inAlarm(c.key) ? QColor(255, 205, 210) : QColor(Qt::transparent));
+            m_table->item(r, ColValue)->setText(text);
+            m_table->item(r, ColValue)->setBackground(alarm ? QBrush(QColor(255, 205, 210)) : QBrush());
             m_filling = false;
+            ch.shownValue = text;
+            ch.shownAlarm = alarm;
         }
     }
-    m_plot->replot();
+    if (changed)
+        m_plot->replot();
     ++m_refreshes;
     for (const LiveLimitMonitor::Alarm &a : alarms)
         emit alarmRaised(a.label);

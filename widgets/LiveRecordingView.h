@@ -3,10 +3,14 @@
 // series, a channel picker with per-channel limits (low, high, sensor silent after), the
 // elapsed and remaining time, a red alarm line while a limit is crossed, and Stop (asks
 // first). The AcquisitionPanel owns the recording and feeds this view from its reader
-// connection (update(), at most 10 times a second); the view raises alarmRaised() once per
+// connection (update(), at most 10 times a second): each update reads only the samples new
+// since the last one (one query per channel), checks them against the limits and appends
+// them to a fixed-size min/max envelope per channel (LiveEnvelope), so a refresh costs the
+// same after ten hours as after ten seconds. The view raises alarmRaised() once per
 // alarm, which the panel stores as an event of the session. Limits are remembered per rig
 // (QSettings "liveLimits/<rig>").
 
+#include "LiveEnvelope.h"
 #include "LiveLimitMonitor.h"
 #include "StorageTypes.h"
 
@@ -15,6 +19,7 @@
 #include <QWidget>
 
 #include <functional>
+#include <limits>
 
 class QDoubleSpinBox;
 class QLabel;
@@ -90,8 +95,12 @@ private:
         qint64 id = 0;
         QString unit;
         bool temperature = false;
-        double checked_t;   // samples up to here were checked against the limits
-        double lastSample_t; // NaN: none yet
+        double checked_t = -std::numeric_limits<double>::infinity(); // samples up to here were read (and checked)
+        double lastSample_t = std::numeric_limits<double>::quiet_NaN(); // NaN: none yet
+        bool seeded = false; // what was stored before the view's first look is in the envelope
+        LiveEnvelope envelope;
+        QString shownValue;
+        bool shownAlarm = false;
     };
     QVector<ChannelInfo> m_channels;
     QHash<QString, Tracked> m_tracked;
