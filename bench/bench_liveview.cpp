@@ -215,6 +215,27 @@ int main(int argc, char **argv)
         }
     }
     SessionStore longReader(longPath);
+    {
+        // Where an open's time goes (stderr): the store's decimation and the tail read per channel.
+        QElapsedTimer a;
+        QVector<double> tail(longLayout.slow.size() + longLayout.fast.size());
+        int k = 0;
+        for (int buckets : {256, 512, 1024}) {
+            a.restart();
+            k = 0;
+            for (qint64 id : longLayout.slow + longLayout.fast)
+                tail[k++] = longReader.decimated(id, 0.0, hours * 3600.0, buckets).tLast.last();
+            err << "  decimated " << buckets << " buckets: " << a.nsecsElapsed() / 1e6 << " ms\n";
+        }
+        const double decimatedMs = a.nsecsElapsed() / 1e6;
+        a.restart();
+        k = 0;
+        for (qint64 id : longLayout.slow + longLayout.fast)
+            longReader.samples(id, std::nextafter(tail[k++], 1e300), 1e300);
+        err << "  open breakdown: decimated (1024 buckets) " << decimatedMs << " ms, tail reads " << a.nsecsElapsed() / 1e6
+            << " ms for " << k << " channels\n";
+        err.flush();
+    }
     LiveRecordingView open;
     open.resize(1366, 700);
     open.show();
