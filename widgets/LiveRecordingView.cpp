@@ -3,6 +3,7 @@
 #include "PlotInteraction.h"
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
+#include "UnitLabels.h"
 
 #include <QDoubleSpinBox>
 #include <QFormLayout>
@@ -13,6 +14,7 @@
 #include <QLocale>
 #include <QMessageBox>
 #include <QPushButton>
+#include <QScrollBar>
 #include <QSettings>
 #include <QSplitter>
 #include <QTableWidget>
@@ -82,7 +84,9 @@ LiveRecordingView::LiveRecordingView(QWidget *parent) : QWidget(parent)
     m_stop = new QPushButton(tr("Stop recording..."), this);
     m_stop->setEnabled(false);
     m_table = new QTableWidget(0, ColCount, this);
-    m_table->setHorizontalHeaderLabels({tr("Channel"), tr("Value"), tr("Low limit"), tr("High limit")});
+    m_table->setHorizontalHeaderLabels({tr("Channel"), tr("Value"), tr("Low"), tr("High")});
+    m_table->horizontalHeaderItem(ColLow)->setToolTip(tr("Low limit (empty: none)"));
+    m_table->horizontalHeaderItem(ColHigh)->setToolTip(tr("High limit (empty: none)"));
     m_table->verticalHeader()->hide();
     // Column widths are set once per recording: ResizeToContents would measure every row at
     // every value change (10 times a second, 68 rows).
@@ -117,6 +121,7 @@ LiveRecordingView::LiveRecordingView(QWidget *parent) : QWidget(parent)
     silentForm->addRow(tr("Sensor silent after"), m_silent);
     sideLayout->addLayout(silentForm);
     auto *split = new QSplitter(Qt::Horizontal, this);
+    m_split = split;
     split->addWidget(side);
     split->addWidget(m_plot);
     split->setStretchFactor(0, 0);
@@ -216,21 +221,24 @@ void LiveRecordingView::rebuildTable(const QVector<ChannelInfo> &channels)
     m_table->setRowCount(channels.size());
     for (int r = 0; r < channels.size(); ++r) {
         const ChannelInfo &c = channels[r];
-        m_monitor.setChannel(c.key, c.unit, isTemperature(c));
-        auto *name = new QTableWidgetItem(c.unit.isEmpty() ? c.key : QStringLiteral("%1 (%2)").arg(c.key, c.unit));
+        const QString unit = UnitLabels::display(c.unit);
+        m_monitor.setChannel(c.key, unit, isTemperature(c));
+        auto *name = new QTableWidgetItem(c.key);
+        name->setToolTip(unit.isEmpty() ? c.key : QStringLiteral("%1 [%2]").arg(c.key, unit));
         name->setData(Qt::UserRole, c.key);
         name->setFlags(Qt::ItemIsEnabled | Qt::ItemIsUserCheckable | Qt::ItemIsSelectable);
         const bool plotted = isTemperature(c) || c.kind == QLatin1String("displacement");
         name->setCheckState(plotted ? Qt::Checked : Qt::Unchecked);
         m_table->setItem(r, ColChannel, name);
         auto *value = new QTableWidgetItem;
+        value->setToolTip(unit); // the unit: in the channel's tooltip too, and on the plot's axis
         value->setFlags(Qt::ItemIsEnabled);
         value->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
         m_table->setItem(r, ColValue, value);
         const LiveLimitMonitor::Limit l = m_monitor.limit(c.key);
         m_table->setItem(r, ColLow, new QTableWidgetItem(limitText(l.low)));
         m_table->setItem(r, ColHigh, new QTableWidgetItem(limitText(l.high)));
-        m_table->item(r, ColValue)->setText(QStringLiteral("-0000.00")); // sized for, below
+        m_table->item(r, ColValue)->setText(QStringLiteral("-0,000.00")); // sized for, below
         if (!m_tracked.contains(c.key)) {
             Tracked t;
             t.id = c.id;
@@ -240,8 +248,16 @@ void LiveRecordingView::rebuildTable(const QVector<ChannelInfo> &channels)
         }
     }
     m_table->resizeColumnsToContents();
+    for (int c : {ColLow, ColHigh})
+        m_table->setColumnWidth(c, m_table->fontMetrics().horizontalAdvance(QStringLiteral("-000.0")) + 10);
     for (int r = 0; r < channels.size(); ++r)
         m_table->item(r, ColValue)->setText(QString());
+    // The whole table beside the plot, without sideways scrolling (at most 45 % of the view).
+    int width = 2 * m_table->frameWidth() + m_table->verticalScrollBar()->sizeHint().width() + 4;
+    for (int c = 0; c < ColCount; ++c)
+        width += m_table->columnWidth(c);
+    if (m_split)
+        m_split->setSizes({std::min(width, m_split->width() * 9 / 20), std::max(1, m_split->width() - width)});
     m_filling = false;
 }
 

@@ -24,6 +24,7 @@
 class QDoubleSpinBox;
 class QLabel;
 class QPushButton;
+class QSplitter;
 class QTableWidget;
 
 namespace driftlab {
@@ -82,6 +83,7 @@ private:
     QLabel *m_alarm;
     QPushButton *m_stop;
     QTableWidget *m_table;
+    QSplitter *m_split = nullptr;
     QDoubleSpinBox *m_silent;
     TimeSeriesPlot *m_plot;
     LiveLimitMonitor m_monitor;
