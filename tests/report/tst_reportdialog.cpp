@@ -55,7 +55,7 @@ void TestReportDialog::previewsAndSaves()
     }
     QFile html(dir.filePath(QStringLiteral("r.html")));
     QVERIFY(html.open(QIODevice::ReadOnly));
-    QCOMPARE(html.readAll().count("<figure>"), 6);
+    QCOMPARE(html.readAll().count("<figure>"), 8);
     QVERIFY(!dialog.save(dir.filePath(QStringLiteral("r.doc"))));
     QVERIFY(dialog.message().contains(QStringLiteral(".pdf or .html")));
     QVERIFY(!dialog.rebuild(dir.filePath(QStringLiteral("no-such-template"))));
