@@ -7,6 +7,7 @@
 #include "ExtrapolationWarning.h"
 #include "FdmModelJson.h"
 #include "Iso230Report.h"
+#include "Iso230View.h"
 #include "ReportTemplate.h"
 #include "ReviewWorkspace.h"
 #include "SessionAnalysis.h"
@@ -273,6 +274,41 @@ void ReportBuilder::iso230Section(ReportDocument &doc) const
     sorted.sort();
     for (const QString &n : sorted)
         doc.paragraph(QStringLiteral("Note: %1").arg(n));
+
+    // The reference test per target and direction, and the plots of the ISO 230 view (the
+    // same Iso230Report numbers the view and `iso230 --json` show).
+    int reference = 0;
+    for (std::size_t i = 0; i < iso->tests().size(); ++i) {
+        const std::vector<int> &runs = iso->tests()[i].runs;
+        if (std::find(runs.begin(), runs.end(), iso->referenceRun()) != runs.end())
+            reference = static_cast<int>(i);
+    }
+    if (!iso->tests().empty()) {
+        const Iso230Test &ref = iso->tests()[static_cast<std::size_t>(reference)];
+        QVector<QStringList> targets;
+        for (const Iso230Target &t : ref.targets)
+            targets.push_back({num(t.position_mm, 6), QString::number(t.approachesUp), QString::number(t.approachesDown),
+                               num(t.meanUp_um, 4), num(t.meanDown_um, 4), num(t.reversal_um, 4), num(t.repeatUp_um, 4),
+                               num(t.repeatDown_um, 4), num(t.repeat_um, 4)});
+        doc.paragraph(QStringLiteral("ISO 230-2 per target and direction of the reference test (run %1), in um: "
+                                     "mean positional deviation x up and down, reversal B, repeatability R up, down and "
+                                     "bidirectional.")
+                          .arg(iso->referenceRun()));
+        doc.table({QStringLiteral("Target (mm)"), QStringLiteral("n up"), QStringLiteral("n down"), QStringLiteral("x up"),
+                   QStringLiteral("x down"), QStringLiteral("B"), QStringLiteral("R up"), QStringLiteral("R down"),
+                   QStringLiteral("R")},
+                  targets);
+        Iso230View view;
+        view.resize(1100, 700);
+        if (view.setSession(&m_store, m_session)) {
+            view.showTest(reference);
+            doc.figure(QStringLiteral("ISO 230-2 positional deviation of the reference test (session %1)").arg(m_session),
+                       svg(*view.positioningPlot(), kFigure_mm), kFigure_mm);
+            if (iso->tests().size() >= 2)
+                doc.figure(QStringLiteral("ISO 230-3 drift against the reference run (session %1)").arg(m_session),
+                           svg(*view.driftPlot(), kFigure_mm), kFigure_mm);
+        }
+    }
     const Iso230DriftSummary &d = iso->drift();
     if (iso->tests().size() < 2) {
         doc.leftOut(QStringLiteral("ISO 230-3 drift: the session has a single positioning test, so there is no drift"));

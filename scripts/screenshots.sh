@@ -34,6 +34,9 @@ for size in 1366x768 1920x1080; do
   shot sessions --db "$db" --show-session 1 --view error-3d
   shot acquisition --db "$db" --show-session 2 --dock acquisition
   shot iso230 --db "$db" --show-session 3 --central-view iso230
+  # The live recording view: a simulated recording into a copy, a high limit T_motor crosses.
+  cp "$db" "$tmp/live-$size.sqlite"
+  shot live --db "$tmp/live-$size.sqlite" --record baseline --live-limit T_motor:22
   shot overlay --db "$db" --show-session 1 --overlay 2
   shot models --db "$db" --fit 1:2
   shot diagnosis --db "$db" --diagnose 1:2

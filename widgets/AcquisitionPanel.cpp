@@ -1,6 +1,7 @@
 #include "AcquisitionPanel.h"
 
 #include "AcquisitionEngine.h"
+#include "LiveRecordingView.h"
 #include "RigConfigLoader.h"
 #include "RigDeviceSet.h"
 #include "RigSetupDialog.h"
@@ -66,7 +67,7 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     m_duration->setToolTip(tr("Simulated duration of the run; it stops by itself when reached"));
     m_notes = new QPlainTextEdit(this);
     m_notes->setPlaceholderText(tr("what is tested, set-up, anything unusual"));
-    m_notes->setMaximumHeight(3 * fontMetrics().lineSpacing() + 12);
+    m_notes->setMaximumHeight(2 * fontMetrics().lineSpacing() + 12);
     m_message = new QLabel(this);
     m_message->setWordWrap(true);
     m_message->setTextInteractionFlags(Qt::TextSelectableByMouse);
@@ -89,14 +90,12 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     m_devices->horizontalHeader()->setStretchLastSection(true);
     m_devices->verticalHeader()->hide();
     m_devices->setEditTriggers(QAbstractItemView::NoEditTriggers);
-    m_plot = new TimeSeriesPlot(this);
-    m_plot->setAxisTitles(tr("temperature (°C)"), tr("elongation (µm)"));
-    m_plot->setMinimumHeight(180);
-    // Before the first readings: a room-temperature scale rather than Qwt's 0..1000.
-    m_plot->setAxisScale(QwtPlot::yLeft, 15.0, 35.0);
-    m_plot->setAxisScale(QwtPlot::yRight, -5.0, 50.0);
-    m_plot->setAxisScale(QwtPlot::xBottom, 0.0, 60.0);
-    m_devices->setMinimumHeight(120);
+    m_showLive = new QPushButton(tr("Show live view"), this);
+    m_showLive->setToolTip(tr("The running recording at full size: channels, limits and alarms, Stop"));
+    // The live plot is not in the dock (at 768 px it had to be scrolled to): it is a full view.
+    m_live = new LiveRecordingView(this);
+    m_live->hide();
+    m_devices->setMinimumHeight(72); // five devices scroll inside; the dock itself fits 768 px
 
     auto *form = new QFormLayout;
     auto *rigRow = new QHBoxLayout; // the rig and, beside it, where its devices are set up
@@ -117,6 +116,7 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     buttons->addWidget(m_stop, 1, 1);
     auto *during = new QHBoxLayout; // what a running recording offers, and how far it is
     during->addWidget(m_run);
+    during->addWidget(m_showLive);
     during->addStretch();
     during->addWidget(m_elapsed);
     auto *layout = new QVBoxLayout(this);
@@ -125,7 +125,6 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     layout->addLayout(during);
     layout->addWidget(m_message);
     layout->addWidget(m_devices, 1);
-    layout->addWidget(m_plot, 3);
 
     m_timer = new QTimer(this);
     m_timer->setInterval(kTick_ms);
@@ -144,7 +143,11 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     connect(m_start, &QPushButton::clicked, this, [this] {
         startRecording(m_rig->currentText(), m_target, m_speed->value());
     });
-    connect(m_stop, &QPushButton::clicked, this, &AcquisitionPanel::stopRecording);
+    connect(m_stop, &QPushButton::clicked, this, &AcquisitionPanel::requestStop);
+    connect(m_live, &LiveRecordingView::stopRequested, this, &AcquisitionPanel::stopRecording);
+    // An alarm (a limit crossed, a silent sensor) is an event of the session.
+    connect(m_live, &LiveRecordingView::alarmRaised, this, &AcquisitionPanel::addMarker);
+    connect(m_showLive, &QPushButton::clicked, this, &AcquisitionPanel::liveViewRequested);
     connect(m_pause, &QPushButton::toggled, this, &AcquisitionPanel::setPaused);
     connect(m_marker, &QPushButton::clicked, this, [this] {
         bool ok = false;
@@ -204,8 +207,10 @@ void AcquisitionPanel::clearView()
 {
     m_session = 0;
     m_devices->setRowCount(0);
-    m_plot->clearCurves();
-    m_plot->replot();
+    if (m_live) {
+        m_live->begin(tr("No recording"), QString(), 0.0);
+        m_live->finish(tr("not recording"));
+    }
     m_message->clear();
     m_elapsed->setText(tr("not recording"));
 }
@@ -235,6 +240,7 @@ bool AcquisitionPanel::startRecording(const QString &rigNameOrPath, const QStrin
     if (m_engine)
         return false;
     m_message->clear();
+    QString liveTitle;
     try {
         // A fresh install has no data folder yet.
         const QString folder = QFileInfo(dbPath).absolutePath();
@@ -259,6 +265,7 @@ bool AcquisitionPanel::startRecording(const QString &rigNameOrPath, const QStrin
         if (!m_notes->toPlainText().trimmed().isEmpty())
             info.notes = m_notes->toPlainText().trimmed() + (info.notes.isEmpty() ? QString() : QStringLiteral("\n") + info.notes);
         m_session = engine->start(dbPath, info);
+        liveTitle = tr("#%1  %2").arg(m_session).arg(info.name);
         m_engine = std::move(engine);
         m_dbPath = dbPath;
         m_reader = std::make_unique<SessionStore>(dbPath);
@@ -273,9 +280,8 @@ bool AcquisitionPanel::startRecording(const QString &rigNameOrPath, const QStrin
         for (int c = 1; c < 5; ++c)
             m_devices->setItem(i, c, new QTableWidgetItem);
     }
-    m_plot->clearCurves();
-    for (int axis : {QwtPlot::yLeft, QwtPlot::yRight, QwtPlot::xBottom})
-        m_plot->setAxisAutoScale(axis, true);
+    if (m_live)
+        m_live->begin(liveTitle, rigNameOrPath, m_end_s);
     m_plotRefreshes = 0;
     m_lastPlot_ms = 0;
     m_timer->start();
@@ -303,6 +309,9 @@ void AcquisitionPanel::stopRecording()
     m_pause->setChecked(false);
     updateButtons();
     m_elapsed->setText(tr("stopped"));
+    if (m_live)
+        m_live->finish(failure.isEmpty() ? tr("Stopped: session %1 recorded").arg(m_session)
+                                         : tr("Recording stopped: %1").arg(failure));
     if (failure.isEmpty()) {
         m_message->setStyleSheet(QString());
         m_message->setText(tr("Session %1 recorded into %2").arg(m_session).arg(m_dbPath));
@@ -314,6 +323,21 @@ void AcquisitionPanel::stopRecording()
                                .arg(m_session));
     }
     emit recordingStopped(m_session);
+}
+
+LiveRecordingView *AcquisitionPanel::liveView() const
+{
+    return m_live;
+}
+
+TimeSeriesPlot *AcquisitionPanel::plot() const
+{
+    return m_live ? m_live->plot() : nullptr;
+}
+
+bool AcquisitionPanel::requestStop()
+{
+    return m_live && m_live->requestStop(); // stopRequested -> stopRecording
 }
 
 QString AcquisitionPanel::messageText() const
@@ -379,6 +403,8 @@ void AcquisitionPanel::onTick()
     m_elapsed->setText(tr("%1%2 elapsed%3")
                            .arg(hms(m_engine->now_s()), m_end_s > 0 ? tr(" of %1").arg(hms(m_end_s)) : QString(),
                                 m_engine->paused() ? tr(" (paused)") : QString()));
+    if (m_live)
+        m_live->setClock(m_engine->now_s(), m_engine->paused());
     const QVector<DeviceHealth> health = m_engine->health();
     for (int i = 0; i < health.size() && i < m_devices->rowCount(); ++i) {
         const DeviceHealth &h = health[i];
@@ -400,21 +426,11 @@ void AcquisitionPanel::refreshPlot()
 {
     if (!m_reader || m_session <= 0)
         return;
+    if (!m_live)
+        return;
     try {
-        const double t1 = std::max(1.0, m_engine ? m_engine->now_s() : 1e300);
-        const int buckets = std::max(100, m_plot->width() / 2);
-        for (const ChannelInfo &c : m_reader->channels(m_session)) {
-            if (c.kind != QLatin1String("temperature") && c.kind != QLatin1String("displacement"))
-                continue;
-            const DecimatedSeries d = m_reader->decimated(c.id, 0.0, t1, buckets);
-            QVector<double> x, y;
-            TimeSeriesPlot::envelopePoints(d, x, y);
-            if (QwtPlotCurve *curve = m_plot->curve(c.key))
-                curve->setSamples(x, y);
-            else
-                m_plot->addCurve(c.key, x, y, c.kind == QLatin1String("displacement"));
-        }
-        m_plot->replot();
+        // The last refresh after stop reads to the end of the data.
+        m_live->update(*m_reader, m_session, m_engine ? m_engine->now_s() : 1e300);
         ++m_plotRefreshes;
     } catch (const std::exception &) {
         // The writer may hold the database for a moment: try again at the next tick.

@@ -1,11 +1,13 @@
 #pragma once
 // Acquisition panel: pick a rig (built-in preset or rig file), name the run (name, operator,
-// duration, notes), start / pause / marker / stop into the open database, elapsed session time, per-device state, sample rate, samples and gaps, and live
-// plots of the probe and the temperatures. Recording runs on the AcquisitionEngine's
+// duration, notes), start / pause / marker / stop into the open database, elapsed session time, per-device state, sample rate, samples and gaps.
+// The live plot, channel picker and limits are the LiveRecordingView it feeds (shown at
+// full size in the main window's central area; "Show live view"). Recording runs on the AcquisitionEngine's
 // threads; the panel only polls it (health) and reads decimated data back from the
 // database through its own connection, at most 25 times a second, so a slow GUI never
 // slows or drops the recording.
 
+#include <QPointer>
 #include <QString>
 #include <QWidget>
 
@@ -24,6 +26,7 @@ class QTimer;
 namespace driftlab {
 
 class AcquisitionEngine;
+class LiveRecordingView;
 class SessionStore;
 class SimulatedRigHub;
 class TimeSeriesPlot;
@@ -59,11 +62,18 @@ public:
     int deviceRowCount() const;
     QString deviceCell(int row, int column) const; // columns: device, state, rate, samples, gaps
     int plotRefreshes() const { return m_plotRefreshes; }
-    TimeSeriesPlot *plot() const { return m_plot; }
+    TimeSeriesPlot *plot() const;
+    // The live view of the running (or last) recording: a hidden child until the main
+    // window puts it in its central area (it may reparent it).
+    LiveRecordingView *liveView() const;
+    // Stop after asking (the Stop buttons of the panel and of the live view).
+    bool requestStop();
 
 signals:
     void recordingStarted(qint64 sessionId);
     void recordingStopped(qint64 sessionId);
+    // "Show live view" was pressed.
+    void liveViewRequested();
 
 private:
     void onTick();
@@ -83,7 +93,8 @@ private:
     QPushButton *m_setup, *m_run; // rig setup dialog, technician's measurement run dialog
     QLabel *m_elapsed;
     QTableWidget *m_devices;
-    TimeSeriesPlot *m_plot;
+    QPushButton *m_showLive;
+    QPointer<LiveRecordingView> m_live;
     QTimer *m_timer;
     std::unique_ptr<AcquisitionEngine> m_engine;
     std::unique_ptr<SessionStore> m_reader;

@@ -1,6 +1,7 @@
 #include "MainWindow.h"
 
 #include "AcquisitionPanel.h"
+#include "LiveRecordingView.h"
 #include "AnalysisPanel.h"
 #include "CentralStoreActions.h"
 #include "CompensationPanel.h"
@@ -95,6 +96,7 @@ MainWindow::MainWindow(QWidget *parent)
     m_sessionPage->addWidget(m_welcome);
     m_sessionPage->addWidget(m_split);
     m_views->addTab(m_sessionPage, tr("Session"));
+    m_views->addTab(m_acquisition->liveView(), tr("Recording")); // the running recording at full size
     m_views->addTab(m_iso230, tr("ISO 230")); // the interferometer runs of the current session
     m_views->addTab(m_models->resultsView(), tr("Model fit"));
     m_diagnosis->resultsView()->setOrientation(Qt::Horizontal);
@@ -161,6 +163,11 @@ MainWindow::MainWindow(QWidget *parent)
     connect(m_workbench, &Workbench::failed, this, &MainWindow::say);
     connect(m_acquisition, &AcquisitionPanel::recordingStopped, this, &MainWindow::onRecordingStopped);
     connect(m_acquisition, &AcquisitionPanel::recordingStarted, this, &MainWindow::markRecording);
+    // A recording opens at full size in the central area; the dock keeps a compact status.
+    connect(m_acquisition, &AcquisitionPanel::recordingStarted, this,
+            [this] { m_views->setCurrentWidget(m_acquisition->liveView()); });
+    connect(m_acquisition, &AcquisitionPanel::liveViewRequested, this,
+            [this] { m_views->setCurrentWidget(m_acquisition->liveView()); });
     connect(m_welcome, &WelcomePage::recordSimulated, this, &MainWindow::recordSimulatedSession);
     connect(m_welcome, &WelcomePage::openExample, this, &MainWindow::openExampleBundle);
     connect(m_welcome, &WelcomePage::importCsv, this, [this] {
@@ -185,7 +192,13 @@ MainWindow::MainWindow(QWidget *parent)
     say(tr("No database open: File > New or Open database, or drop a .sqlite or a recording bundle here"));
 }
 
-MainWindow::~MainWindow() = default;
+MainWindow::~MainWindow()
+{
+    // A recording still running stops here, while the window is whole: the panel's own
+    // destructor would tell a half-destroyed window (and its session list) that it stopped.
+    m_acquisition->disconnect();
+    m_acquisition->stopRecording();
+}
 
 void MainWindow::fitToScreen()
 {

@@ -148,8 +148,26 @@ void PlotCursors::update()
 
 bool PlotCursors::eventFilter(QObject *watched, QEvent *event)
 {
+    if (watched == m_canvas && m_dragging >= 0 &&
+        (event->type() == QEvent::MouseMove || event->type() == QEvent::MouseButtonRelease)) {
+        // Dragging a placed cursor: it follows the pointer (not a zoom rectangle).
+        const auto *mouse = static_cast<QMouseEvent *>(event);
+        setCursor(static_cast<Which>(m_dragging), m_plot->canvasMap(QwtPlot::xBottom).invTransform(mouse->pos().x()));
+        if (event->type() == QEvent::MouseButtonRelease)
+            m_dragging = -1;
+        return true;
+    }
     if (watched == m_canvas && event->type() == QEvent::MouseButtonPress) {
         const auto *mouse = static_cast<QMouseEvent *>(event);
+        if (mouse->button() == Qt::LeftButton && mouse->modifiers() == Qt::NoModifier) {
+            // A press within 4 px of a placed cursor grabs it.
+            for (int w : {B, A}) {
+                if (m_x[w] && std::abs(m_plot->canvasMap(QwtPlot::xBottom).transform(*m_x[w]) - mouse->pos().x()) <= 4.0) {
+                    m_dragging = w;
+                    return true;
+                }
+            }
+        }
         if (mouse->modifiers() & Qt::ShiftModifier) {
             if (mouse->button() == Qt::RightButton) {
                 clear();

@@ -1,7 +1,7 @@
 #pragma once
 // Two vertical cursors and their delta on a plot (issue 33 item 3): Shift+click sets cursor A,
 // the next Shift+click cursor B (a third starts again at A), Shift+Esc or Shift+right click
-// clears them. A label in the canvas reads the cursors' x (h:mm:ss on a time axis), Δx, and for
+// clears them; a placed cursor can be dragged with the left button (grab it within 4 px). A label in the canvas reads the cursors' x (h:mm:ss on a time axis), Δx, and for
 // each curve its value at A and at B (linear between its points) and their difference, with
 // the unit of the curve's axis: "T_nut  21.00 → 27.00 °C  Δ 6.00 °C".
 
@@ -46,6 +46,7 @@ private:
     QwtPlotMarker *m_marker[2];
     QwtPlotTextLabel *m_label;
     std::optional<double> m_x[2];
+    int m_dragging = -1; // cursor being dragged, -1 none
 };
 
 } // namespace driftlab

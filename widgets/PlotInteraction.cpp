@@ -15,7 +15,9 @@
 #include <QFileDialog>
 #include <QMenu>
 #include <QMessageBox>
+#include <QMouseEvent>
 #include <QSaveFile>
+#include <QShortcut>
 #include <QTextStream>
 #include <QWheelEvent>
 
@@ -41,10 +43,22 @@ PlotInteraction *PlotInteraction::install(QwtPlot *plot, QwtPlotZoomer *zoomer)
 {
     auto *p = new PlotInteraction(plot, zoomer);
     if (zoomer) {
-        // Right button: the menu. Zoom out one step: Ctrl+right button (or the menu).
+        // Right button: the menu. Zoom out one step: Backspace, Ctrl+right button or the menu.
         zoomer->setMousePattern(QwtEventPattern::MouseSelect2, Qt::RightButton, Qt::ControlModifier | Qt::ShiftModifier);
         zoomer->setMousePattern(QwtEventPattern::MouseSelect3, Qt::RightButton, Qt::ControlModifier);
+        // The zoomer's own stack would not know the other ways of zooming: one history here.
+        zoomer->setKeyPattern(QwtEventPattern::KeyUndo, Qt::Key_unknown);
+        zoomer->setKeyPattern(QwtEventPattern::KeyRedo, Qt::Key_unknown);
+        zoomer->setKeyPattern(QwtEventPattern::KeyHome, Qt::Key_unknown);
+        connect(zoomer, &QwtPlotZoomer::zoomed, p, [p] {
+            if (p->m_hasPressed)
+                p->m_history.push_back(p->m_pressed);
+            p->m_hasPressed = false;
+        });
     }
+    auto *undo = new QShortcut(QKeySequence(Qt::Key_Backspace), plot);
+    undo->setContext(Qt::WidgetWithChildrenShortcut);
+    connect(undo, &QShortcut::activated, p, &PlotInteraction::undoZoom);
     plot->canvas()->installEventFilter(p);
     for (int axis = 0; axis < QwtPlot::axisCnt; ++axis)
         if (QwtScaleWidget *w = plot->axisWidget(axis))
@@ -52,8 +66,115 @@ PlotInteraction *PlotInteraction::install(QwtPlot *plot, QwtPlotZoomer *zoomer)
     return p;
 }
 
+PlotInteraction *PlotInteraction::of(const QwtPlot *plot)
+{
+    return plot ? plot->findChild<PlotInteraction *>(QStringLiteral("PlotInteraction"), Qt::FindDirectChildrenOnly) : nullptr;
+}
+
+PlotInteraction::Snapshot PlotInteraction::snapshot() const
+{
+    Snapshot s(QwtPlot::axisCnt);
+    for (int axis = 0; axis < QwtPlot::axisCnt; ++axis) {
+        const QwtScaleDiv &div = m_plot->axisScaleDiv(axis);
+        s[axis] = {div.lowerBound(), div.upperBound(), m_plot->axisAutoScale(axis)};
+    }
+    return s;
+}
+
+void PlotInteraction::restore(const Snapshot &s)
+{
+    for (int axis = 0; axis < QwtPlot::axisCnt && axis < s.size(); ++axis) {
+        if (s[axis].autoScale)
+            m_plot->setAxisAutoScale(axis, true);
+        else
+            m_plot->setAxisScale(axis, s[axis].lo, s[axis].hi);
+    }
+    m_plot->replot();
+}
+
+void PlotInteraction::pushZoom()
+{
+    m_history.push_back(snapshot());
+    m_wheelWidget = nullptr;
+}
+
+void PlotInteraction::pushWheelStep(const QObject *widget)
+{
+    if (widget == m_wheelWidget && m_wheelTime.isValid() && m_wheelTime.elapsed() < 600 && !m_history.isEmpty()) {
+        m_wheelTime.restart();
+        return;
+    }
+    pushZoom();
+    m_wheelWidget = widget;
+    m_wheelTime.restart();
+}
+
+bool PlotInteraction::undoZoom()
+{
+    if (m_history.isEmpty())
+        return false;
+    restore(m_history.takeLast());
+    m_wheelWidget = nullptr;
+    return true;
+}
+
+void PlotInteraction::resetZoom()
+{
+    if (!m_history.isEmpty()) {
+        restore(m_history.first());
+        m_history.clear();
+    } else if (m_zoomer) {
+        m_zoomer->zoom(0);
+    }
+    m_wheelWidget = nullptr;
+}
+
 bool PlotInteraction::eventFilter(QObject *watched, QEvent *event)
 {
+    if (watched == m_plot->canvas()) {
+        // Before the zoomer, the panner and the magnifier see it (filters run newest first).
+        if (event->type() == QEvent::MouseButtonPress) {
+            auto *e = static_cast<QMouseEvent *>(event);
+            if (e->button() == Qt::LeftButton && e->modifiers() == Qt::NoModifier) {
+                m_pressed = snapshot(); // pushed if the rubber band zooms
+                m_hasPressed = true;
+            } else if (e->button() == Qt::MiddleButton) {
+                pushZoom(); // the panner moves the view
+            }
+        } else if (event->type() == QEvent::Wheel) {
+            pushWheelStep(watched); // the magnifier zooms both axes
+        }
+    }
+    if (event->type() == QEvent::MouseButtonPress || event->type() == QEvent::MouseMove ||
+        event->type() == QEvent::MouseButtonRelease) {
+        for (int axis = 0; axis < QwtPlot::axisCnt; ++axis) {
+            if (watched != m_plot->axisWidget(axis) || !m_plot->axisEnabled(axis))
+                continue;
+            auto *e = static_cast<QMouseEvent *>(event);
+            const bool horizontal = axis == QwtPlot::xBottom || axis == QwtPlot::xTop;
+            if (event->type() == QEvent::MouseButtonPress && e->button() == Qt::LeftButton) {
+                pushZoom();
+                m_dragAxis = axis;
+                m_dragLast = e->pos();
+                return true;
+            }
+            if (event->type() == QEvent::MouseMove && m_dragAxis == axis && (e->buttons() & Qt::LeftButton)) {
+                // Pan: the scale value under the pointer stays under it.
+                const QwtScaleMap map = m_plot->canvasMap(axis);
+                const double from = map.invTransform(horizontal ? m_dragLast.x() : m_dragLast.y());
+                const double to = map.invTransform(horizontal ? e->pos().x() : e->pos().y());
+                const QwtScaleDiv &div = m_plot->axisScaleDiv(axis);
+                m_plot->setAxisScale(axis, div.lowerBound() - (to - from), div.upperBound() - (to - from));
+                m_plot->replot();
+                m_dragLast = e->pos();
+                return true;
+            }
+            if (event->type() == QEvent::MouseButtonRelease && m_dragAxis == axis) {
+                m_dragAxis = -1;
+                return true;
+            }
+        }
+    }
     if (event->type() == QEvent::ContextMenu && watched == m_plot->canvas()) {
         auto *e = static_cast<QContextMenuEvent *>(event);
         QMenu *menu = createMenu(m_plot);
@@ -69,9 +190,11 @@ bool PlotInteraction::eventFilter(QObject *watched, QEvent *event)
             const int delta = e->angleDelta().y() != 0 ? e->angleDelta().y() : e->angleDelta().x();
             if (delta == 0)
                 return false;
-            const QPoint at = m_plot->canvas()->mapFrom(m_plot->axisWidget(axis), e->position().toPoint());
+            // (The axis widget is no ancestor of the canvas: QWidget::mapFrom would walk off the tree.)
+            const QPoint at = m_plot->canvas()->mapFromGlobal(m_plot->axisWidget(axis)->mapToGlobal(e->position().toPoint()));
             const bool horizontal = axis == QwtPlot::xBottom || axis == QwtPlot::xTop;
             const double centre = m_plot->canvasMap(axis).invTransform(horizontal ? at.x() : at.y());
+            pushWheelStep(watched);
             zoomAxis(*m_plot, axis, std::pow(0.9, delta / 120.0), centre);
             return true;
         }
@@ -91,12 +214,12 @@ void PlotInteraction::zoomAxis(QwtPlot &plot, int axis, double factor, double ce
 QMenu *PlotInteraction::createMenu(QWidget *parent)
 {
     auto *menu = new QMenu(parent);
-    if (m_zoomer) {
-        QAction *undo = menu->addAction(tr("Undo zoom"), this, [this] { m_zoomer->zoom(-1); });
-        undo->setEnabled(m_zoomer->zoomRectIndex() > 0);
-        menu->addAction(tr("Reset zoom"), this, [this] { m_zoomer->zoom(0); });
-        menu->addSeparator();
-    }
+    QAction *undo = menu->addAction(tr("Undo zoom"), this, &PlotInteraction::undoZoom);
+    undo->setShortcut(QKeySequence(Qt::Key_Backspace));
+    undo->setEnabled(canUndoZoom());
+    QAction *reset = menu->addAction(tr("Reset zoom"), this, &PlotInteraction::resetZoom);
+    reset->setEnabled(canUndoZoom() || (m_zoomer && m_zoomer->zoomRectIndex() > 0));
+    menu->addSeparator();
     menu->addAction(tr("Copy image"), this, [this] { QApplication::clipboard()->setPixmap(m_plot->grab()); });
     menu->addAction(tr("Save image (PNG, SVG, PDF)..."), this, [this] {
         const QString out = QFileDialog::getSaveFileName(m_plot, tr("Save image"), QStringLiteral("plot.png"),

@@ -3,12 +3,20 @@
 // - a context menu: Undo zoom, Reset zoom, Copy image, Save image (PNG, SVG, PDF), Export
 //   the visible data as CSV;
 // - the mouse wheel over an axis zooms that axis only, around the pointer (the wheel over
-//   the canvas zooms both, QwtPlotMagnifier).
+//   the canvas zooms both, QwtPlotMagnifier); dragging an axis with the left button pans
+//   that axis only;
+// - one zoom history for every way the view changes (rubber band, wheel on the canvas or an
+//   axis, axis drag, middle-button pan): Backspace or "Undo zoom" goes back one step and
+//   restores every axis's limits exactly (and autoscaling where it was on); "Reset zoom"
+//   goes back to the first view. Consecutive wheel steps on one widget are one step.
 // The zoomer's right-button zoom-out moves to Ctrl+right button: the right button opens
 // the menu.
 
+#include <QElapsedTimer>
 #include <QObject>
+#include <QPoint>
 #include <QString>
+#include <QVector>
 
 class QMenu;
 class QwtPlot;
@@ -21,6 +29,18 @@ class PlotInteraction : public QObject {
 public:
     // Installs on `plot` (zoomer may be nullptr: no undo/reset entries); owned by the plot.
     static PlotInteraction *install(QwtPlot *plot, QwtPlotZoomer *zoomer);
+    static PlotInteraction *of(const QwtPlot *plot);
+
+    // The zoom history: every axis's limits before each change.
+    void pushZoom();
+    bool canUndoZoom() const { return !m_history.isEmpty(); }
+    int zoomDepth() const { return m_history.size(); }
+    // Back one step (false when there is none).
+    bool undoZoom();
+    // Back to the view before the first change (or the zoomer's base), history cleared.
+    void resetZoom();
+    // Forgets the history (new data: the plot autoscaled afresh).
+    void clearZoomHistory() { m_history.clear(); }
 
     // The menu the right button opens (built anew each time; the caller owns it).
     QMenu *createMenu(QWidget *parent);
@@ -35,9 +55,25 @@ protected:
 
 private:
     PlotInteraction(QwtPlot *plot, QwtPlotZoomer *zoomer);
+    struct AxisState {
+        double lo = 0.0, hi = 0.0;
+        bool autoScale = false;
+    };
+    using Snapshot = QVector<AxisState>; // per QwtPlot axis
+    Snapshot snapshot() const;
+    void restore(const Snapshot &s);
+    // A wheel step: a new history entry unless the previous step was on the same widget just now.
+    void pushWheelStep(const QObject *widget);
 
     QwtPlot *m_plot;
     QwtPlotZoomer *m_zoomer;
+    QVector<Snapshot> m_history;
+    Snapshot m_pressed; // before a rubber band started (pushed when the zoomer zooms)
+    bool m_hasPressed = false;
+    const QObject *m_wheelWidget = nullptr;
+    QElapsedTimer m_wheelTime;
+    int m_dragAxis = -1; // axis being dragged (pan), -1 none
+    QPoint m_dragLast;
 };
 
 } // namespace driftlab

@@ -199,6 +199,8 @@ void TimeSeriesPlot::zoomToData()
     setAxisAutoScale(QwtPlot::yRight);
     replot();
     m_zoomer->setZoomBase(true);
+    if (PlotInteraction *i = PlotInteraction::of(this))
+        i->clearZoomHistory(); // new data: nothing to go back to
 }
 
 } // namespace driftlab

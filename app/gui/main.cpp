@@ -4,6 +4,8 @@
 
 #include "AnalysisPanel.h"
 #include "DiagnosisPanel.h"
+#include "AcquisitionPanel.h"
+#include "LiveRecordingView.h"
 #include "MainWindow.h"
 #include "ModelsPanel.h"
 #include "ReportDialog.h"
@@ -122,7 +124,14 @@ int main(int argc, char **argv)
     const QCommandLineOption overlay(QStringLiteral("overlay"),
                                      QStringLiteral("Overlay these sessions (comma-separated ids) on the time plot of --show-session."),
                                      QStringLiteral("ids"));
-    p.addOptions({db, session, screenshot, view, compare, fit, diagnose, dock, analysis, central, overlay});
+    const QCommandLineOption record(QStringLiteral("record"),
+                                    QStringLiteral("Start recording this rig (a preset name or rig file) into --db at 600x "
+                                                   "simulation speed; with --screenshot, the picture is taken 3 s later."),
+                                    QStringLiteral("rig"));
+    const QCommandLineOption liveLimit(QStringLiteral("live-limit"),
+                                       QStringLiteral("With --record: a high limit on a channel of the live view (KEY:HIGH)."),
+                                       QStringLiteral("key:high"));
+    p.addOptions({db, session, screenshot, view, compare, fit, diagnose, dock, analysis, central, overlay, record, liveLimit});
     if (!p.parse(QApplication::arguments()))
         return usageError(p.errorText());
     if (p.isSet(help))
@@ -270,6 +279,30 @@ int main(int argc, char **argv)
         if (!window.analysis()->startWorkflow(id, a.at(1), trainHours, a.size() == 4))
             return usageError(QStringLiteral("cannot analyse: %1").arg(window.analysis()->lastError()));
         screenshotWhen(window.analysis(), &AnalysisPanel::workflowFinished);
+    }
+    if (p.isSet(record)) {
+        if (window.workbench()->localPath().isEmpty())
+            return usageError(QStringLiteral("--record needs --db with a local database"));
+        if (p.isSet(liveLimit)) {
+            const QStringList kv = p.value(liveLimit).split(QLatin1Char(':'));
+            bool ok = false;
+            const double high = kv.value(1).toDouble(&ok);
+            if (kv.size() != 2 || kv.at(0).isEmpty() || !ok)
+                return usageError(QStringLiteral("--live-limit: expected KEY:HIGH, got '%1'").arg(p.value(liveLimit)));
+            // Applied once the recording's channels are known (the first refresh).
+            QObject::connect(window.acquisition(), &AcquisitionPanel::recordingStarted, &window, [&window, key = kv.at(0), high] {
+                LiveLimitMonitor::Limit l;
+                l.high = high;
+                QTimer::singleShot(300, &window, [&window, key, l] { window.acquisition()->liveView()->setLimit(key, l); });
+            });
+        }
+        window.acquisition()->setRunDetails(QString(), QStringLiteral("screenshot"), 3600.0, QString());
+        if (!window.acquisition()->startRecording(p.value(record), window.workbench()->localPath(), 600.0))
+            return usageError(QStringLiteral("--record: %1").arg(window.acquisition()->lastError()));
+        if (p.isSet(screenshot) && !waiting) {
+            waiting = true;
+            QTimer::singleShot(3000, &window, takeScreenshot);
+        }
     }
     if (p.isSet(screenshot) && !waiting)
         takeScreenshot();

@@ -182,6 +182,28 @@ void TestReportCli::pdfCarriesTheSessionsResults()
         }
     }
     QVERIFY(found >= 2);
+    // The reference test per target and direction: every target's mean deviation x up, as
+    // `iso230 --json` gives it.
+    const int referenceRun = m_iso.value(QStringLiteral("reference_run")).toInt();
+    int targets = 0;
+    for (const QJsonValue &t : tests) {
+        bool isReference = false;
+        for (const QJsonValue &r : t.toObject().value(QStringLiteral("runs")).toArray())
+            isReference = isReference || r.toInt() == referenceRun;
+        if (!isReference)
+            continue;
+        QVERIFY(m_text.contains(QStringLiteral("per target and direction of the reference test (run %1)").arg(referenceRun)));
+        for (const QJsonValue &target : t.toObject().value(QStringLiteral("targets")).toArray()) {
+            const QJsonValue up = target.toObject().value(QStringLiteral("mean_up_um"));
+            if (!up.isDouble())
+                continue;
+            QVERIFY2(m_text.contains(QString::number(up.toDouble(), 'g', 4)), qPrintable(QString::number(up.toDouble(), 'g', 4)));
+            ++targets;
+        }
+    }
+    QVERIFY(targets >= 2);
+    QVERIFY(m_text.contains(QStringLiteral("ISO 230-2 positional deviation of the reference test")));
+    QVERIFY(m_text.contains(QStringLiteral("ISO 230-3 drift against the reference run")));
     // The stored diagnosis with its before/after held-out residuals.
     QVERIFY(m_text.contains(QStringLiteral("motor_heat")));
     QVERIFY(m_text.contains(QStringLiteral("4.25")));
@@ -223,11 +245,12 @@ void TestReportCli::htmlHasTheSameSectionsAndVectorFigures()
     QVERIFY2(!xml.hasError(), qPrintable(xml.errorString()));
     QCOMPARE(lang, QStringLiteral("en"));
     QCOMPARE(h2, kHeadings);
-    // Six of the seed-002 set, the selection grades, the two models' predictions; all vector.
-    QCOMPARE(figures, 9);
-    QCOMPARE(svgFigures, 9 + 1); // and the logo
+    // Six of the seed-002 set, the ISO 230-2 deviation and 230-3 drift plots, the selection
+    // grades, the two models' predictions; all vector.
+    QCOMPARE(figures, 11);
+    QCOMPARE(svgFigures, 11 + 1); // and the logo
     // Same figures in the PDF: one caption per figure.
-    QCOMPARE(m_text.count(QStringLiteral("(session 1)\n")), 6);
+    QCOMPARE(m_text.count(QStringLiteral("(session 1)\n")), 8);
 }
 
 void TestReportCli::pageRenders()
@@ -236,7 +259,10 @@ void TestReportCli::pageRenders()
     const Result r = run(QStringLiteral("pdftoppm"), {QStringLiteral("-r"), QStringLiteral("40"), QStringLiteral("-f"), QStringLiteral("3"),
                                                       QStringLiteral("-l"), QStringLiteral("3"), QStringLiteral("-png"), m_pdf, prefix});
     QCOMPARE(r.code, 0);
-    const QImage page(prefix + QStringLiteral("-3.png"));
+    // pdftoppm pads the page number to the page count's digits (page-3.png, page-03.png).
+    QImage page(prefix + QStringLiteral("-3.png"));
+    if (page.isNull())
+        page = QImage(prefix + QStringLiteral("-03.png"));
     QVERIFY(!page.isNull());
     QCOMPARE(page.width(), qRound(210 / 25.4 * 40)); // A4
     int coloured = 0; // a page of figures: plenty of coloured (not grey) pixels

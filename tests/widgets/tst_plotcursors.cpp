@@ -10,6 +10,7 @@
 
 #include <qwt_plot_canvas.h>
 #include <qwt_plot_curve.h>
+#include <qwt_scale_div.h>
 #include <qwt_scale_map.h>
 
 #include <cmath>
@@ -21,6 +22,7 @@ class TestPlotCursors : public QObject {
 private slots:
     void valuesAndDeltaWithUnits();
     void shiftClickPlacesAThenB();
+    void dragMovesAPlacedCursor();
 };
 
 namespace {
@@ -108,6 +110,38 @@ void TestPlotCursors::shiftClickPlacesAThenB()
     // A click without Shift sets no cursor.
     QTest::mouseClick(canvas, Qt::LeftButton, Qt::NoModifier, QPoint(xa, y));
     QVERIFY(!c->position(PlotCursors::A));
+}
+
+void TestPlotCursors::dragMovesAPlacedCursor()
+{
+    TimeSeriesPlot plot;
+    fill(plot);
+    plot.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&plot));
+    plot.replot();
+    PlotCursors *c = PlotCursors::of(&plot);
+    c->setCursor(PlotCursors::A, 1800.0);
+    c->setCursor(PlotCursors::B, 5400.0);
+    const QwtScaleDiv x0 = plot.axisScaleDiv(QwtPlot::xBottom);
+    const QwtScaleMap map = plot.canvasMap(QwtPlot::xBottom);
+    const double perPixel = std::fabs(map.sDist() / map.pDist());
+    QWidget *canvas = plot.canvas();
+    const int y = canvas->height() / 2;
+    // Grab B 2 px beside it and drag it to 3600 s: B moves, A stays, no zoom happens.
+    const QPoint from(static_cast<int>(std::lround(map.transform(5400.0))) + 2, y);
+    const QPoint to(static_cast<int>(std::lround(map.transform(3600.0))), y);
+    QTest::mousePress(canvas, Qt::LeftButton, Qt::NoModifier, from);
+    for (int k = 1; k <= 4; ++k) {
+        QMouseEvent move(QEvent::MouseMove, QPointF(from + (to - from) * k / 4), Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+        QApplication::sendEvent(canvas, &move);
+    }
+    QTest::mouseRelease(canvas, Qt::LeftButton, Qt::NoModifier, to);
+    QVERIFY2(std::fabs(*c->position(PlotCursors::B) - 3600.0) <= perPixel, qPrintable(QString::number(*c->position(PlotCursors::B))));
+    QCOMPARE(*c->position(PlotCursors::A), 1800.0);
+    QCOMPARE(plot.axisScaleDiv(QwtPlot::xBottom).lowerBound(), x0.lowerBound());
+    QCOMPARE(plot.axisScaleDiv(QwtPlot::xBottom).upperBound(), x0.upperBound());
+    QVERIFY(c->text().contains(QStringLiteral("0:30:00"))); // A 0:30:00, B now 1:00:00
+    QVERIFY(c->text().contains(QStringLiteral("B 1:00:00")));
 }
 
 QTEST_MAIN(TestPlotCursors)

@@ -1,0 +1,264 @@
+// The live recording view (issue 33 item 2). LiveLimitMonitor: one alarm per crossing
+// (not one per refresh), over-temperature vs out of range, sensor silent, limits as JSON.
+// The main window with the simulated rig (offscreen): the running session is listed at
+// once and opens at full size in the central area, samples appear, a limit crossed shows
+// the alarm and stores exactly one event in the session, Stop asks (No keeps recording,
+// Yes stops), and the Acquisition dock needs no vertical scrolling at 1366 x 768.
+#include "AcquisitionPanel.h"
+#include "LiveLimitMonitor.h"
+#include "LiveRecordingView.h"
+#include "MainWindow.h"
+#include "SessionBrowser.h"
+#include "SessionStore.h"
+#include "TimeSeriesPlot.h"
+#include "Workbench.h"
+
+#include <QDockWidget>
+#include <QMessageBox>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QScrollBar>
+#include <QSettings>
+#include <QTabWidget>
+#include <QTableWidget>
+#include <QTemporaryDir>
+#include <QTimer>
+#include <QtTest>
+
+#include <qwt_plot_curve.h>
+
+#include <cmath>
+
+using namespace driftlab;
+
+class TestLiveRecording : public QObject {
+    Q_OBJECT
+private slots:
+    void initTestCase();
+    void oneAlarmPerCrossing();
+    void outOfRangeAndSilent();
+    void limitsRoundTripAsJson();
+    void recordWatchAlarmStop();
+
+private:
+    QTemporaryDir m_dir;
+};
+
+void TestLiveRecording::initTestCase()
+{
+    QVERIFY(m_dir.isValid());
+    QSettings::setDefaultFormat(QSettings::IniFormat);
+    QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, m_dir.filePath(QStringLiteral("settings")));
+}
+
+void TestLiveRecording::oneAlarmPerCrossing()
+{
+    LiveLimitMonitor m;
+    m.setChannel(QStringLiteral("T1"), QStringLiteral("°C"), true);
+    LiveLimitMonitor::Limit l;
+    l.high = 30.0;
+    m.setLimit(QStringLiteral("T1"), l);
+    // Below the limit: nothing.
+    QVERIFY(m.observe(QStringLiteral("T1"), {0, 1, 2}, {25, 26, 29.9}, 2, 2).isEmpty());
+    // Crossing at t = 4: one over-temperature alarm naming the first offending sample.
+    auto a = m.observe(QStringLiteral("T1"), {3, 4, 5}, {29.5, 30.5, 31}, 5, 5);
+    QCOMPARE(a.size(), 1);
+    QCOMPARE(int(a[0].kind), int(LiveLimitMonitor::Kind::OverTemperature));
+    QCOMPARE(a[0].t, 4.0);
+    QCOMPARE(a[0].value, 30.5);
+    QVERIFY2(a[0].label.contains(QStringLiteral("over-temperature T1 = 30.5 °C at 0:00:04")), qPrintable(a[0].label));
+    QVERIFY(m.inAlarm(QStringLiteral("T1")));
+    // Still hot on the next refreshes (and a refresh with no new sample): no second alarm.
+    QVERIFY(m.observe(QStringLiteral("T1"), {6, 7}, {32, 33}, 7, 7).isEmpty());
+    QVERIFY(m.observe(QStringLiteral("T1"), {}, {}, 7, 8).isEmpty());
+    QCOMPARE(m.activeAlarms().size(), 1);
+    // Back inside: cleared; crossing again: a new alarm.
+    QVERIFY(m.observe(QStringLiteral("T1"), {8}, {29}, 8, 8).isEmpty());
+    QVERIFY(!m.inAlarm(QStringLiteral("T1")));
+    QVERIFY(m.activeAlarms().isEmpty());
+    QCOMPARE(m.observe(QStringLiteral("T1"), {9}, {35}, 9, 9).size(), 1);
+    // A channel without limits never alarms.
+    QVERIFY(m.observe(QStringLiteral("T2"), {1}, {1000}, 1, 1).isEmpty());
+}
+
+void TestLiveRecording::outOfRangeAndSilent()
+{
+    LiveLimitMonitor m;
+    m.setChannel(QStringLiteral("S1"), QStringLiteral("µm"), false);
+    m.setChannel(QStringLiteral("T1"), QStringLiteral("°C"), true);
+    LiveLimitMonitor::Limit range;
+    range.low = -5.0;
+    range.high = 40.0;
+    m.setLimit(QStringLiteral("S1"), range);
+    // A displacement above its high limit is "value out of range", not over-temperature.
+    auto a = m.observe(QStringLiteral("S1"), {1, 2}, {10, 41}, 2, 2);
+    QCOMPARE(a.size(), 1);
+    QCOMPARE(int(a[0].kind), int(LiveLimitMonitor::Kind::OutOfRange));
+    QVERIFY(a[0].label.contains(QStringLiteral("value out of range S1 = 41 µm")));
+    // A temperature below its low limit is out of range too.
+    LiveLimitMonitor::Limit cold;
+    cold.low = 10.0;
+    m.setLimit(QStringLiteral("T1"), cold);
+    a = m.observe(QStringLiteral("T1"), {1}, {5}, 1, 1);
+    QCOMPARE(a.size(), 1);
+    QCOMPARE(int(a[0].kind), int(LiveLimitMonitor::Kind::OutOfRange));
+
+    // Silent: the last sample at 100 s, limit 30 s.
+    LiveLimitMonitor s;
+    s.setChannel(QStringLiteral("T3"), QStringLiteral("°C"), true);
+    LiveLimitMonitor::Limit silent;
+    silent.silent_s = 30.0;
+    s.setLimit(QStringLiteral("T3"), silent);
+    QVERIFY(s.observe(QStringLiteral("T3"), {100}, {20}, 100, 120).isEmpty());
+    a = s.observe(QStringLiteral("T3"), {}, {}, 100, 131);
+    QCOMPARE(a.size(), 1);
+    QCOMPARE(int(a[0].kind), int(LiveLimitMonitor::Kind::Silent));
+    QCOMPARE(a[0].value, 31.0);
+    QVERIFY(s.observe(QStringLiteral("T3"), {}, {}, 100, 200).isEmpty()); // still silent: once
+    QVERIFY(s.observe(QStringLiteral("T3"), {201}, {20}, 201, 201).isEmpty()); // delivers again: cleared
+    QVERIFY(!s.inAlarm(QStringLiteral("T3")));
+    // A channel that never delivered is silent once the limit has passed since the start.
+    s.setLimit(QStringLiteral("T4"), silent);
+    QVERIFY(s.observe(QStringLiteral("T4"), {}, {}, std::nan(""), 10).isEmpty());
+    QCOMPARE(s.observe(QStringLiteral("T4"), {}, {}, std::nan(""), 31).size(), 1);
+}
+
+void TestLiveRecording::limitsRoundTripAsJson()
+{
+    LiveLimitMonitor m;
+    LiveLimitMonitor::Limit a;
+    a.high = 30.5;
+    LiveLimitMonitor::Limit b;
+    b.low = -2.0;
+    b.silent_s = 15.0;
+    m.setLimit(QStringLiteral("T1"), a);
+    m.setLimit(QStringLiteral("S1"), b);
+    m.setLimit(QStringLiteral("X"), LiveLimitMonitor::Limit()); // no limit: not kept
+    LiveLimitMonitor n;
+    n.fromJson(m.toJson());
+    QCOMPARE(n.limitedChannels(), QStringList({QStringLiteral("S1"), QStringLiteral("T1")}));
+    QCOMPARE(n.limit(QStringLiteral("T1")).high, 30.5);
+    QVERIFY(std::isnan(n.limit(QStringLiteral("T1")).low));
+    QCOMPARE(n.limit(QStringLiteral("S1")).low, -2.0);
+    QCOMPARE(n.limit(QStringLiteral("S1")).silent_s, 15.0);
+}
+
+namespace {
+// Answers the next question box with `button` once it is shown.
+void answerNextQuestion(QMessageBox::StandardButton button, bool *asked)
+{
+    QTimer::singleShot(50, [button, asked] {
+        for (QWidget *w : QApplication::topLevelWidgets()) {
+            if (auto *box = qobject_cast<QMessageBox *>(w); box && box->isVisible()) {
+                *asked = true;
+                box->button(button)->click();
+                return;
+            }
+        }
+        answerNextQuestion(button, asked);
+    });
+}
+} // namespace
+
+void TestLiveRecording::recordWatchAlarmStop()
+{
+    MainWindow window;
+    window.resize(1366, 768);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    const QString db = m_dir.filePath(QStringLiteral("live.sqlite"));
+    QVERIFY(window.workbench()->newDatabase(db));
+    AcquisitionPanel *panel = window.acquisition();
+    LiveRecordingView *live = panel->liveView();
+    panel->setDatabasePath(db);
+    QVERIFY(panel->startRecording(QStringLiteral("baseline"), db, 600.0));
+    const qint64 id = panel->sessionId();
+
+    // Listed at once, marked as recording; the live view is the current central tab, at full size.
+    QCOMPARE(window.browser()->sessionCount(), 1);
+    QCOMPARE(window.browser()->sessionAt(0), id);
+    QCOMPARE(window.centralViews()->currentWidget(), static_cast<QWidget *>(live));
+    QVERIFY(live->isVisible());
+    // Full size: the plot takes most of the central area (the channel table beside it).
+    const QSize central = window.centralViews()->size();
+    QTRY_VERIFY2(live->plot()->width() > 0.5 * central.width(),
+                 qPrintable(QStringLiteral("%1 of %2").arg(live->plot()->width()).arg(central.width())));
+    QVERIFY2(live->plot()->height() > 0.8 * central.height(),
+             qPrintable(QStringLiteral("%1 of %2").arg(live->plot()->height()).arg(central.height())));
+
+    // Samples appear.
+    QTRY_VERIFY_WITH_TIMEOUT(live->plot()->curve(QStringLiteral("S1")) && live->plot()->curve(QStringLiteral("S1"))->dataSize() > 2, 5000);
+    QVERIFY(live->clockText().contains(QStringLiteral("elapsed")));
+    // The channel table fits beside the plot: no sideways scrolling.
+    auto *table = live->findChild<QTableWidget *>();
+    QVERIFY(table);
+    QTRY_COMPARE(table->horizontalScrollBar()->maximum(), 0);
+    QVERIFY(!live->alarmVisible());
+
+    // Channel picker: unticking hides the curve.
+    QString temperature;
+    {
+        SessionStore store(db);
+        for (const ChannelInfo &c : store.channels(id))
+            if (c.kind == QLatin1String("temperature") && temperature.isEmpty())
+                temperature = c.key;
+    }
+    QVERIFY(!temperature.isEmpty());
+    QTRY_VERIFY(live->plot()->curve(temperature) != nullptr);
+    live->setChannelShown(temperature, false);
+    QVERIFY(!live->plot()->curve(temperature)->isVisible());
+    live->setChannelShown(temperature, true);
+    QVERIFY(live->plot()->curve(temperature)->isVisible());
+
+    // A high limit far below room temperature: the alarm shows and stays; one event.
+    LiveLimitMonitor::Limit hot;
+    hot.high = -100.0;
+    QSignalSpy alarms(live, &LiveRecordingView::alarmRaised);
+    live->setLimit(temperature, hot);
+    QTRY_VERIFY_WITH_TIMEOUT(live->alarmVisible(), 3000);
+    QVERIFY2(live->alarmText().contains(QStringLiteral("over-temperature %1").arg(temperature)), qPrintable(live->alarmText()));
+    const int refreshes = live->refreshes();
+    QTRY_VERIFY_WITH_TIMEOUT(live->refreshes() >= refreshes + 5, 5000); // several more checks, still in alarm
+    QVERIFY(live->alarmVisible());
+    QCOMPARE(alarms.count(), 1);
+    // Remembered for the rig.
+    QVERIFY(QSettings().value(QStringLiteral("liveLimits/baseline")).toString().contains(temperature));
+
+    // Stop asks; No keeps recording, Yes stops.
+    bool asked = false;
+    answerNextQuestion(QMessageBox::No, &asked);
+    QVERIFY(!live->requestStop());
+    QVERIFY(asked);
+    QVERIFY(panel->recording());
+    asked = false;
+    answerNextQuestion(QMessageBox::Yes, &asked);
+    QVERIFY(live->requestStop());
+    QVERIFY(asked);
+    QVERIFY(!panel->recording());
+
+    SessionStore store(db);
+    QVERIFY(store.session(id).complete);
+    int overTemperature = 0;
+    for (const EventRecord &e : store.events(id))
+        overTemperature += e.label.contains(QStringLiteral("over-temperature")) ? 1 : 0;
+    QCOMPARE(overTemperature, 1);
+
+    // The Acquisition dock: a compact status that needs no vertical scrolling at 768.
+    QDockWidget *dock = window.dock(QStringLiteral("AcquisitionDock"));
+    QVERIFY(dock);
+    dock->show();
+    dock->raise();
+    QTest::qWait(50);
+    auto *scroll = qobject_cast<QScrollArea *>(dock->widget());
+    QVERIFY(scroll);
+    QCOMPARE(scroll->verticalScrollBar()->maximum(), 0);
+    // "Show live view" brings the view back.
+    window.centralViews()->setCurrentIndex(0);
+    for (QPushButton *b : panel->findChildren<QPushButton *>())
+        if (b->text() == QLatin1String("Show live view"))
+            b->click();
+    QCOMPARE(window.centralViews()->currentWidget(), static_cast<QWidget *>(live));
+}
+
+QTEST_MAIN(TestLiveRecording)
+#include "tst_liverecording.moc"

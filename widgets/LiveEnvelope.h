@@ -1,0 +1,39 @@
+#pragma once
+// The min/max envelope of a growing channel in a fixed number of time buckets, appended to
+// as samples arrive (the live view's per-pixel-column decimation): memory and drawing cost
+// stay constant however long the recording runs. When a sample falls past the last bucket,
+// neighbouring buckets merge in pairs and the bucket width doubles, so the buckets always
+// cover [0, latest sample] at one width. The envelope holds every sample's value.
+
+#include <QVector>
+
+namespace driftlab {
+
+class LiveEnvelope {
+public:
+    explicit LiveEnvelope(int capacity = 2048, double width_s = 0.05);
+    void clear();
+    // Samples in ascending time (t >= 0).
+    void append(const QVector<double> &t, const QVector<double> &v);
+    // One bucket of an already decimated range (its time, min and max): seeds the envelope
+    // of a session that ran before the view opened.
+    void appendRange(double t, double min, double max);
+    // Polyline through (t, min), (t, max) per filled bucket (as TimeSeriesPlot::envelopePoints).
+    void points(QVector<double> &x, QVector<double> &y) const;
+    double width() const { return m_width; }
+    int capacity() const { return m_capacity; }
+    int filled() const;
+    double minimum() const;
+    double maximum() const;
+
+private:
+    void add(double t, double vmin, double vmax);
+    void merge();
+
+    int m_capacity;
+    double m_width0;
+    double m_width;
+    QVector<double> m_min, m_max; // NaN: empty bucket
+};
+
+} // namespace driftlab
