@@ -90,7 +90,7 @@ void PlotExporter::exportPlot(QwtPlot &plot, const QString &path, QSizeF size_mm
         throw std::runtime_error(QStringLiteral("%1: folder %2 does not exist").arg(path, info.absolutePath()).toStdString());
     const QByteArray bytes = render(plot, info.suffix(), size_mm, dpi);
     QSaveFile file(path); // atomic: a failed write leaves no partial file and the old one whole
-    if (!file.open(QIODevice::WriteOnly) || file.write(bytes) != bytes.size() || !file.commit())
+    if (!file.open(QIODevice::WriteOnly) || file.write(bytes) != bytes.size() || !file.flush() || !file.commit())
         throw std::runtime_error(QStringLiteral("%1: the plot could not be written: %2").arg(path, file.errorString()).toStdString());
 }
 

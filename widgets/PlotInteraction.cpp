@@ -276,7 +276,7 @@ bool PlotInteraction::exportVisibleData(const QwtPlot &plot, const QString &path
         }
     }
     out.flush();
-    if (!file.commit()) {
+    if (out.status() != QTextStream::Ok || !file.flush() || !file.commit()) {
         if (error)
             *error = tr("%1: cannot write: %2").arg(path, file.errorString());
         return false;
