@@ -9,7 +9,12 @@
 // (first update) and in the review time view (ReviewWorkspace::setSession), against reading
 // the channels' samples plainly.
 //
-// Usage: bench_liveview [SECONDS] [HOURS] (default 20 and 10). Prints markdown rows.
+// The store's decimated read of all channels is timed both ways: one query per channel and
+// level (the views before 2026-11-27 11:00) against one query per level for all channels.
+//
+// Usage: bench_liveview [SECONDS] [HOURS] [LONG_DB] (default 20 and 10; SECONDS 0 skips
+// part 1; LONG_DB keeps the long session's database there and reuses it when it exists, the
+// 10 h one takes about 3 min to write). Prints markdown rows.
 
 #include "LiveRecordingView.h"
 #include "ReviewWorkspace.h"
@@ -18,6 +23,7 @@
 
 #include <QApplication>
 #include <QElapsedTimer>
+#include <QFileInfo>
 #include <QTemporaryDir>
 #include <QTextStream>
 #include <QTimer>
@@ -92,113 +98,122 @@ int main(int argc, char **argv)
     QTemporaryDir dir;
 
     // ---- Part 1: live refresh CPU --------------------------------------------------------
-    const QString livePath = dir.filePath(QStringLiteral("live.sqlite"));
-    qint64 session = 0;
-    Layout layout;
-    {
-        SessionStore setup(livePath);
-        layout = makeSession(setup, session, 4);
-    }
-    std::atomic<bool> stop{false};
-    QElapsedTimer clock;
-    clock.start();
-    std::thread writer([&] {
-        SessionStore w(livePath);
-        qint64 slowDone = 0, fastDone = 0;
-        QVector<double> t, v;
-        while (!stop) {
-            const double now = clock.nsecsElapsed() / 1e9;
-            const qint64 slowDue = static_cast<qint64>(now * 10.0), fastDue = static_cast<qint64>(now * 1000.0);
-            w.begin();
-            for (int k = 0; k < layout.slow.size() && slowDue > slowDone; ++k) {
-                fill(k, 10.0, slowDone, slowDue, t, v);
-                w.appendSamples(layout.slow[k], t, v);
-            }
-            for (int k = 0; k < layout.fast.size() && fastDue > fastDone; ++k) {
-                fill(k, 1000.0, fastDone, fastDue, t, v);
-                w.appendSamples(layout.fast[k], t, v);
-            }
-            w.commit();
-            slowDone = std::max(slowDone, slowDue);
-            fastDone = std::max(fastDone, fastDue);
-            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (seconds > 0) {
+        const QString livePath = dir.filePath(QStringLiteral("live.sqlite"));
+        qint64 session = 0;
+        Layout layout;
+        {
+            SessionStore setup(livePath);
+            layout = makeSession(setup, session, 4);
         }
-    });
-    SessionStore reader(livePath);
-    auto run = [&](const std::function<void()> &refresh) {
-        QTimer timer;
-        timer.setInterval(100);
-        int n = 0;
-        QObject::connect(&timer, &QTimer::timeout, [&] {
-            refresh();
-            ++n;
+        std::atomic<bool> stop{false};
+        QElapsedTimer clock;
+        clock.start();
+        std::thread writer([&] {
+            SessionStore w(livePath);
+            qint64 slowDone = 0, fastDone = 0;
+            QVector<double> t, v;
+            while (!stop) {
+                const double now = clock.nsecsElapsed() / 1e9;
+                const qint64 slowDue = static_cast<qint64>(now * 10.0), fastDue = static_cast<qint64>(now * 1000.0);
+                w.begin();
+                for (int k = 0; k < layout.slow.size() && slowDue > slowDone; ++k) {
+                    fill(k, 10.0, slowDone, slowDue, t, v);
+                    w.appendSamples(layout.slow[k], t, v);
+                }
+                for (int k = 0; k < layout.fast.size() && fastDue > fastDone; ++k) {
+                    fill(k, 1000.0, fastDone, fastDue, t, v);
+                    w.appendSamples(layout.fast[k], t, v);
+                }
+                w.commit();
+                slowDone = std::max(slowDone, slowDue);
+                fastDone = std::max(fastDone, fastDue);
+                std::this_thread::sleep_for(std::chrono::milliseconds(100));
+            }
         });
-        const double cpu0 = threadCpu_s();
-        QElapsedTimer wall;
-        wall.start();
-        timer.start();
-        QTimer::singleShot(static_cast<int>(seconds * 1000), &app, &QApplication::quit);
-        app.exec();
-        timer.stop();
-        return std::make_pair((threadCpu_s() - cpu0) / (wall.nsecsElapsed() / 1e9), n);
-    };
+        SessionStore reader(livePath);
+        auto run = [&](const std::function<void()> &refresh) {
+            QTimer timer;
+            timer.setInterval(100);
+            int n = 0;
+            QObject::connect(&timer, &QTimer::timeout, [&] {
+                refresh();
+                ++n;
+            });
+            const double cpu0 = threadCpu_s();
+            QElapsedTimer wall;
+            wall.start();
+            timer.start();
+            QTimer::singleShot(static_cast<int>(seconds * 1000), &app, &QApplication::quit);
+            app.exec();
+            timer.stop();
+            return std::make_pair((threadCpu_s() - cpu0) / (wall.nsecsElapsed() / 1e9), n);
+        };
 
-    // Reference: every sample of every channel re-read and drawn, 10 times a second.
-    QwtPlot plain;
-    plain.resize(1366, 700);
-    plain.show();
-    QVector<QwtPlotCurve *> plainCurves;
-    for (int k = 0; k < layout.slow.size() + layout.fast.size(); ++k) {
-        auto *c = new QwtPlotCurve;
-        c->setYAxis(k < layout.slow.size() ? QwtPlot::yLeft : QwtPlot::yRight);
-        c->attach(&plain);
-        plainCurves << c;
-    }
-    plain.enableAxis(QwtPlot::yRight);
-    err << "reference: plain re-read and redraw for " << seconds << " s...\n";
-    err.flush();
-    const auto [refCpu, refN] = run([&] {
-        const QVector<qint64> ids = layout.slow + layout.fast;
-        for (int k = 0; k < ids.size(); ++k) {
-            const SampleBlock b = reader.samples(ids[k]);
-            plainCurves[k]->setSamples(b.t, b.v);
+        // Reference: every sample of every channel re-read and drawn, 10 times a second.
+        QwtPlot plain;
+        plain.resize(1366, 700);
+        plain.show();
+        QVector<QwtPlotCurve *> plainCurves;
+        for (int k = 0; k < layout.slow.size() + layout.fast.size(); ++k) {
+            auto *c = new QwtPlotCurve;
+            c->setYAxis(k < layout.slow.size() ? QwtPlot::yLeft : QwtPlot::yRight);
+            c->attach(&plain);
+            plainCurves << c;
         }
-        plain.replot();
-    });
-    plain.hide();
+        plain.enableAxis(QwtPlot::yRight);
+        err << "reference: plain re-read and redraw for " << seconds << " s...\n";
+        err.flush();
+        const auto [refCpu, refN] = run([&] {
+            const QVector<qint64> ids = layout.slow + layout.fast;
+            for (int k = 0; k < ids.size(); ++k) {
+                const SampleBlock b = reader.samples(ids[k]);
+                plainCurves[k]->setSamples(b.t, b.v);
+            }
+            plain.replot();
+        });
+        plain.hide();
 
-    LiveRecordingView view;
-    view.resize(1366, 700);
-    view.show();
-    view.begin(QStringLiteral("bench"), QString(), 0.0);
-    view.update(reader, session, clock.nsecsElapsed() / 1e9); // the table
-    for (const QString &key : view.channelKeys()) {
-        LiveLimitMonitor::Limit l;
-        l.low = -100.0;
-        l.high = 1000.0;
-        l.silent_s = 60.0;
-        view.setLimit(key, l);
-    }
-    err << "live view for " << seconds << " s...\n";
-    err.flush();
-    const auto [liveCpu, liveN] = run([&] { view.update(reader, session, clock.nsecsElapsed() / 1e9); });
-    stop = true;
-    writer.join();
-    const qint64 fastSamples = reader.sampleCount(layout.fast.front());
-    out << "| live view, 64 ch at 10 Hz + 4 at 1 kHz, limits on all, 1366 x 700, " << seconds << " s | "
-        << QString::number(100.0 * liveCpu, 'f', 1) << " % of one core (" << liveN << " refreshes) | plain re-read + redraw "
-        << QString::number(100.0 * refCpu, 'f', 1) << " % (" << refN << " refreshes) | "
-        << QString::number(refCpu / liveCpu, 'f', 1) << "x | 1 kHz channel at the end: " << fastSamples << " samples, alarms "
-        << view.monitor().activeAlarms().size() << " |\n";
-    out.flush();
+        LiveRecordingView view;
+        view.resize(1366, 700);
+        view.show();
+        view.begin(QStringLiteral("bench"), QString(), 0.0);
+        view.update(reader, session, clock.nsecsElapsed() / 1e9); // the table
+        for (const QString &key : view.channelKeys()) {
+            LiveLimitMonitor::Limit l;
+            l.low = -100.0;
+            l.high = 1000.0;
+            l.silent_s = 60.0;
+            view.setLimit(key, l);
+        }
+        err << "live view for " << seconds << " s...\n";
+        err.flush();
+        const auto [liveCpu, liveN] = run([&] { view.update(reader, session, clock.nsecsElapsed() / 1e9); });
+        stop = true;
+        writer.join();
+        const qint64 fastSamples = reader.sampleCount(layout.fast.front());
+        out << "| live view, 64 ch at 10 Hz + 4 at 1 kHz, limits on all, 1366 x 700, " << seconds << " s | "
+            << QString::number(100.0 * liveCpu, 'f', 1) << " % of one core (" << liveN << " refreshes) | plain re-read + redraw "
+            << QString::number(100.0 * refCpu, 'f', 1) << " % (" << refN << " refreshes) | "
+            << QString::number(refCpu / liveCpu, 'f', 1) << "x | 1 kHz channel at the end: " << fastSamples << " samples, alarms "
+            << view.monitor().activeAlarms().size() << " |\n";
+        out.flush();
+
+    } // part 1
 
     // ---- Part 2: open a long session -----------------------------------------------------
     if (hours <= 0)
         return 0;
-    const QString longPath = dir.filePath(QStringLiteral("long.sqlite"));
+    const QString longPath = argc > 3 ? QString::fromLocal8Bit(argv[3]) : dir.filePath(QStringLiteral("long.sqlite"));
     qint64 longSession = 0;
     Layout longLayout;
-    {
+    if (QFileInfo::exists(longPath)) {
+        SessionStore w(longPath);
+        longSession = w.sessions().front().id;
+        for (const ChannelInfo &c : w.channels(longSession))
+            (c.key.startsWith(QLatin1Char('S')) ? longLayout.fast : longLayout.slow) << c.id;
+        err << "reusing " << longPath << "\n";
+    } else {
         SessionStore w(longPath);
         longLayout = makeSession(w, longSession, 1);
         err << "writing " << hours << " h (64 x 10 Hz + 1 x 1 kHz)...\n";
@@ -228,6 +243,25 @@ int main(int argc, char **argv)
             err << "  decimated " << buckets << " buckets: " << a.nsecsElapsed() / 1e6 << " ms\n";
         }
         const double decimatedMs = a.nsecsElapsed() / 1e6;
+        // The same 65 channels in one batch (one query per mipmap level for all), and the
+        // same envelopes (checked bucket by bucket).
+        QVector<ChannelRange> ranges;
+        for (qint64 id : longLayout.slow + longLayout.fast)
+            ranges.push_back({id, 0.0, hours * 3600.0});
+        a.restart();
+        const QVector<DecimatedSeries> batch = longReader.decimated(ranges, 1024);
+        const double batchMs = a.nsecsElapsed() / 1e6;
+        bool same = true;
+        for (int i = 0; i < ranges.size(); ++i) {
+            const DecimatedSeries one = longReader.decimated(ranges[i].channelId, 0.0, hours * 3600.0, 1024);
+            same = same && one.tFirst == batch[i].tFirst && one.tLast == batch[i].tLast && one.min == batch[i].min
+                && one.max == batch[i].max && one.level == batch[i].level;
+        }
+        out << "| decimated read of " << ranges.size() << " channels over " << hours << " h, 1024 buckets | one batch "
+            << QString::number(batchMs, 'f', 1) << " ms | one query per channel and level " << QString::number(decimatedMs, 'f', 1)
+            << " ms | " << QString::number(decimatedMs / batchMs, 'f', 1) << "x | envelopes equal: " << (same ? "yes" : "NO")
+            << " |\n";
+        out.flush();
         a.restart();
         k = 0;
         for (qint64 id : longLayout.slow + longLayout.fast)

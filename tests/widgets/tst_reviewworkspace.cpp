@@ -13,10 +13,15 @@
 #include "TimeSeriesPlot.h"
 
 #include <QJsonArray>
+#include <qwt_plot_curve.h>
+#include <qwt_scale_map.h>
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
 using namespace driftlab;
 
@@ -49,6 +54,7 @@ private slots:
     void infraredProfileFollowsTruthAwayFromNut();
     void viewsWithoutDataAreUnavailable();
     void infraredProfileMatchesRigTruth();
+    void longChannelsDrawTheirStoredEnvelopes();
 
 private:
     QTemporaryDir m_dir;
@@ -236,6 +242,87 @@ void TestReviewWorkspace::infraredProfileMatchesRigTruth()
     // Noise 0.05 K per pixel averaged over the band, 0.01 K counts, and the axial
     // temperature gradient across a pixel near the hot fixed end.
     QVERIFY2(worst < 0.15, qPrintable(QString::number(worst)));
+}
+
+void TestReviewWorkspace::longChannelsDrawTheirStoredEnvelopes()
+{
+    // A session with known data: five channels long enough to be drawn from the mipmap (all
+    // read in one batch when the session opens), one short one drawn raw. Every curve must
+    // show, pixel column by pixel column, the same min/max as its own channel's envelope
+    // read alone (the drawing before the batch read), and the short one its samples.
+    SessionStore store(m_dir.filePath(QStringLiteral("long.sqlite")));
+    SessionInfo info;
+    info.name = QStringLiteral("long channels");
+    info.started = QStringLiteral("2026-11-27T00:00:00Z");
+    const qint64 session = store.createSession(info);
+    struct Known {
+        qint64 id;
+        QString key;
+        int n;
+        double dt;
+    };
+    QVector<Known> known;
+    for (int k = 0; k < 6; ++k) {
+        ChannelInfo c;
+        c.key = k < 5 ? QStringLiteral("T%1").arg(k) : QStringLiteral("S1");
+        c.kind = k < 5 ? QStringLiteral("temperature") : QStringLiteral("displacement");
+        c.unit = k < 5 ? QStringLiteral("degC") : QStringLiteral("um");
+        const int n = k == 3 ? 5000 : 30000 + 7000 * k;
+        const double dt = k == 5 ? 0.25 : 1.0 + 0.1 * k;
+        known.push_back({store.addChannel(session, c), c.key, n, dt});
+        QVector<double> t, v;
+        for (int i = 0; i < n; ++i) {
+            t.push_back(i * dt);
+            v.push_back(20.0 + 3.0 * k + std::sin(i * 0.01 * (k + 1)) + ((i * 7919 + k) % 101) * 0.01);
+        }
+        store.appendSamples(known.back().id, t, v);
+    }
+    ReviewWorkspace review;
+    review.resize(1366, 700);
+    review.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&review));
+    review.setSession(&store, session);
+    QTest::qWait(200); // the refetch after the x scale settled
+    TimeSeriesPlot *plot = review.timeSeriesPlot();
+    const QwtScaleMap map = plot->canvasMap(QwtPlot::xBottom);
+    const QwtScaleDiv &div = plot->axisScaleDiv(QwtPlot::xBottom);
+    // Per pixel column: the lowest and highest value drawn there.
+    using Columns = std::map<int, std::pair<double, double>>;
+    auto columns = [&map](const QVector<double> &x, const QVector<double> &y) {
+        Columns c;
+        for (int i = 0; i < x.size(); ++i) {
+            const int col = static_cast<int>(std::floor(map.transform(x[i])));
+            auto it = c.find(col);
+            if (it == c.end())
+                c[col] = {y[i], y[i]};
+            else
+                it->second = {std::min(it->second.first, y[i]), std::max(it->second.second, y[i])};
+        }
+        return c;
+    };
+    for (const Known &k : known) {
+        QwtPlotCurve *curve = plot->curve(k.key);
+        QVERIFY2(curve, qPrintable(k.key));
+        QVector<double> x, y;
+        for (size_t i = 0; i < curve->dataSize(); ++i) {
+            x.push_back(curve->sample(i).x());
+            y.push_back(curve->sample(i).y());
+        }
+        QVector<double> ex, ey;
+        if (k.n <= 20000) {
+            const SampleBlock b = store.samples(k.id);
+            ex = b.t;
+            ey = b.v;
+            QCOMPARE(x.size(), k.n);
+        } else {
+            const double t0 = std::max(0.0, div.lowerBound()), t1 = std::min((k.n - 1) * k.dt, div.upperBound());
+            TimeSeriesPlot::envelopePoints(store.decimated(k.id, t0, t1, plot->decimationBuckets()), ex, ey);
+            QVERIFY2(x.size() < k.n / 4, qPrintable(k.key)); // decimated, not every sample
+            QVERIFY2(x.size() > 400, qPrintable(k.key));
+        }
+        QCOMPARE(columns(x, y), columns(ex, ey));
+        QCOMPARE(*std::min_element(y.cbegin(), y.cend()), *std::min_element(ey.cbegin(), ey.cend()));
+    }
 }
 
 QTEST_MAIN(TestReviewWorkspace)
