@@ -203,22 +203,50 @@ void SampleChannels::forEachBlock(qint64 channelId,
     }
 }
 
-namespace {
-// Channels per IN list (SQLite's default limit is 999 bound parameters in old versions).
-constexpr int kChannelsPerQuery = 500;
-
-QString placeholders(int n)
+QVector<SampleMipmap::Entry> SampleChannels::levelEntries(qint64 channelId, int level, double t0, double t1) const
 {
-    QString p;
-    p.reserve(2 * n);
-    for (int i = 0; i < n; ++i)
-        p += i ? QStringLiteral(",?") : QStringLiteral("?");
-    return p;
+    QSqlQuery q = SqlSupport::prepared(m_db, m_path,
+                           QStringLiteral("SELECT t_first, data FROM sample_levels WHERE channel_id = ? AND level = ? AND "
+                                          "t_last >= ? ORDER BY t_last, seq"));
+    q.setForwardOnly(true);
+    q.addBindValue(channelId);
+    q.addBindValue(level);
+    q.addBindValue(t0);
+    SqlSupport::run(q, m_path, QStringLiteral("cannot read mipmap level %1 of channel %2").arg(level).arg(channelId));
+    QVector<SampleMipmap::Entry> out;
+    while (q.next()) {
+        if (q.value(0).toDouble() > t1)
+            break;
+        for (const SampleMipmap::Entry &e : SampleMipmap::decodeEntries(q.value(1).toByteArray())) {
+            if (e.tLast >= t0 && e.tFirst <= t1)
+                out.push_back(e);
+        }
+    }
+    return out;
 }
 
-// Min/max of the entries in at most maxPoints equal-width time buckets over the covered span.
-DecimatedSeries bucketed(const QVector<SampleMipmap::Entry> &entries, int level, double t0, double t1, int maxPoints)
+DecimatedSeries SampleChannels::decimated(qint64 channelId, double t0, double t1, int maxPoints) const
 {
+    if (maxPoints < 1)
+        throw StorageError(QStringLiteral("%1: decimated(): maxPoints must be >= 1, got %2").arg(m_path).arg(maxPoints)
+                               .toStdString());
+    // Coarsest level with at least maxPoints entries in the range; raw samples if even level 1
+    // has fewer (then the range holds fewer than 16 * maxPoints samples).
+    QVector<SampleMipmap::Entry> entries;
+    int level = SampleMipmap::kLevels;
+    for (; level >= 1; --level) {
+        entries = levelEntries(channelId, level, t0, t1);
+        if (entries.size() >= maxPoints)
+            break;
+    }
+    if (level < 1) {
+        level = 0;
+        const SampleBlock raw = samples(channelId, t0, t1);
+        entries.clear();
+        entries.reserve(raw.t.size());
+        for (int i = 0; i < raw.t.size(); ++i)
+            entries.push_back({raw.t[i], raw.t[i], raw.v[i], raw.v[i]});
+    }
     DecimatedSeries out;
     out.level = level;
     if (entries.isEmpty())
@@ -254,95 +282,6 @@ DecimatedSeries bucketed(const QVector<SampleMipmap::Entry> &entries, int level,
     }
     return out;
 }
-} // namespace
-
-QVector<QVector<SampleMipmap::Entry>> SampleChannels::levelEntries(const QVector<ChannelRange> &ranges,
-                                                                  const QVector<int> &which, int level) const
-{
-    QVector<QVector<SampleMipmap::Entry>> out(ranges.size());
-    for (int from = 0; from < which.size(); from += kChannelsPerQuery) {
-        const int n = std::min(kChannelsPerQuery, static_cast<int>(which.size()) - from);
-        // Rows of each channel in (t_last, seq) order from the smallest t0 asked; each
-        // channel's own range is applied below (rows ending before its t0 skipped, rows
-        // starting after its t1 end that channel), as one query per channel would.
-        QHash<qint64, QVector<int>> asked; // channel id -> indexes into ranges
-        double t0 = std::numeric_limits<double>::infinity();
-        for (int i = from; i < from + n; ++i) {
-            asked[ranges[which[i]].channelId].push_back(which[i]);
-            t0 = std::min(t0, ranges[which[i]].t0);
-        }
-        QSqlQuery q = SqlSupport::prepared(m_db, m_path,
-                               QStringLiteral("SELECT channel_id, t_first, t_last, data FROM sample_levels WHERE level = ? AND "
-                                              "channel_id IN (%1) AND t_last >= ? ORDER BY channel_id, t_last, seq")
-                                   .arg(placeholders(static_cast<int>(asked.size()))));
-        q.setForwardOnly(true);
-        q.addBindValue(level);
-        for (auto it = asked.cbegin(); it != asked.cend(); ++it)
-            q.addBindValue(it.key());
-        q.addBindValue(t0);
-        SqlSupport::run(q, m_path, QStringLiteral("cannot read mipmap level %1 of %2 channels").arg(level).arg(asked.size()));
-        while (q.next()) {
-            const qint64 id = q.value(0).toLongLong();
-            const double rowFirst = q.value(1).toDouble();
-            const double rowLast = q.value(2).toDouble();
-            QVector<SampleMipmap::Entry> entries;
-            bool decoded = false;
-            for (int k : asked.value(id)) {
-                const ChannelRange &r = ranges[k];
-                if (rowLast < r.t0 || rowFirst > r.t1)
-                    continue; // rows are in t_last order: a row starting after t1 ends the range
-                if (!decoded) {
-                    entries = SampleMipmap::decodeEntries(q.value(3).toByteArray());
-                    decoded = true;
-                }
-                for (const SampleMipmap::Entry &e : entries) {
-                    if (e.tLast >= r.t0 && e.tFirst <= r.t1)
-                        out[k].push_back(e);
-                }
-            }
-        }
-    }
-    return out;
-}
-
-DecimatedSeries SampleChannels::decimated(qint64 channelId, double t0, double t1, int maxPoints) const
-{
-    return decimated(QVector<ChannelRange>{{channelId, t0, t1}}, maxPoints).front();
-}
-
-QVector<DecimatedSeries> SampleChannels::decimated(const QVector<ChannelRange> &ranges, int maxPoints) const
-{
-    if (maxPoints < 1)
-        throw StorageError(QStringLiteral("%1: decimated(): maxPoints must be >= 1, got %2").arg(m_path).arg(maxPoints)
-                               .toStdString());
-    // Per channel the coarsest level with at least maxPoints entries in its range; raw
-    // samples if even level 1 has fewer (then the range holds fewer than 16 * maxPoints
-    // samples). Levels are read coarse to fine, each for the channels still undecided.
-    QVector<DecimatedSeries> out(ranges.size());
-    QVector<int> pending(ranges.size());
-    for (int k = 0; k < ranges.size(); ++k)
-        pending[k] = k;
-    for (int level = SampleMipmap::kLevels; level >= 1 && !pending.isEmpty(); --level) {
-        const QVector<QVector<SampleMipmap::Entry>> entries = levelEntries(ranges, pending, level);
-        QVector<int> still;
-        for (int k : pending) {
-            if (entries[k].size() >= maxPoints)
-                out[k] = bucketed(entries[k], level, ranges[k].t0, ranges[k].t1, maxPoints);
-            else
-                still.push_back(k);
-        }
-        pending = still;
-    }
-    for (int k : pending) {
-        const SampleBlock raw = samples(ranges[k].channelId, ranges[k].t0, ranges[k].t1);
-        QVector<SampleMipmap::Entry> entries;
-        entries.reserve(raw.t.size());
-        for (int i = 0; i < raw.t.size(); ++i)
-            entries.push_back({raw.t[i], raw.t[i], raw.v[i], raw.v[i]});
-        out[k] = bucketed(entries, 0, ranges[k].t0, ranges[k].t1, maxPoints);
-    }
-    return out;
-}
 
 qint64 SampleChannels::count(qint64 channelId) const
 {
@@ -350,28 +289,6 @@ qint64 SampleChannels::count(qint64 channelId) const
     q.addBindValue(channelId);
     SqlSupport::run(q, m_path, QStringLiteral("cannot count samples"));
     return q.next() ? q.value(0).toLongLong() : 0;
-}
-
-QVector<qint64> SampleChannels::counts(const QVector<qint64> &channelIds) const
-{
-    QHash<qint64, qint64> n;
-    for (int from = 0; from < channelIds.size(); from += kChannelsPerQuery) {
-        const QVector<qint64> part = channelIds.mid(from, kChannelsPerQuery);
-        QSqlQuery q = SqlSupport::prepared(m_db, m_path,
-                               QStringLiteral("SELECT channel_id, coalesce(sum(n), 0) FROM sample_blocks WHERE channel_id IN (%1) "
-                                              "GROUP BY channel_id").arg(placeholders(static_cast<int>(part.size()))));
-        q.setForwardOnly(true);
-        for (qint64 id : part)
-            q.addBindValue(id);
-        SqlSupport::run(q, m_path, QStringLiteral("cannot count samples"));
-        while (q.next())
-            n.insert(q.value(0).toLongLong(), q.value(1).toLongLong());
-    }
-    QVector<qint64> out;
-    out.reserve(channelIds.size());
-    for (qint64 id : channelIds)
-        out.push_back(n.value(id, 0));
-    return out;
 }
 
 } // namespace driftlab

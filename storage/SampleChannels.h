@@ -34,11 +34,7 @@ public:
 
     SampleBlock samples(qint64 channelId, double t0, double t1) const;
     DecimatedSeries decimated(qint64 channelId, double t0, double t1, int maxPoints) const;
-    // The same for many channels, each over its own range: one query per mipmap level for all
-    // of them instead of one per level and channel. Results in the order of `ranges`.
-    QVector<DecimatedSeries> decimated(const QVector<ChannelRange> &ranges, int maxPoints) const;
     qint64 count(qint64 channelId) const;
-    QVector<qint64> counts(const QVector<qint64> &channelIds) const; // one query
     void forEachBlock(qint64 channelId, const std::function<void(const QVector<double> &, const QVector<double> &)> &visit) const;
 
 private:
@@ -53,9 +49,7 @@ private:
     void writeSamples(qint64 channelId, const double *t, const double *v, int n);
     void writeBlock(qint64 channelId, ChannelState &state, int n);
     void flushLevelRow(qint64 channelId, int level, SampleMipmap::Row &row);
-    // Entries of `level` inside each asked range (ranges[k] for k in `which`), one query.
-    QVector<QVector<SampleMipmap::Entry>> levelEntries(const QVector<ChannelRange> &ranges, const QVector<int> &which,
-                                                       int level) const;
+    QVector<SampleMipmap::Entry> levelEntries(qint64 channelId, int level, double t0, double t1) const;
 
     QSqlDatabase m_db;
     QString m_path;

@@ -422,19 +422,9 @@ DecimatedSeries SessionStore::decimated(qint64 channelId, double t0, double t1, 
     return m_samples->decimated(channelId, t0, t1, maxPoints);
 }
 
-QVector<DecimatedSeries> SessionStore::decimated(const QVector<ChannelRange> &ranges, int maxPoints) const
-{
-    return m_samples->decimated(ranges, maxPoints);
-}
-
 qint64 SessionStore::sampleCount(qint64 channelId) const
 {
     return m_samples->count(channelId);
-}
-
-QVector<qint64> SessionStore::sampleCounts(const QVector<qint64> &channelIds) const
-{
-    return m_samples->counts(channelIds);
 }
 
 QVector<IrFrame> SessionStore::irFrames(qint64 sessionId) const

@@ -85,11 +85,7 @@ public:
     // Min/max of the samples in [t0, t1] in at most maxPoints time buckets, read from the
     // coarsest mipmap level that still gives maxPoints buckets (never the whole channel).
     DecimatedSeries decimated(qint64 channelId, double t0, double t1, int maxPoints) const;
-    // The same for many channels at once, each over its own range, in the order asked: one
-    // query per mipmap level for all of them (opening a long session with many channels).
-    QVector<DecimatedSeries> decimated(const QVector<ChannelRange> &ranges, int maxPoints) const;
     qint64 sampleCount(qint64 channelId) const;
-    QVector<qint64> sampleCounts(const QVector<qint64> &channelIds) const; // one query, in the order asked
     // Every stored block of a channel in time order, one at a time (memory does not grow with
     // the channel). Inside begin()/commit() call flushSamples() first.
     void forEachSampleBlock(qint64 channelId, const std::function<void(const QVector<double> &t, const QVector<double> &v)> &visit) const;

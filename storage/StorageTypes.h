@@ -60,13 +60,6 @@ struct DecimatedSeries {
     int level = 0;
 };
 
-// One channel and the time range [t0, t1] asked of it (SessionStore::decimated for many).
-struct ChannelRange {
-    qint64 channelId = 0;
-    double t0 = -1e300;
-    double t1 = 1e300;
-};
-
 // One infrared frame: 16-bit pixels, row-major, width * height values.
 struct IrFrame {
     qint64 id = 0;

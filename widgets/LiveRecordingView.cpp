@@ -12,7 +12,6 @@
 #include <QJsonDocument>
 #include <QLabel>
 #include <QLocale>
-#include <QMap>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QScrollBar>
@@ -329,25 +328,6 @@ void LiveRecordingView::update(const SessionStore &reader, qint64 sessionId, dou
             return;
         rebuildTable(channels);
     }
-    // The first look: what is stored so far, decimated (a session opened late, or long), for
-    // every channel not yet seen in one store query per mipmap level, not one per channel.
-    QHash<QString, DecimatedSeries> seeds;
-    {
-        QMap<int, QVector<int>> unseeded; // buckets asked -> rows
-        for (int r = 0; r < m_channels.size(); ++r) {
-            const Tracked &ch = m_tracked[m_channels[r].key];
-            if (!ch.seeded)
-                unseeded[ch.envelope.capacity() / 2].push_back(r);
-        }
-        for (auto it = unseeded.cbegin(); it != unseeded.cend(); ++it) {
-            QVector<ChannelRange> ranges;
-            for (int r : it.value())
-                ranges.push_back({m_channels[r].id, 0.0, std::max(1.0, now_s)});
-            const QVector<DecimatedSeries> d = reader.decimated(ranges, it.key());
-            for (int i = 0; i < it.value().size(); ++i)
-                seeds.insert(m_channels[it.value()[i]].key, d[i]);
-        }
-    }
     QVector<LiveLimitMonitor::Alarm> alarms;
     bool changed = false;
     for (int r = 0; r < m_channels.size(); ++r) {
@@ -355,8 +335,9 @@ void LiveRecordingView::update(const SessionStore &reader, qint64 sessionId, dou
         Tracked &ch = m_tracked[c.key];
         double last = kNaN;
         if (!ch.seeded) {
+            // The first look: what is stored so far, decimated (a session opened late, or long).
             ch.seeded = true;
-            const DecimatedSeries d = seeds.value(c.key);
+            const DecimatedSeries d = reader.decimated(c.id, 0.0, std::max(1.0, now_s), ch.envelope.capacity() / 2);
             for (int i = 0; i < d.min.size(); ++i)
                 ch.envelope.appendRange(0.5 * (d.tFirst[i] + d.tLast[i]), d.min[i], d.max[i]);
             if (!d.tLast.isEmpty()) {

@@ -183,37 +183,18 @@ QVector<qint64> ReviewWorkspace::defaultChannels() const
     return shown;
 }
 
-QVector<QwtPlotCurve *> ReviewWorkspace::addChannelCurves(const QVector<CurveRequest> &requests)
+QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, bool right)
 {
-    // Opening a long session with many channels: the counts, the spans and then the envelopes
-    // of all channels each in one store query (per mipmap level), not one per channel.
-    QVector<qint64> ids;
-    for (const CurveRequest &r : requests)
-        ids.push_back(r.channelId);
-    const QVector<qint64> counts = m_store->sampleCounts(ids);
-    QVector<ChannelRange> whole;
-    for (int k = 0; k < requests.size(); ++k)
-        if (counts[k] > kRawCurveLimit)
-            whole.push_back({requests[k].channelId, -1e300, 1e300});
-    const QVector<DecimatedSeries> spans = m_store->decimated(whole, 1);
-    const SessionStore *store = m_store;
-    m_timeSeries->setChannelsFetcher([store](const QVector<ChannelRange> &ranges, int n) { return store->decimated(ranges, n); });
-    QVector<QwtPlotCurve *> curves;
-    int span = 0;
-    for (int k = 0; k < requests.size(); ++k) {
-        const CurveRequest &r = requests[k];
-        if (counts[k] > kRawCurveLimit) {
-            const DecimatedSeries &s = spans[span++];
-            const double tFirst = s.tFirst.isEmpty() ? 0.0 : s.tFirst.front();
-            const double tLast = s.tLast.isEmpty() ? 0.0 : s.tLast.back();
-            curves << m_timeSeries->addDecimatedChannel(r.title, r.channelId, tFirst, tLast, r.right);
-        } else {
-            const SampleBlock block = m_store->samples(r.channelId);
-            curves << m_timeSeries->addCurve(r.title, block.t, block.v, r.right);
-        }
+    if (m_store->sampleCount(id) > kRawCurveLimit) {
+        const SessionStore *store = m_store;
+        const DecimatedSeries whole = store->decimated(id, -1e300, 1e300, 1);
+        const double tFirst = whole.tFirst.isEmpty() ? 0.0 : whole.tFirst.front();
+        const double tLast = whole.tLast.isEmpty() ? 0.0 : whole.tLast.back();
+        return m_timeSeries->addDecimatedCurve(
+            title, [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); }, tFirst, tLast, right);
     }
-    m_timeSeries->fetchChannels();
-    return curves;
+    const SampleBlock block = m_store->samples(id);
+    return m_timeSeries->addCurve(title, block.t, block.v, right);
 }
 
 void ReviewWorkspace::setOverlay(const QVector<qint64> &sessionIds)
@@ -259,7 +240,6 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
             rightUnit = c.unit;
     }
     QStringList leftNames, rightNames, leftOut;
-    QVector<CurveRequest> requests;
     for (const ChannelInfo &c : chosen) {
         const bool right = c.unit == rightUnit && c.unit != leftUnit;
         if (c.unit != leftUnit && !right) {
@@ -277,20 +257,16 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
             if (id == 0)
                 continue;
             const QString name = m_overlay.isEmpty() ? c.key : QStringLiteral("#%1 %2").arg(session).arg(c.key);
-            requests.push_back({id, name, right, k});
+            QwtPlotCurve *curve = addChannelCurve(id, name, right);
+            if (k > 0) {
+                QPen pen = curve->pen();
+                pen.setStyle(k % 3 == 1 ? Qt::DashLine : k % 3 == 2 ? Qt::DotLine : Qt::DashDotLine);
+                curve->setPen(pen);
+            }
         }
         QStringList &names = right ? rightNames : leftNames;
         if (!names.contains(UnitLabels::quantity(c.kind)))
             names << UnitLabels::quantity(c.kind);
-    }
-    const QVector<QwtPlotCurve *> curves = addChannelCurves(requests);
-    for (int i = 0; i < requests.size(); ++i) {
-        const int k = requests[i].overlay;
-        if (k > 0) {
-            QPen pen = curves[i]->pen();
-            pen.setStyle(k % 3 == 1 ? Qt::DashLine : k % 3 == 2 ? Qt::DotLine : Qt::DashDotLine);
-            curves[i]->setPen(pen);
-        }
     }
     if (!leftOut.isEmpty())
         m_leftOut = tr("Not drawn: %1 (a third unit; a plot has two value axes)").arg(leftOut.join(QStringLiteral(", ")));

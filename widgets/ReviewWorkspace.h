@@ -66,14 +66,7 @@ public:
     QString heading() const;
 
 private:
-    struct CurveRequest {
-        qint64 channelId;
-        QString title;
-        bool right;
-        int overlay; // 0: the session, k: the k-th overlaid one
-    };
-    // The curves of many channels, in order, read in one store query each for all of them.
-    QVector<QwtPlotCurve *> addChannelCurves(const QVector<CurveRequest> &requests);
+    QwtPlotCurve *addChannelCurve(qint64 channelId, const QString &title, bool rightAxis);
     void updateTemperatureView();
     void ensure3D();
 

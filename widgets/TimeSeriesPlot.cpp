@@ -113,94 +113,34 @@ void TimeSeriesPlot::envelopePoints(const DecimatedSeries &d, QVector<double> &x
     }
 }
 
-int TimeSeriesPlot::decimationBuckets() const
-{
-    return std::max(200, canvas()->width());
-}
-
 QwtPlotCurve *TimeSeriesPlot::addDecimatedCurve(const QString &title, RangeFetcher fetch, double tFirst, double tLast,
                                                 bool rightAxis)
-{
-    QwtPlotCurve *c = addDecimatedChannel(title, 0, tFirst, tLast, rightAxis);
-    m_decimated.back().fetch = std::move(fetch);
-    m_decimated.back().fetched = true;
-    QVector<double> x, y;
-    envelopePoints(m_decimated.back().fetch(tFirst, tLast, decimationBuckets()), x, y);
-    c->setSamples(x, y);
-    return c;
-}
-
-QwtPlotCurve *TimeSeriesPlot::addDecimatedChannel(const QString &title, qint64 channelId, double tFirst, double tLast,
-                                                  bool rightAxis)
 {
     QwtPlotCurve *c = addCurve(title, {}, {}, rightAxis);
     c->setRenderHint(QwtPlotItem::RenderAntialiased, false);
     QPen pen = c->pen();
     pen.setWidth(0); // cosmetic 1-px pen: the fast raster path for thousands of segments
     c->setPen(pen);
-    m_decimated.push_back({c, {}, tFirst, tLast, channelId, false});
+    m_decimated.push_back({c, std::move(fetch), tFirst, tLast});
+    const DecimatedCurve &d = m_decimated.back();
+    QVector<double> x, y;
+    envelopePoints(d.fetch(tFirst, tLast, std::max(200, canvas()->width())), x, y);
+    c->setSamples(x, y);
     return c;
-}
-
-void TimeSeriesPlot::fetchChannels()
-{
-    QVector<int> which;
-    QVector<ChannelRange> ranges;
-    for (int i = 0; i < m_decimated.size(); ++i) {
-        DecimatedCurve &d = m_decimated[i];
-        if (d.fetched)
-            continue;
-        d.fetched = true;
-        which.push_back(i);
-        ranges.push_back({d.channelId, d.tFirst, d.tLast});
-    }
-    fetchInto(which, ranges);
-}
-
-void TimeSeriesPlot::fetchInto(const QVector<int> &which, const QVector<ChannelRange> &ranges)
-{
-    const int buckets = decimationBuckets();
-    QVector<DecimatedSeries> series(which.size());
-    QVector<int> batched;
-    QVector<ChannelRange> batchRanges;
-    for (int k = 0; k < which.size(); ++k) {
-        const DecimatedCurve &d = m_decimated[which[k]];
-        if (d.fetch) {
-            series[k] = d.fetch(ranges[k].t0, ranges[k].t1, buckets);
-        } else {
-            batched.push_back(k);
-            batchRanges.push_back(ranges[k]);
-        }
-    }
-    if (!batched.isEmpty() && m_fetchChannels) {
-        const QVector<DecimatedSeries> got = m_fetchChannels(batchRanges, buckets);
-        for (int i = 0; i < batched.size() && i < got.size(); ++i)
-            series[batched[i]] = got[i];
-    }
-    for (int k = 0; k < which.size(); ++k) {
-        QVector<double> x, y;
-        envelopePoints(series[k], x, y);
-        m_decimated[which[k]].curve->setSamples(x, y);
-    }
 }
 
 void TimeSeriesPlot::refreshDecimated()
 {
     const QwtScaleDiv &div = axisScaleDiv(QwtPlot::xBottom);
-    QVector<int> which;
-    QVector<ChannelRange> ranges;
-    for (int i = 0; i < m_decimated.size(); ++i) {
-        const DecimatedCurve &d = m_decimated[i];
+    const int buckets = std::max(200, canvas()->width());
+    for (const DecimatedCurve &d : m_decimated) {
         const double t0 = std::max(d.tFirst, div.lowerBound());
         const double t1 = std::min(d.tLast, div.upperBound());
-        if (t1 > t0) {
-            which.push_back(i);
-            ranges.push_back({d.channelId, t0, t1});
-        } else {
-            d.curve->setSamples(QVector<double>(), QVector<double>());
-        }
+        QVector<double> x, y;
+        if (t1 > t0)
+            envelopePoints(d.fetch(t0, t1, buckets), x, y);
+        d.curve->setSamples(x, y);
     }
-    fetchInto(which, ranges);
     replot();
 }
 

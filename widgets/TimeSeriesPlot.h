@@ -31,14 +31,6 @@ public:
     // (PulseView style): a 36-million-sample channel draws as fast as a 2,000-point one.
     using RangeFetcher = std::function<DecimatedSeries(double t0, double t1, int buckets)>;
     QwtPlotCurve *addDecimatedCurve(const QString &title, RangeFetcher fetch, double tFirst, double tLast, bool rightAxis);
-    // The same for stored channels read through one fetcher for all of them (one store query
-    // per mipmap level, not per channel: SessionStore::decimated(ranges, buckets)). Adding is
-    // free; fetchChannels() then reads every curve added since over its whole range at once.
-    using ChannelsFetcher = std::function<QVector<DecimatedSeries>(const QVector<ChannelRange> &ranges, int buckets)>;
-    void setChannelsFetcher(ChannelsFetcher fetch) { m_fetchChannels = std::move(fetch); }
-    QwtPlotCurve *addDecimatedChannel(const QString &title, qint64 channelId, double tFirst, double tLast, bool rightAxis);
-    void fetchChannels();
-    int decimationBuckets() const; // buckets asked per decimated curve: one per pixel column
     // Polyline through (t, min), (t, max) per bucket: its envelope holds every sample.
     static void envelopePoints(const DecimatedSeries &d, QVector<double> &x, QVector<double> &y);
     QVector<QwtPlotCurve *> curves() const { return m_curves; }
@@ -56,16 +48,11 @@ private:
     void refreshDecimated();
     struct DecimatedCurve {
         QwtPlotCurve *curve;
-        RangeFetcher fetch; // empty: a stored channel read through m_fetchChannels
+        RangeFetcher fetch;
         double tFirst, tLast;
-        qint64 channelId;
-        bool fetched;
     };
-    // Envelopes of the decimated curves `which` over ranges[k] (one batch for the channels).
-    void fetchInto(const QVector<int> &which, const QVector<ChannelRange> &ranges);
     QVector<QwtPlotCurve *> m_curves;
     QVector<DecimatedCurve> m_decimated;
-    ChannelsFetcher m_fetchChannels;
     QVector<QwtPlotMarker *> m_events;
     QTimer *m_refresh;
     QwtPlotZoomer *m_zoomer = nullptr;

@@ -193,27 +193,6 @@ void TestCentralStore::sameBehaviourAsSqlite()
     QCOMPARE(oa.min, ob.min);
     QCOMPARE(oa.max, ob.max);
     QCOMPARE(oa.tFirst, ob.tFirst);
-    // All channels at once (one query per level): the same on both backends and as one by one.
-    QVector<ChannelRange> ra, rb;
-    QVector<qint64> ia, ib;
-    for (const ChannelInfo &c : local.channels(a)) {
-        ra.push_back({c.id, 0.0, 25000.0});
-        ia << c.id;
-    }
-    for (const ChannelInfo &c : central.channels(b)) {
-        rb.push_back({c.id, 0.0, 25000.0});
-        ib << c.id;
-    }
-    const QVector<DecimatedSeries> ma = local.decimated(ra, 500), mb = central.decimated(rb, 500);
-    QCOMPARE(mb.size(), ra.size());
-    for (int i = 0; i < ma.size(); ++i) {
-        QCOMPARE(ma[i].min, mb[i].min);
-        QCOMPARE(ma[i].max, mb[i].max);
-        QCOMPARE(ma[i].tLast, mb[i].tLast);
-    }
-    QCOMPARE(mb[1].min, ob.min);
-    QCOMPARE(mb[1].tFirst, ob.tFirst);
-    QCOMPARE(central.sampleCounts(ib), local.sampleCounts(ia));
     QCOMPARE(central.interferometerPoints(b).at(1).error_um, 12.345678901234567); // doubles exact through the server
     QCOMPARE(central.irFrame(central.irFrames(b).at(0).id).pixels, local.irFrame(local.irFrames(a).at(0).id).pixels);
     QCOMPARE(central.channels(b).at(2).screwPosition_m.value_or(-1.0), 0.25);

@@ -161,68 +161,6 @@ private slots:
         }
     }
 
-    void decimatedForManyChannelsEqualsOneByOne()
-    {
-        // Opening a long session reads all channels' envelopes in one query per mipmap
-        // level: channels of different lengths and rates, each over its own range (one twice,
-        // one empty, one short enough for raw samples), must come back exactly as asked one
-        // at a time, and each bucket must hold the min/max of the raw samples it spans.
-        SessionStore s(db(QStringLiteral("many.sqlite")));
-        qint64 first = 0;
-        const qint64 session = makeSession(s, &first);
-        QVector<qint64> ids{first};
-        for (int k = 1; k < 5; ++k) {
-            ChannelInfo c;
-            c.key = QStringLiteral("T%1").arg(k);
-            c.kind = QStringLiteral("temperature");
-            c.unit = QStringLiteral("°C");
-            ids << s.addChannel(session, c);
-        }
-        const int lengths[5] = {300000, 70000, 2000, 0, 150000};
-        QVector<QVector<double>> T(5), V(5);
-        std::mt19937 rng(11);
-        std::normal_distribution<double> n(0.0, 1.0);
-        s.begin();
-        for (int k = 0; k < 5; ++k) {
-            for (int i = 0; i < lengths[k]; ++i) {
-                T[k].push_back(i * (k + 1) * 0.01);
-                V[k].push_back(k + std::sin(i * 1e-3 * (k + 1)) + 0.1 * n(rng));
-            }
-            s.appendSamples(ids[k], T[k], V[k]);
-        }
-        s.commit();
-        const QVector<ChannelRange> ranges{{ids[0], 0.0, 3000.0}, {ids[1], 100.0, 900.0}, {ids[2], -1.0, 1e9},
-                                           {ids[3], -1.0, 1e9},   {ids[4], 10.0, 7000.0}, {ids[0], 500.0, 600.0}};
-        for (int maxPoints : {1, 300, 1366}) {
-            const QVector<DecimatedSeries> many = s.decimated(ranges, maxPoints);
-            QCOMPARE(many.size(), ranges.size());
-            for (int r = 0; r < ranges.size(); ++r) {
-                const DecimatedSeries one = s.decimated(ranges[r].channelId, ranges[r].t0, ranges[r].t1, maxPoints);
-                QCOMPARE(many[r].level, one.level);
-                QCOMPARE(many[r].tFirst, one.tFirst);
-                QCOMPARE(many[r].tLast, one.tLast);
-                QCOMPARE(many[r].min, one.min);
-                QCOMPARE(many[r].max, one.max);
-                const int k = static_cast<int>(ids.indexOf(ranges[r].channelId));
-                QCOMPARE(many[r].tFirst.isEmpty(), lengths[k] == 0);
-                QVERIFY(many[r].tFirst.size() <= maxPoints);
-                for (int b = 0; b < many[r].tFirst.size(); ++b) {
-                    const auto lo = std::lower_bound(T[k].cbegin(), T[k].cend(), many[r].tFirst[b]) - T[k].cbegin();
-                    const auto hi = std::upper_bound(T[k].cbegin(), T[k].cend(), many[r].tLast[b]) - T[k].cbegin();
-                    QVERIFY(hi > lo);
-                    QCOMPARE(many[r].min[b], *std::min_element(V[k].cbegin() + lo, V[k].cbegin() + hi));
-                    QCOMPARE(many[r].max[b], *std::max_element(V[k].cbegin() + lo, V[k].cbegin() + hi));
-                }
-            }
-            if (maxPoints == 1366) {
-                QVERIFY(many[0].level >= 1);
-                QCOMPARE(many[2].level, 0); // 2,000 samples: raw
-            }
-        }
-        QCOMPARE(s.sampleCounts(ids + QVector<qint64>{ids[1], 999999}),
-                 (QVector<qint64>{300000, 70000, 2000, 0, 150000, 70000, 0}));
-    }
-
     void mipmapSurvivesReopening()
     {
         // Appending after reopening continues the open mipmap rows.

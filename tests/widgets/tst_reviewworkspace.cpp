@@ -247,9 +247,9 @@ void TestReviewWorkspace::infraredProfileMatchesRigTruth()
 void TestReviewWorkspace::longChannelsDrawTheirStoredEnvelopes()
 {
     // A session with known data: five channels long enough to be drawn from the mipmap (all
-    // read in one batch when the session opens), one short one drawn raw. Every curve must
+    // fetched when the session opens), one short one drawn raw. Every curve must
     // show, pixel column by pixel column, the same min/max as its own channel's envelope
-    // read alone (the drawing before the batch read), and the short one its samples.
+    // read alone, and the short one its samples.
     SessionStore store(m_dir.filePath(QStringLiteral("long.sqlite")));
     SessionInfo info;
     info.name = QStringLiteral("long channels");
@@ -316,7 +316,7 @@ void TestReviewWorkspace::longChannelsDrawTheirStoredEnvelopes()
             QCOMPARE(x.size(), k.n);
         } else {
             const double t0 = std::max(0.0, div.lowerBound()), t1 = std::min((k.n - 1) * k.dt, div.upperBound());
-            TimeSeriesPlot::envelopePoints(store.decimated(k.id, t0, t1, plot->decimationBuckets()), ex, ey);
+            TimeSeriesPlot::envelopePoints(store.decimated(k.id, t0, t1, std::max(200, plot->canvas()->width())), ex, ey);
             QVERIFY2(x.size() < k.n / 4, qPrintable(k.key)); // decimated, not every sample
             QVERIFY2(x.size() > 400, qPrintable(k.key));
         }
