@@ -36,7 +36,10 @@ std::vector<DataDrivenModel> ReducedModelFitter::fit(const std::vector<LinearLag
     if (options.kind != "mlr" && options.kind != "ridge" && options.kind != "lagridge" && options.kind != "dynamic")
         throw std::invalid_argument("reduced models: no reduced models for kind " + options.kind);
     std::vector<std::string> dropped = options.inputs;
-    if (options.kind == "dynamic" && !options.drive.empty())
+    // The drive is an input of the fitted model only when the chosen structure reads it (a
+    // dynamic model may choose temperature lags alone); a reduced model "without" a channel
+    // the model does not read would be refused by the reader.
+    if (options.kind == "dynamic" && !options.drive.empty() && !chosen.driveLags_s.empty())
         dropped.push_back(options.drive);
     std::vector<DataDrivenModel> out;
     for (const std::string &input : dropped) {
