@@ -131,6 +131,19 @@ void PlotInteraction::resetZoom()
 
 bool PlotInteraction::eventFilter(QObject *watched, QEvent *event)
 {
+    // Only input events reach the code below. A plot being destroyed sends others (hide, child
+    // removed) through this filter while its QwtPlot part is already gone, so m_plot must not be
+    // called for them (UBSan: member call on a QWidget).
+    switch (event->type()) {
+    case QEvent::MouseButtonPress:
+    case QEvent::MouseMove:
+    case QEvent::MouseButtonRelease:
+    case QEvent::Wheel:
+    case QEvent::ContextMenu:
+        break;
+    default:
+        return QObject::eventFilter(watched, event);
+    }
     if (watched == m_plot->canvas()) {
         // Before the zoomer, the panner and the magnifier see it (filters run newest first).
         if (event->type() == QEvent::MouseButtonPress) {
