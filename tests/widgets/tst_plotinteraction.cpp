@@ -24,9 +24,14 @@ Limits limits(const QwtPlot &p, int axis)
 {
     return {p.axisScaleDiv(axis).lowerBound(), p.axisScaleDiv(axis).upperBound()};
 }
+QByteArray text(const Limits &l)
+{
+    return QStringLiteral("[%1, %2]").arg(l.lo, 0, 'g', 17).arg(l.hi, 0, 'g', 17).toUtf8();
+}
+// For QCOMPARE, which deletes what it is given; QVERIFY2 messages use text() (no leak).
 char *toString(const Limits &l)
 {
-    return qstrdup(qPrintable(QStringLiteral("[%1, %2]").arg(l.lo, 0, 'g', 17).arg(l.hi, 0, 'g', 17)));
+    return qstrdup(text(l).constData());
 }
 
 void wheel(QWidget *w, QPoint at, int delta)
@@ -125,7 +130,7 @@ void TestPlotInteraction::dragOnAxisPansOnlyThatAxis()
     const Limits y1 = limits(*m_plot, QwtPlot::yLeft);
     // Dragged down by 60 px: the scale moves up by 60 px worth of values, same span.
     const double perPixel = (y0.hi - y0.lo) / m_plot->canvas()->height();
-    QVERIFY2(std::abs((y1.lo - y0.lo) - 60 * perPixel) < 3 * perPixel, toString(y1));
+    QVERIFY2(std::abs((y1.lo - y0.lo) - 60 * perPixel) < 3 * perPixel, text(y1).constData());
     QVERIFY(std::abs((y1.hi - y1.lo) - (y0.hi - y0.lo)) < 1e-9 * (y0.hi - y0.lo));
     QCOMPARE(limits(*m_plot, QwtPlot::xBottom), x0);
     QVERIFY(m_i->undoZoom());
@@ -144,7 +149,7 @@ void TestPlotInteraction::rubberBandAndResetAndMenu()
     }
     QTest::mouseRelease(canvas, Qt::LeftButton, Qt::NoModifier, b);
     const Limits x1 = limits(*m_plot, QwtPlot::xBottom);
-    QVERIFY2(x1.hi - x1.lo < 0.5 * (x0.hi - x0.lo), toString(x1));
+    QVERIFY2(x1.hi - x1.lo < 0.5 * (x0.hi - x0.lo), text(x1).constData());
     QCOMPARE(m_i->zoomDepth(), 1);
     // Then an axis wheel: two steps; Reset goes back to the very first view.
     QwtScaleWidget *xAxis = m_plot->axisWidget(QwtPlot::xBottom);
