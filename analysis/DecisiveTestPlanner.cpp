@@ -29,6 +29,17 @@ double startOf(const ScrewDrive &d)
     return t;
 }
 
+// The recorded programme again with none of its observables: a proposal adds its own.
+DiagnosisRecording withoutObservables(const DiagnosisRecording &train)
+{
+    DiagnosisRecording r = train;
+    r.screw.interferometer.clear();
+    r.screw.elongation_um = {};
+    r.screw.screwTemperatures.clear();
+    r.screwTemperatures.clear();
+    return r;
+}
+
 double ambientAt(const ScrewDrive &d, double t) { return d.ambient_C.empty() ? 20.0 : d.ambient_C.at(t); }
 
 struct Segment {
@@ -293,11 +304,7 @@ std::vector<DecisiveTestPlanner::Proposal> DecisiveTestPlanner::propose(const Di
         p.observable = "interferometer";
         const double start = startOf(d);
         p.duration_h = (end - start) / 3600.0;
-        p.recording = train;
-        p.recording.screw.interferometer.clear();
-        p.recording.screw.elongation_um = {};
-        p.recording.screw.screwTemperatures.clear();
-        p.recording.screwTemperatures.clear();
+        p.recording = withoutObservables(train);
         double ref = std::isfinite(train.screw.referenceTime_s) ? train.screw.referenceTime_s : start;
         if (!train.screw.interferometer.empty() && std::isfinite(train.screw.interferometer.front().referenceTime_s))
             ref = train.screw.interferometer.front().referenceTime_s;
@@ -314,11 +321,7 @@ std::vector<DecisiveTestPlanner::Proposal> DecisiveTestPlanner::propose(const Di
         p.observable = "screw temperature";
         const double start = startOf(d);
         p.duration_h = (end - start) / 3600.0;
-        p.recording = train;
-        p.recording.screw.interferometer.clear();
-        p.recording.screw.elongation_um = {};
-        p.recording.screw.screwTemperatures.clear();
-        p.recording.screwTemperatures.clear();
+        p.recording = withoutObservables(train);
         int k = 0;
         for (double t = start + m_settings.temperatureInterval_s; t <= end; t += m_settings.temperatureInterval_s) {
             p.recording.screw.screwTemperatures.push_back({t, xi * m_length_m, 20.0});
