@@ -93,8 +93,9 @@ ExportResult CCodeExporter::exportModel(const ExportableModel &model, const Expo
         const DataDrivenModel &m = model.dataDriven;
         DataDrivenPredictor check(m); // validates
         std::size_t states = 0;
-        for (const ModelTerm &t : m.terms)
-            states += t.lags_s.size();
+        for (const Evaluated &e : evaluatedModels(m))
+            for (const ModelTerm &t : e.model->terms)
+                states += t.lags_s.size();
         h << "#define " << upper(p) << "_INPUTS " << m.inputs.size() << " /* temperatures[i], MODEL.json inputs:";
         for (const ModelChannel &c : m.inputs)
             h << ' ' << c.id;
@@ -102,7 +103,19 @@ ExportResult CCodeExporter::exportModel(const ExportableModel &model, const Expo
         h << " */\n\ntypedef struct {\n    double x[" << std::max<std::size_t>(states, 1) << "];\n    double held["
           << nin << "];\n    double ref[" << nin << "], ref_sum[" << nin
           << "]; /* temperature reference captured at start-up */\n    double ref_count, elapsed;\n"
-          << "    double y, last_time;\n    int started;\n} " << p << "_state;\n\n";
+          << "    double seen[" << nin << "]; /* time of each input's last finite value */\n"
+          << "    double stale_s; /* an input silent for longer is failed; init sets " << num(std::max(30.0, 5.0 * m.samplePeriod_s))
+          << " s, the live loop's default */\n"
+          << "    double y, safe, last_time;\n    int active, started;\n} " << p << "_state;\n\n";
+        h << "/* The model in use after the last step: -1 the full model, i >= 0 the reduced model without\n"
+          << " * input i (one input failed: silent longer than stale_s or outside its training range by more\n"
+          << " * than the margin), -2 holding the last output of a model whose inputs were sound. Reduced models:";
+        const std::vector<Evaluated> models = evaluatedModels(m);
+        for (std::size_t k = 1; k < models.size(); ++k)
+            h << " without " << models[k].model->without << " (input " << models[k].without << ")" << (k + 1 < models.size() ? "," : "");
+        if (models.size() == 1)
+            h << " none";
+        h << ". */\nint " << p << "_active(const " << p << "_state *s);\n";
         source = dataDrivenSource(model, p);
     }
     h << "void " << p << "_init(" << p << "_state *s);\n"
@@ -285,25 +298,77 @@ double PREFIX_error_at(const PREFIX_state *s, double position_mm)
     return out;
 }
 
+std::vector<CCodeExporter::Evaluated> CCodeExporter::evaluatedModels(const DataDrivenModel &m)
+{
+    std::vector<Evaluated> models{{&m, -1}};
+    if (!m.linearLag())
+        return models;
+    for (const DataDrivenModel &r : m.reduced) {
+        const int without = m.inputIndex(r.without);
+        bool mapped = without >= 0 && r.linearLag();
+        for (const ModelChannel &c : r.inputs)
+            mapped = mapped && m.inputIndex(c.id) >= 0;
+        if (!mapped)
+            continue; // reads a channel the full model does not (SessionOffsetSource skips it too)
+        DataDrivenPredictor check(r); // validates
+        if (r.usesRises() && m.usesRises() && !(r.reference == m.reference))
+            throw ExportRefused("c: the reduced model without " + r.without + " reads temperature rises from another reference (" +
+                                r.reference.label() + ") than the model (" + m.reference.label() + ")");
+        if (r.usesRises() && !m.usesRises())
+            throw ExportRefused("c: the reduced model without " + r.without +
+                                " reads temperature rises, the model absolute temperatures");
+        models.push_back({&r, without});
+    }
+    return models;
+}
+
 std::string CCodeExporter::dataDrivenSource(const ExportableModel &model, const std::string &p)
 {
     const DataDrivenModel &m = model.dataDriven;
-    std::vector<int> stateInput, statePower, stateRise;
-    std::vector<double> stateOffset, stateScale, stateLag, stateCoef;
-    for (const ModelTerm &t : m.terms)
-        for (std::size_t l = 0; l < t.lags_s.size(); ++l) {
-            stateInput.push_back(t.input);
-            statePower.push_back(t.power);
-            stateRise.push_back(t.rise ? 1 : 0);
-            stateOffset.push_back(t.offset);
-            stateScale.push_back(t.scale);
-            stateLag.push_back(t.lags_s[l]);
-            stateCoef.push_back(t.coefficients[l]);
-        }
+    const std::vector<Evaluated> models = evaluatedModels(m);
+    // The states of every model in a row: the full model's first, then each reduced model's,
+    // with the reduced models' inputs mapped onto the full model's.
+    std::vector<int> stateInput, statePower, stateRise, stateModel, reducedWithout, inputRise, inputRange;
+    std::vector<double> stateOffset, stateScale, stateLag, stateCoef, intercepts, inputMin, inputMax, inputMargin;
+    for (std::size_t k = 0; k < models.size(); ++k) {
+        const DataDrivenModel &r = *models[k].model;
+        intercepts.push_back(r.intercept);
+        if (k > 0)
+            reducedWithout.push_back(models[k].without);
+        for (const ModelTerm &t : r.terms)
+            for (std::size_t l = 0; l < t.lags_s.size(); ++l) {
+                stateInput.push_back(k == 0 ? t.input : m.inputIndex(r.inputs[static_cast<std::size_t>(t.input)].id));
+                statePower.push_back(t.power);
+                stateRise.push_back(t.rise ? 1 : 0);
+                stateModel.push_back(static_cast<int>(k));
+                stateOffset.push_back(t.offset);
+                stateScale.push_back(t.scale);
+                stateLag.push_back(t.lags_s[l]);
+                stateCoef.push_back(t.coefficients[l]);
+            }
+    }
+    bool rises = false;
+    for (const Evaluated &e : models)
+        rises = rises || e.model->usesRises();
+    for (std::size_t i = 0; i < m.inputs.size(); ++i) {
+        const ModelChannel &c = m.inputs[i];
+        const bool known = std::isfinite(c.trainingMin) && std::isfinite(c.trainingMax);
+        inputRise.push_back(m.inputIsRise(static_cast<int>(i)) ? 1 : 0);
+        inputRange.push_back(known ? 1 : 0);
+        inputMin.push_back(known ? c.trainingMin : 0.0);
+        inputMax.push_back(known ? c.trainingMax : 0.0);
+        inputMargin.push_back(known ? DataDrivenModel::extrapolationMargin(c.trainingMin, c.trainingMax) : 0.0);
+    }
     const int kind = m.linearLag() ? 0 : (m.kind == "exp" ? 1 : 2);
     if (stateInput.empty()) { // C forbids empty arrays
-        stateInput = statePower = stateRise = {0};
+        stateInput = statePower = stateRise = stateModel = {0};
         stateOffset = stateScale = stateLag = stateCoef = {0.0};
+    }
+    if (reducedWithout.empty())
+        reducedWithout = {-1};
+    if (inputRise.empty()) {
+        inputRise = inputRange = {0};
+        inputMin = inputMax = inputMargin = {0.0};
     }
     const ExponentialLaw &e = m.exponential;
     const SyntheticLaw &s = m.synthetic;
@@ -317,16 +382,25 @@ std::string CCodeExporter::dataDrivenSource(const ExportableModel &model, const 
       << "#define KIND " << kind << " /* 0 linear-lag, 1 exp, 2 synthetic */\n"
       << "#define NIN " << m.inputs.size() << "\n#define NSTATE " << (m.linearLag() ? stateLag.size() : 0) << "\n"
       << "#define NTEMP " << s.temperatures.size() << "\n"
+      << "#define NREDUCED " << models.size() - 1 << " /* reduced models, each without one input */\n"
       << "static const int STATE_INPUT[] = " << intArray(stateInput) << ";\n"
       << "static const int STATE_POWER[] = " << intArray(statePower) << ";\n"
       << "static const int STATE_RISE[] = " << intArray(stateRise) << "; /* 1: input minus its reference */\n"
-      << "#define REF_START " << (m.usesRises() && m.reference.kind == "start" ? 1 : 0) << "\n"
+      << "static const int STATE_MODEL[] = " << intArray(stateModel) << "; /* 0 the model, r the reduced model r */\n"
+      << "static const int REDUCED_WITHOUT[] = " << intArray(reducedWithout) << "; /* the input each does without */\n"
+      << "#define REF_START " << (rises && m.reference.kind == "start" ? 1 : 0) << "\n"
       << "static const double REF_WINDOW = " << num(m.reference.window_s) << ";\n"
       << "static const double STATE_OFFSET[] = " << array(stateOffset) << ";\n"
       << "static const double STATE_SCALE[] = " << array(stateScale) << ";\n"
       << "static const double STATE_LAG[] = " << array(stateLag) << ";\n"
       << "static const double STATE_COEF[] = " << array(stateCoef) << ";\n"
-      << "static const double INTERCEPT = " << num(m.intercept) << ";\n"
+      << "static const double INTERCEPT[] = " << array(intercepts) << ";\n"
+      << "/* Inputs: training range as the model reads it (a rise where it takes rises) and its margin. */\n"
+      << "static const int INPUT_RISE[] = " << intArray(inputRise) << ", INPUT_RANGE[] = " << intArray(inputRange) << ";\n"
+      << "static const double INPUT_MIN[] = " << array(inputMin) << ";\n"
+      << "static const double INPUT_MAX[] = " << array(inputMax) << ";\n"
+      << "static const double INPUT_MARGIN[] = " << array(inputMargin) << ";\n"
+      << "static const double STALE_S = " << num(std::max(30.0, 5.0 * m.samplePeriod_s)) << ";\n"
       << "static const int EXP_DRIVE = " << e.drive << ";\n"
       << "static const double EXP_ON = " << num(e.onThreshold) << ", EXP_REF = " << num(e.referenceDrive)
       << ", EXP_SS = " << num(e.steadyState) << ", EXP_P = " << num(e.exponent) << ";\n"
@@ -359,28 +433,79 @@ static double synthetic_g(const PREFIX_state *s)
     return SYN_C + SYN_A * (exp(SYN_B * (sum / (double)NTEMP - SYN_T0)) - 1.0);
 }
 
+/* Input i is failed at time t when its last finite value is older than the stale limit or, as
+ * the model reads it, outside its training range by more than the margin (SessionOffsetSource). */
+static int failed(const PREFIX_state *s, int i, double t)
+{
+    double v;
+    if (t - s->seen[i] > s->stale_s)
+        return 1;
+    if (!INPUT_RANGE[i])
+        return 0;
+    v = s->held[i] - (INPUT_RISE[i] ? s->ref[i] : 0.0);
+    return v < INPUT_MIN[i] - INPUT_MARGIN[i] || v > INPUT_MAX[i] + INPUT_MARGIN[i];
+}
+
+/* One input failed: the reduced model without it, if any; two or more, or none: hold the last
+ * output of a model whose inputs were sound. */
+static double choose(PREFIX_state *s, const double *y, double t)
+{
+    int i, count = 0, which = -1, next = -1;
+    for (i = 0; i < NIN; ++i)
+        if (failed(s, i, t)) {
+            if (count++ == 0)
+                which = i;
+        }
+    if (count == 1) {
+        next = -2;
+        for (i = 0; i < NREDUCED; ++i)
+            if (REDUCED_WITHOUT[i] == which)
+                next = i;
+    } else if (count > 1) {
+        next = -2;
+    }
+    s->active = next < 0 ? next : REDUCED_WITHOUT[next];
+    if (next == -2)
+        return s->safe;
+    s->safe = y[next + 1];
+    return s->safe;
+}
+
 void PREFIX_init(PREFIX_state *s)
 {
     int i;
     for (i = 0; i < (int)(sizeof s->x / sizeof s->x[0]); ++i)
         s->x[i] = 0.0;
-    for (i = 0; i < (int)(sizeof s->held / sizeof s->held[0]); ++i)
+    for (i = 0; i < (int)(sizeof s->held / sizeof s->held[0]); ++i) {
         s->held[i] = s->ref[i] = s->ref_sum[i] = 0.0;
+        s->seen[i] = -1e300;
+    }
     s->ref_count = s->elapsed = 0.0;
-    s->y = 0.0;
+    s->y = s->safe = 0.0;
     s->last_time = 0.0;
+    s->stale_s = STALE_S;
+    s->active = -1;
     s->started = 0;
+}
+
+int PREFIX_active(const PREFIX_state *s)
+{
+    return s->active;
 }
 
 int PREFIX_step(PREFIX_state *s, double time_s, double position_mm, double feed_mm_min, const double *temperatures)
 {
-    double dt, y;
+    double dt, y[NREDUCED + 1];
     int i;
     (void)position_mm;
     (void)feed_mm_min;
+    if (s->started && time_s < s->last_time)
+        return -1;
     for (i = 0; i < NIN; ++i)
-        if (isfinite(temperatures[i]))
+        if (isfinite(temperatures[i])) {
             s->held[i] = temperatures[i];
+            s->seen[i] = time_s;
+        }
     if (!s->started) {
         for (i = 0; i < NIN; ++i)
             s->ref[i] = s->ref_sum[i] = REF_START ? s->held[i] : 0.0;
@@ -391,8 +516,6 @@ int PREFIX_step(PREFIX_state *s, double time_s, double position_mm, double feed_
         s->last_time = time_s;
         s->started = 1;
     }
-    if (time_s < s->last_time)
-        return -1;
     dt = time_s - s->last_time;
     s->last_time = time_s;
     if (KIND == 0) {
@@ -404,27 +527,28 @@ int PREFIX_step(PREFIX_state *s, double time_s, double position_mm, double feed_
                 s->ref[i] = s->ref_sum[i] / s->ref_count;
             }
         }
-        y = INTERCEPT;
+        for (i = 0; i <= NREDUCED; ++i)
+            y[i] = INTERCEPT[i];
         for (i = 0; i < NSTATE; ++i) {
             s->x[i] = lag_step(s->x[i], feature(s, i), dt, STATE_LAG[i]);
-            y += STATE_COEF[i] * s->x[i];
+            y[STATE_MODEL[i]] += STATE_COEF[i] * s->x[i];
         }
     } else if (KIND == 1) {
         const double v = fabs(s->held[EXP_DRIVE]);
         const int on = v > EXP_ON;
         const double goal = on ? EXP_SS * pow(v / EXP_REF, EXP_P) : 0.0;
         s->x[0] = lag_step(s->x[0], goal, dt, on ? EXP_TAU_WARM : EXP_TAU_COOL);
-        y = EXP_BASELINE + s->x[0];
+        y[0] = EXP_BASELINE + s->x[0];
     } else {
-        y = synthetic_g(s) * (SYN_PREF - SYN_P0) / (SYN_PREF - SYN_P0);
+        y[0] = synthetic_g(s) * (SYN_PREF - SYN_P0) / (SYN_PREF - SYN_P0);
     }
-    s->y = y;
+    s->y = choose(s, y, time_s);
     return 0;
 }
 
 double PREFIX_error_at(const PREFIX_state *s, double position_mm)
 {
-    if (KIND == 2)
+    if (KIND == 2 && s->active == -1)
         return synthetic_g(s) * (position_mm - SYN_P0) / (SYN_PREF - SYN_P0);
     (void)position_mm;
     return s->y;

@@ -7,11 +7,15 @@
 // the session. An input that leaves its training range with no reduced model without it makes
 // the source hold the last sound offset until it is back.
 
+#include "CCodeExporter.h"
 #include "DataDrivenModelJson.h"
 #include "DataDrivenPredictor.h"
 #include "SessionOffsetSource.h"
 #include "SessionStore.h"
 
+#include <QFile>
+#include <QProcess>
+#include <QStandardPaths>
 #include <QTemporaryDir>
 #include <QtTest>
 
@@ -144,6 +148,87 @@ std::vector<double> offline(const DataDrivenModel &m, bool t3Gap, bool hotT2)
 
 double at(const std::vector<double> &series, double t) { return series[static_cast<std::size_t>(std::lround(t / kStep_s))]; }
 
+// export-model --target c of the model, compiled with the system C compiler and driven at every
+// sample time of the session follow() writes (an input without a sample then is NaN: "no new
+// value"), with the live loop's stale limit. Per step: time, compensation -E, live_active().
+struct CRow {
+    double t, offset;
+    int active;
+};
+std::vector<CRow> exported(const DataDrivenModel &m, bool t3Gap, bool hotT2, QString &log)
+{
+    ExportableModel e;
+    e.dataDriven = m;
+    e.source = "live.json";
+    ExportOptions o;
+    o.baseName = "live";
+    QTemporaryDir dir;
+    QByteArray input;
+    for (double x = 0.0; x < kEnd_s - 1e-9; x += kStep_s)
+        input += QByteArray::number(x, 'g', 17) + ' ' + QByteArray::number(T1(x), 'g', 17) + ' ' +
+                 QByteArray::number(T2(x, hotT2), 'g', 17) + ' ' +
+                 (t3Gap && x > kGapFrom_s && x < kGapTo_s ? QByteArray("nan") : QByteArray::number(T3(x), 'g', 17)) + '\n';
+    const QByteArray driver = "#include <stdio.h>\n#include \"live.h\"\nint main(void)\n{\n    live_state s;\n    double t, u[3];\n"
+                              "    live_init(&s);\n    s.stale_s = " + QByteArray::number(kStale_s, 'g', 17) + ";\n"
+                              "    while (scanf(\"%lf %lf %lf %lf\", &t, &u[0], &u[1], &u[2]) == 4) {\n"
+                              "        if (live_step(&s, t, 0.0, 0.0, u) != 0)\n            return 5;\n"
+                              "        printf(\"%.17g %.17g %d\\n\", t, -live_error_at(&s, 0.0), live_active(&s));\n    }\n"
+                              "    return 0;\n}\n";
+    std::vector<std::pair<std::string, QByteArray>> files{{"driver.c", driver}};
+    for (const ExportFile &f : CCodeExporter().exportModel(e, o).files)
+        files.push_back({f.name, QByteArray::fromStdString(f.content)});
+    for (const auto &f : files) {
+        QFile out(dir.filePath(QString::fromStdString(f.first)));
+        if (!out.open(QIODevice::WriteOnly) || out.write(f.second) != f.second.size())
+            return {};
+    }
+    QProcess step;
+    step.setWorkingDirectory(dir.path());
+    step.start(QStringLiteral("cc"), QStringList{"-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror", "-O2", "-o", "live",
+                                                 "driver.c", "live.c", "-lm"});
+    if (!step.waitForFinished(120000) || step.exitCode() != 0) {
+        log = QString::fromUtf8(step.readAllStandardError());
+        return {};
+    }
+    step.start(dir.filePath(QStringLiteral("live")), QStringList());
+    step.write(input);
+    step.closeWriteChannel();
+    if (!step.waitForFinished(60000) || step.exitCode() != 0) {
+        log = QStringLiteral("the compiled model exited with %1").arg(step.exitCode());
+        return {};
+    }
+    std::vector<CRow> rows;
+    for (const QByteArray &line : step.readAllStandardOutput().split('\n')) {
+        const QList<QByteArray> f = line.split(' ');
+        if (f.size() == 3)
+            rows.push_back({f[0].toDouble(), f[1].toDouble(), f[2].toInt()});
+    }
+    return rows;
+}
+
+// The compiled model's offsets at the loop's update times equal the loop's (relative 1e-9), its
+// active model is the loop's mode at every one of them, and it switches at the very steps at
+// which the loop logged its events.
+void compareWithLoop(const Run &run, const std::vector<CRow> &c, const QString &reducedMode, int reducedActive)
+{
+    QCOMPARE(c.size(), static_cast<std::size_t>(std::lround(kEnd_s / kStep_s)));
+    for (std::size_t k = 0; k < run.t.size(); ++k) {
+        const CRow &row = c[static_cast<std::size_t>(std::lround(run.t[k] / kStep_s))];
+        QCOMPARE(row.t, run.t[k]);
+        QVERIFY2(std::abs(row.offset - run.offset[k]) <= 1e-9 * std::max(1.0, std::abs(run.offset[k])),
+                 qPrintable(QStringLiteral("t %1: C %2, loop %3").arg(row.t).arg(row.offset, 0, 'g', 17).arg(run.offset[k], 0, 'g', 17)));
+        const QString &mode = run.mode[static_cast<int>(k)];
+        QCOMPARE(row.active, mode == QLatin1String("full") ? -1 : mode == reducedMode ? reducedActive : -2);
+    }
+    QVector<double> switches;
+    for (std::size_t k = 1; k < c.size(); ++k)
+        if (c[k].active != c[k - 1].active)
+            switches << c[k].t;
+    QCOMPARE(switches.size(), run.events.size());
+    for (int k = 0; k < switches.size(); ++k)
+        QCOMPARE(switches[k], run.events[k].t_s);
+}
+
 } // namespace
 
 class TestLiveRobustness : public QObject {
@@ -152,6 +237,7 @@ private slots:
     void silentSensorUsesTheReducedModel();
     void outOfRangeWithoutReducedModelHolds();
     void reducedModelsRoundTripInModelJson();
+    void exportedCodeSwitchesAsTheLoop();
 
 private:
     QTemporaryDir m_dir;
@@ -238,6 +324,34 @@ void TestLiveRobustness::reducedModelsRoundTripInModelJson()
     } catch (const std::invalid_argument &e) {
         QVERIFY2(QString::fromUtf8(e.what()).contains(QStringLiteral("reduced_models[0].without")), e.what());
     }
+}
+
+void TestLiveRobustness::exportedCodeSwitchesAsTheLoop()
+{
+    if (QStandardPaths::findExecutable(QStringLiteral("cc")).isEmpty())
+        QSKIP("no C compiler 'cc' (Debian package gcc)");
+    // T3 silent for an hour: the reduced model without T3 (input 2) in between.
+    const DataDrivenModel m = model(true);
+    const Run silent = follow(m_dir.filePath(QStringLiteral("export-silent.sqlite")), m, true, false);
+    QString log;
+    const std::vector<CRow> c = exported(m, true, false, log);
+    QVERIFY2(!c.empty(), qPrintable(log));
+    compareWithLoop(silent, c, QStringLiteral("without T3"), 2);
+    if (QTest::currentTestFailed())
+        return;
+    int reducedSteps = 0;
+    for (const CRow &row : c)
+        reducedSteps += row.active == 2;
+    QCOMPARE(reducedSteps, static_cast<int>(std::lround((kGapTo_s - kGapFrom_s) / kStep_s)) - 6); // from 2:06:00 to 2:59:00
+    // T2 out of its training range with no model without it: hold the last sound offset.
+    const DataDrivenModel plain = model(false);
+    const Run hot = follow(m_dir.filePath(QStringLiteral("export-hot.sqlite")), plain, false, true);
+    const std::vector<CRow> h = exported(plain, false, true, log);
+    QVERIFY2(!h.empty(), qPrintable(log));
+    compareWithLoop(hot, h, QString(), 0);
+    if (QTest::currentTestFailed())
+        return;
+    QCOMPARE(h[static_cast<std::size_t>(std::lround(4000.0 / kStep_s))].active, -2);
 }
 
 QTEST_GUILESS_MAIN(TestLiveRobustness)
