@@ -20,26 +20,7 @@ const char *SelectionRuling::referencesFirstRule()
            "the lowest when its CV RMSE is at most the lowest plus the standard error of their per-fold RMSE "
            "differences (sd / sqrt(folds); the lowest's own standard error when the folds differ); among those a plain "
            "reference (training mean, lagridge) is chosen first, else the fewest fitted parameters (ties: lower CV "
-           "RMSE); a family beyond the references must also beat the better reference (lower nested CV of them) "
-           "consistently: on paired folds, in as many folds as a one-sided sign test at 5 % needs (every fold when "
-           "fewer than 5; 9 of 10), else that reference is chosen; held-out data never enters the choice";
-}
-
-int ModelSelection::signTestWins(int folds)
-{
-    if (folds < 1)
-        return 0;
-    // P(X >= k) for X ~ Binomial(folds, 1/2), from k = folds down.
-    double tail = 0.0, term = std::pow(0.5, folds); // P(X = folds)
-    int k = folds;
-    for (int j = folds; j >= 0; --j) {
-        tail += term;
-        if (tail > 0.05)
-            break;
-        k = j;
-        term = term * static_cast<double>(j) / static_cast<double>(folds - j + 1); // P(X = j - 1)
-    }
-    return k;
+           "RMSE); held-out data never enters the choice";
 }
 
 double ModelSelection::pairedStandardError(const std::vector<double> &a, const std::vector<double> &b)
@@ -83,28 +64,6 @@ SelectionRuling ModelSelection::referencesFirst(const std::vector<FamilyScore> &
             if (s.parameters < c.parameters || (s.parameters == c.parameters && s.cvRmse < c.cvRmse))
                 r.chosen = i;
         }
-    if (reference)
-        return r;
-    // Consistency: the chosen family against the better reference, fold by fold.
-    std::size_t ref = scores.size();
-    for (std::size_t i = 0; i < scores.size(); ++i)
-        if (scores[i].plainReference && scores[i].fitted && std::isfinite(scores[i].cvRmse) &&
-            (ref == scores.size() || scores[i].cvRmse < scores[ref].cvRmse))
-            ref = i;
-    if (ref == scores.size())
-        return r;
-    const std::vector<double> &a = scores[r.chosen].foldRmse, &b = scores[ref].foldRmse;
-    if (a.size() != b.size() || a.empty())
-        return r; // folds differ (exp's time-blocked folds): no paired comparison
-    int wins = 0;
-    for (std::size_t f = 0; f < a.size(); ++f)
-        wins += a[f] < b[f];
-    r.winsOverReference = wins;
-    r.winsNeeded = signTestWins(static_cast<int>(a.size()));
-    if (wins < r.winsNeeded) {
-        r.chosen = ref;
-        r.overruledByConsistency = true;
-    }
     return r;
 }
 

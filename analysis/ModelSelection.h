@@ -28,11 +28,6 @@ struct SelectionRuling {
     // referencesFirst: per family the standard error of its fold RMSEs minus the lowest
     // family's (paired over the same folds; the lowest's own SE when the folds differ).
     std::vector<double> pairedStandardError;
-    // referencesFirst, consistency step: the family beyond the references that the noise rule
-    // would choose, the folds it beats the better reference on, and the wins it needs.
-    int winsOverReference = -1; // -1: no paired comparison was made
-    int winsNeeded = 0;
-    bool overruledByConsistency = false;
     static const char *rule();
     static const char *referencesFirstRule();
 };
@@ -47,14 +42,9 @@ public:
     // the per-fold differences / sqrt(folds): the noise of that comparison, folds being shared);
     // among those a plain reference is chosen first (the lower CV of them), else the fewest
     // parameters (ties: lower CV RMSE). A family beyond the references must beat the better
-    // reference by more than the CV noise, and consistently: on paired folds it must have the lower
-    // RMSE than the better reference (lower CV RMSE of them) on signTestWins(folds) folds, else the
-    // better reference is chosen. Throws std::invalid_argument when none was fitted.
+    // reference by more than the CV noise. Throws std::invalid_argument when none was fitted.
     static SelectionRuling referencesFirst(const std::vector<FamilyScore> &scores);
     static double pairedStandardError(const std::vector<double> &a, const std::vector<double> &b);
-    // The fewest wins out of `folds` paired folds for which a one-sided sign test rejects "no
-    // better" at 5 % (P(X >= k | folds, 1/2) <= 0.05); every fold when fewer than 5.
-    static int signTestWins(int folds);
 };
 
 } // namespace driftlab

@@ -111,11 +111,6 @@ DataDrivenFitResult DataDrivenAuto::fit(const DataDrivenFitRequest &q, const Dat
     selection.insert(QStringLiteral("lowest_cv"), names[static_cast<int>(ruling.lowest)]);
     selection.insert(QStringLiteral("cv_standard_error_um"), ruling.standardError);
     selection.insert(QStringLiteral("threshold_um"), ruling.threshold);
-    if (ruling.winsOverReference >= 0) {
-        selection.insert(QStringLiteral("folds_won_over_reference"), ruling.winsOverReference);
-        selection.insert(QStringLiteral("folds_needed"), ruling.winsNeeded);
-        selection.insert(QStringLiteral("overruled_by_consistency"), ruling.overruledByConsistency);
-    }
     result.document.insert(QStringLiteral("model_selection"), selection);
     result.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     result.document.insert(QStringLiteral("fit_wall_time_s"), result.wallTime_s);
