@@ -132,6 +132,11 @@ ExportResult CCodeExporter::exportModel(const ExportableModel &model, const Expo
                                           " m, dt " + CompensationLaw::number(model.grid.dt_s, 6) +
                                           " s: identical to FdmScrewModel; step() returns -2 at a feed where dt is unstable"
                                     : "identical to DataDrivenPredictor (same recursion, constants to 17 digits)");
+    if (!model.physics)
+        r.notes.push_back(std::to_string(evaluatedModels(model.dataDriven).size() - 1) +
+                          " reduced model(s) and the live loop's switching: a failed input (silent longer than stale_s, "
+                          "or outside its training range by more than the margin) switches to the model without it, two "
+                          "hold the last sound output; " + p + "_active() says which");
     return r;
 }
 
