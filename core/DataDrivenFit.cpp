@@ -2,6 +2,7 @@
 #include "FitRequestCheck.h"
 
 #include "DataDrivenAuto.h"
+#include "DataDrivenFamilyFit.h"
 #include "DataDrivenModelJson.h"
 #include "DataDrivenPredictor.h"
 #include "DataDrivenSelection.h"
@@ -33,14 +34,6 @@ namespace {
     throw std::invalid_argument(message.toStdString());
 }
 
-std::vector<std::string> toStd(const QStringList &list)
-{
-    std::vector<std::string> out;
-    for (const QString &s : list)
-        out.push_back(s.toStdString());
-    return out;
-}
-
 QJsonValue hours(double h)
 {
     return std::isfinite(h) ? QJsonValue(h) : QJsonValue();
@@ -49,29 +42,6 @@ QJsonValue hours(double h)
 QJsonObject rangeJson(const HourRange &r)
 {
     return QJsonObject{{QStringLiteral("from_h"), hours(r.from_h)}, {QStringLiteral("to_h"), hours(r.to_h)}};
-}
-
-QJsonObject candidateJson(const CvCandidate &c)
-{
-    return QJsonObject{{QStringLiteral("components"), c.components},
-                       {QStringLiteral("reference"), QString::fromStdString(c.reference.label())},
-                       {QStringLiteral("temperature_lags_s"), DataDrivenModelJson::numbers(c.temperatureLags_s)},
-                       {QStringLiteral("drive_lags_s"), DataDrivenModelJson::numbers(c.driveLags_s)},
-                       {QStringLiteral("lambda"), c.lambda},
-                       {QStringLiteral("features"), static_cast<double>(c.features)},
-                       {QStringLiteral("cv_rmse"), c.cvRmse},
-                       {QStringLiteral("fold_rmse"), DataDrivenModelJson::numbers(c.foldRmse)}};
-}
-
-QJsonObject parametersJson(const std::vector<std::string> &names, const std::vector<double> &values,
-                           const std::vector<double> &errors)
-{
-    QJsonObject o;
-    for (std::size_t i = 0; i < names.size(); ++i)
-        o.insert(QString::fromStdString(names[i]),
-                 QJsonObject{{QStringLiteral("value"), values[i]},
-                             {QStringLiteral("standard_error"), i < errors.size() ? QJsonValue(errors[i]) : QJsonValue()}});
-    return o;
 }
 
 } // namespace
@@ -178,15 +148,6 @@ ValidationSet DataDrivenFit::validate(const DataDrivenModel &model, const QList<
     return DataDrivenValidator(m_store).validate(model, sessions, range);
 }
 
-namespace {
-
-int linearParameters(const CvCandidate &c)
-{
-    return static_cast<int>(c.features) + 1;
-}
-
-} // namespace
-
 void DataDrivenFit::check(const DataDrivenFitRequest &q) const
 {
     FitRequestCheck::check(m_store, q);
@@ -200,6 +161,66 @@ DataDrivenFitResult DataDrivenFit::fit(const DataDrivenFitRequest &q, const Prog
     return fitFamily(q, progress);
 }
 
+QStringList DataDrivenFit::inputChannels(const DataDrivenFitRequest &q, const DataDrivenSession &s, DataDrivenFitResult &result,
+                                         const Stage &stage) const
+{
+    const QList<qint64> trainIds = q.trainingSessions();
+    QStringList inputs = q.points;
+    if (q.model == QLatin1String("exp") || q.model == QLatin1String("mean") || !inputs.isEmpty())
+        return inputs;
+    if (q.autoPoints || q.model == QLatin1String("mlr")) {
+        if (q.target == QLatin1String("interferometer"))
+            bad(QStringLiteral("--points auto needs a displacement channel as the target; name the temperatures with --points"));
+        stage(0.05, QStringLiteral("selecting sensitive points"));
+        result.selection = selectPoints(trainIds, q.target, q.train, q.kMin, q.kMax);
+        for (const std::string &c : result.selection->chosen)
+            inputs << QString::fromStdString(c);
+    } else if (q.model == QLatin1String("synthetic")) {
+        inputs = s.screwTemperatureChannels();
+        if (inputs.isEmpty())
+            bad(QStringLiteral("--model synthetic: session %1 has no screw temperature channel (role or location screw); "
+                               "name the characteristic temperature channels with --points")
+                    .arg(trainIds.front()));
+    } else {
+        inputs = s.temperatureChannels();
+        if (inputs.isEmpty())
+            bad(QStringLiteral("session %1 has no temperature channels").arg(trainIds.front()));
+    }
+    return inputs;
+}
+
+void DataDrivenFit::checkHeldOutChannels(const DataDrivenFitRequest &q, const QStringList &inputs, const QString &drive) const
+{
+    for (qint64 id : q.heldOutSessions()) {
+        const DataDrivenSession hs(m_store, id);
+        for (const QString &c : inputs)
+            if (!hs.hasChannel(c))
+                bad(QStringLiteral("--holdout: session %1 has no channel '%2' (an input of the model)").arg(id).arg(c));
+        if (!drive.isEmpty() && !hs.hasChannel(drive))
+            bad(QStringLiteral("--holdout: session %1 has no channel '%2' (the drive)").arg(id).arg(drive));
+    }
+}
+
+DataDrivenTrainingRuns DataDrivenFit::readTrainingRuns(const DataDrivenFitRequest &q, const QStringList &inputs,
+                                                       const Stage &stage) const
+{
+    DataDrivenTrainingRuns runs;
+    runs.ids = q.trainingSessions();
+    const bool laser = q.target == QLatin1String("interferometer");
+    for (qint64 id : runs.ids) {
+        const DataDrivenSession ds(m_store, id);
+        for (const QString &c : inputs)
+            if (!ds.hasChannel(c))
+                bad(QStringLiteral("session %1 has no channel '%2' (an input of session %3)").arg(id).arg(c).arg(runs.ids.front()));
+        if (id != runs.ids.front())
+            stage(0.02 + 0.1 * static_cast<double>(runs.tables.size()) / static_cast<double>(runs.ids.size()),
+                  QStringLiteral("reading session %1").arg(id));
+        runs.tables.push_back(ds.table(laser ? inputs.front() : q.target));
+        runs.rows.push_back(runs.tables.back().rowsIn(q.train.from_h * 3600.0, q.train.to_h * 3600.0));
+    }
+    return runs;
+}
+
 DataDrivenFitResult DataDrivenFit::fitFamily(const DataDrivenFitRequest &q, const Progress &progress) const
 {
     const auto started = std::chrono::steady_clock::now();
@@ -209,7 +230,6 @@ DataDrivenFitResult DataDrivenFit::fitFamily(const DataDrivenFitRequest &q, cons
     };
     const QList<qint64> trainIds = q.trainingSessions();
     const DataDrivenSession s(m_store, trainIds.front());
-    const bool laser = q.target == QLatin1String("interferometer");
     QString drive;
     if (q.model == QLatin1String("exp") || q.model == QLatin1String("dynamic")) {
         if (q.drive.isEmpty())
@@ -220,226 +240,31 @@ DataDrivenFitResult DataDrivenFit::fitFamily(const DataDrivenFitRequest &q, cons
 
     DataDrivenFitResult result;
     stage(0.02, QStringLiteral("reading session %1").arg(trainIds.front()));
-    const double from = q.train.from_h * 3600.0, to = q.train.to_h * 3600.0;
-    // Input temperature channels.
-    QStringList inputs = q.points;
-    if (q.model != QLatin1String("exp") && q.model != QLatin1String("mean") && inputs.isEmpty()) {
-        if (q.autoPoints || q.model == QLatin1String("mlr")) {
-            if (laser)
-                bad(QStringLiteral("--points auto needs a displacement channel as the target; name the temperatures with --points"));
-            stage(0.05, QStringLiteral("selecting sensitive points"));
-            result.selection = selectPoints(trainIds, q.target, q.train, q.kMin, q.kMax);
-            for (const std::string &c : result.selection->chosen)
-                inputs << QString::fromStdString(c);
-        } else if (q.model == QLatin1String("synthetic")) {
-            inputs = s.screwTemperatureChannels();
-            if (inputs.isEmpty())
-                bad(QStringLiteral("--model synthetic: session %1 has no screw temperature channel (role or location screw); "
-                                   "name the characteristic temperature channels with --points")
-                        .arg(trainIds.front()));
-        } else {
-            inputs = s.temperatureChannels();
-            if (inputs.isEmpty())
-                bad(QStringLiteral("session %1 has no temperature channels").arg(trainIds.front()));
-        }
-    }
-    // Every held-out session has the inputs and the drive: decided before any fitting.
-    for (qint64 id : q.heldOutSessions()) {
-        const DataDrivenSession hs(m_store, id);
-        for (const QString &c : inputs)
-            if (!hs.hasChannel(c))
-                bad(QStringLiteral("--holdout: session %1 has no channel '%2' (an input of the model)").arg(id).arg(c));
-        if (!drive.isEmpty() && !hs.hasChannel(drive))
-            bad(QStringLiteral("--holdout: session %1 has no channel '%2' (the drive)").arg(id).arg(drive));
-    }
-    std::vector<SignalTable> tables;
-    std::vector<std::vector<char>> trainRows;
-    for (qint64 id : trainIds) {
-        const DataDrivenSession ds(m_store, id);
-        for (const QString &c : inputs)
-            if (!ds.hasChannel(c))
-                bad(QStringLiteral("session %1 has no channel '%2' (an input of session %3)").arg(id).arg(c).arg(trainIds.front()));
-        if (id != trainIds.front())
-            stage(0.02 + 0.1 * static_cast<double>(tables.size()) / static_cast<double>(trainIds.size()),
-                  QStringLiteral("reading session %1").arg(id));
-        tables.push_back(ds.table(laser ? inputs.front() : q.target));
-        trainRows.push_back(tables.back().rowsIn(from, to));
-    }
+    const QStringList inputs = inputChannels(q, s, result, stage);
+    checkHeldOutChannels(q, inputs, drive);
+    const DataDrivenTrainingRuns runs = readTrainingRuns(q, inputs, stage);
     stage(0.15, QStringLiteral("fitting %1").arg(q.model));
     auto sub = [&](double f) { return !progress || progress(0.15 + 0.7 * f, QStringLiteral("fitting %1").arg(q.model)); };
 
-    QJsonObject hyper, uncertainty;
+    DataDrivenFamilyFit::Json json;
     if (q.model == QLatin1String("mean")) {
-        // The training mean: the intercept-only linear model, CV on the runs' folds.
-        std::vector<double> y, times;
-        std::vector<std::size_t> counts;
-        for (std::size_t r = 0; r < tables.size(); ++r) {
-            const std::vector<double> &v = tables[r].column(q.target.toStdString()).v;
-            std::size_t c = 0;
-            for (std::size_t k = 0; k < v.size(); ++k)
-                if (trainRows[r][k] && std::isfinite(v[k])) {
-                    y.push_back(v[k]);
-                    times.push_back(tables[r].t[k]);
-                    ++c;
-                }
-            if (c == 0 && tables.size() > 1)
-                bad(QStringLiteral("session %1 has no samples of '%2' in the training range").arg(trainIds[static_cast<int>(r)]).arg(q.target));
-            counts.push_back(c);
-        }
-        if (y.size() < 20)
-            bad(QStringLiteral("mean: %1 training samples of '%2'; at least 20 are needed").arg(y.size()).arg(q.target));
-        std::string rule;
-        const std::vector<TimeBlockedFold> folds = LinearLagFitter::folds(
-            counts, times, q.folds, tables.size() > 1 ? 0.0 : TimeBlockedFolds::defaultGap(times, q.folds), 10, rule);
-        double total = 0.0;
-        for (double v : y)
-            total += v;
-        double sse = 0.0;
-        for (const TimeBlockedFold &f : folds) {
-            double in = 0.0;
-            for (std::size_t k = f.excludeBegin; k < f.excludeEnd; ++k)
-                in += y[k];
-            const double mean = (total - in) / static_cast<double>(y.size() - (f.excludeEnd - f.excludeBegin));
-            double e = 0.0;
-            for (std::size_t k = f.begin; k < f.end; ++k)
-                e += (y[k] - mean) * (y[k] - mean);
-            result.foldRmse.push_back(std::sqrt(e / static_cast<double>(f.end - f.begin)));
-            sse += e;
-        }
-        result.cvRmse = std::sqrt(sse / static_cast<double>(y.size()));
-        result.nestedCvRmse = result.cvRmse;
-        result.nestedFoldRmse = result.foldRmse;
-        result.foldRule = QString::fromStdString(rule);
-        result.parameters = 1;
-        const SignalColumn &t = tables.front().column(q.target.toStdString());
-        result.model.kind = "mean";
-        result.model.target = {t.id, t.unit, t.kind};
-        result.model.intercept = total / static_cast<double>(y.size());
-        result.model.samplePeriod_s = tables.front().medianStep();
-        hyper = QJsonObject{{QStringLiteral("folds"), static_cast<int>(folds.size())},
-                            {QStringLiteral("fold_rule"), result.foldRule},
-                            {QStringLiteral("cv_rmse"), result.cvRmse},
-                            {QStringLiteral("fold_rmse"), DataDrivenModelJson::numbers(result.foldRmse)}};
+        json = DataDrivenFamilyFit::mean(q, runs, result);
     } else if (q.model == QLatin1String("mlr") || q.model == QLatin1String("ridge") || q.model == QLatin1String("lagridge") ||
                q.model == QLatin1String("dynamic")) {
-        LinearLagOptions o;
-        o.kind = q.model.toStdString();
-        o.target = q.target.toStdString();
-        o.inputs = toStd(inputs);
-        o.drive = drive.toStdString();
-        o.folds = q.folds;
-        o.scaleFloor = q.scaleFloor_K;
-        o.references = FitRequestCheck::referenceCandidates(q.reference, static_cast<int>(trainIds.size()));
-        std::vector<LinearLagRun> runs;
-        for (std::size_t r = 0; r < tables.size(); ++r)
-            runs.push_back({&tables[r], trainRows[r]});
-        LinearLagFit f;
-        try {
-            f = LinearLagFitter::fit(runs, o, sub);
-        } catch (const std::invalid_argument &e) {
-            QString message = QString::fromUtf8(e.what());
-            if (message.startsWith(QLatin1String("run ")))
-                message = QStringLiteral("session %1%2")
-                              .arg(trainIds[message.mid(4, message.indexOf(QLatin1Char(':')) - 4).toInt()])
-                              .arg(message.mid(message.indexOf(QLatin1Char(':'))));
-            bad(message);
-        }
-        result.model = f.model;
-        result.cvRmse = f.chosen.cvRmse;
-        result.foldRmse = f.chosen.foldRmse;
-        result.nestedCvRmse = f.nestedCvRmse;
-        result.nestedFoldRmse = f.nestedFoldRmse;
-        result.foldRule = QString::fromStdString(f.foldRule);
-        result.parameters = linearParameters(f.chosen);
-        result.linearOptions = o;
-        result.linearChosen = f.chosen;
+        json = DataDrivenFamilyFit::linearLag(q, runs, inputs, drive, sub, result);
         if (q.reducedModels) {
             stage(0.8, QStringLiteral("fitting the reduced models"));
-            addReducedModels(result, runs);
+            std::vector<LinearLagRun> lagRuns;
+            for (std::size_t r = 0; r < runs.tables.size(); ++r)
+                lagRuns.push_back({&runs.tables[r], runs.rows[r]});
+            addReducedModels(result, lagRuns);
         }
-        hyper = QJsonObject{{QStringLiteral("folds"), f.folds},
-                            {QStringLiteral("fold_rule"), result.foldRule},
-                            {QStringLiteral("gap_s"), f.gap_s},
-                            {QStringLiteral("scale_floor"), o.scaleFloor},
-                            {QStringLiteral("reference"), QString::fromStdString(f.chosen.reference.label())},
-                            {QStringLiteral("chosen"), candidateJson(f.chosen)},
-                            {QStringLiteral("nested_cv_rmse"), f.nestedCvRmse},
-                            {QStringLiteral("nested_fold_rmse"), DataDrivenModelJson::numbers(f.nestedFoldRmse)}};
-        if (q.model == QLatin1String("dynamic") || q.model == QLatin1String("lagridge") || o.references.size() > 1) {
-            QJsonArray searched;
-            for (const CvCandidate &c : f.structures)
-                searched.append(candidateJson(c));
-            hyper.insert(QStringLiteral("searched"), searched);
-        }
-        if (q.model == QLatin1String("dynamic"))
-            hyper.insert(QStringLiteral("component_variance"), DataDrivenModelJson::numbers(f.componentVariance));
-        uncertainty = QJsonObject{{QStringLiteral("method"), QStringLiteral("ridge sandwich covariance, AR(1) inflation")},
-                                  {QStringLiteral("residual_lag1"), f.residualLag1},
-                                  {QStringLiteral("se_inflation"), f.seInflation},
-                                  {QStringLiteral("effective_dof"), f.effectiveDof},
-                                  {QStringLiteral("where"), QStringLiteral("linear.terms[].standard_errors, linear.intercept_standard_error")}};
     } else if (q.model == QLatin1String("exp")) {
-        ExponentialOptions o;
-        o.target = q.target.toStdString();
-        o.drive = drive.toStdString();
-        o.folds = q.folds;
-        o.expansion_per_K = s.expansion_per_K();
-        o.length_m = s.screwLength_m();
-        SignalTable joined;
-        const SignalTable *table = &tables.front();
-        if (tables.size() == 1) {
-            o.trainRows = trainRows.front();
-        } else {
-            // Runs in a row with a 30-day pause at zero drive: the state is back at rest when a run starts.
-            std::vector<const SignalTable *> runs;
-            for (const SignalTable &t : tables)
-                runs.push_back(&t);
-            joined = SignalTable::concatenate(runs, trainRows, 30 * 86400.0, {o.drive}, {}, &o.trainRows);
-            table = &joined;
-        }
-        const ExponentialFit f = ExponentialWarmupFitter::fit(*table, o, sub);
-        result.model = f.model;
-        result.cvRmse = f.cvRmse;
-        result.foldRmse = f.foldRmse;
-        result.nestedCvRmse = f.cvRmse; // every fold refits every parameter: nothing is chosen outside it
-        result.nestedFoldRmse = f.foldRmse;
-        result.foldRule = QStringLiteral("time-blocked");
-        result.parameters = static_cast<int>(f.values.size());
-        hyper = QJsonObject{{QStringLiteral("folds"), q.folds},
-                            {QStringLiteral("fold_rule"), result.foldRule},
-                            {QStringLiteral("exponent_fitted"), f.exponentFitted},
-                            {QStringLiteral("cv_rmse"), f.cvRmse},
-                            {QStringLiteral("fold_rmse"), DataDrivenModelJson::numbers(f.foldRmse)},
-                            {QStringLiteral("converged"), f.converged}};
-        uncertainty = QJsonObject{{QStringLiteral("method"), QStringLiteral("numerical Jacobian, AR(1) inflation")},
-                                  {QStringLiteral("se_inflation"), f.seInflation},
-                                  {QStringLiteral("parameters"), parametersJson(f.names, f.values, f.standardErrors)}};
+        json = DataDrivenFamilyFit::exponential(q, s, runs, drive, sub, result);
     } else {
-        SyntheticOptions o;
-        o.temperatures = toStd(inputs);
-        if (laser) {
-            o.points = s.interferometerErrors();
-            o.trainFrom_s = from;
-            o.trainTo_s = to;
-        } else {
-            o.target = q.target.toStdString();
-            o.trainRows = trainRows.front();
-        }
-        const SyntheticFit f = SyntheticModelFitter::fit(tables.front(), o);
-        result.model = f.model;
-        result.parameters = static_cast<int>(f.values.size());
-        QJsonObject time;
-        if (f.timeLaw.size() == 5)
-            time = QJsonObject{{QStringLiteral("y0"), f.timeLaw[0]}, {QStringLiteral("a1"), f.timeLaw[1]},
-                               {QStringLiteral("tau1_s"), f.timeLaw[2]}, {QStringLiteral("a2"), f.timeLaw[3]},
-                               {QStringLiteral("tau2_s"), f.timeLaw[4]}, {QStringLiteral("r2"), f.timeLawR2}};
-        hyper = QJsonObject{{QStringLiteral("time_law_eq21"), time},
-                            {QStringLiteral("position_law_r2"), laser ? QJsonValue(f.positionLawR2) : QJsonValue()},
-                            {QStringLiteral("samples"), static_cast<double>(f.samples)}};
-        uncertainty = QJsonObject{{QStringLiteral("method"), QStringLiteral("numerical Jacobian, AR(1) inflation")},
-                                  {QStringLiteral("se_inflation"), f.seInflation},
-                                  {QStringLiteral("parameters"), parametersJson(f.names, f.values, f.standardErrors)}};
+        json = DataDrivenFamilyFit::synthetic(q, s, runs, inputs, result);
     }
+    const QJsonObject &hyper = json.hyperparameters, &uncertainty = json.uncertainties;
     if (!std::isfinite(result.model.predictionSigma)) // mean, exp: their (nested) CV RMSE; synthetic has none
         result.model.predictionSigma = std::isfinite(result.nestedCvRmse) ? result.nestedCvRmse : result.cvRmse;
     stage(0.88, QStringLiteral("validating"));

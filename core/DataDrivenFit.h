@@ -31,6 +31,7 @@ namespace driftlab {
 
 class DataDrivenSession;
 class SessionStore;
+struct DataDrivenTrainingRuns;
 
 struct HourRange {
     double from_h = -std::numeric_limits<double>::infinity();
@@ -179,7 +180,15 @@ public:
 
 private:
     void addReducedModels(DataDrivenFitResult &result, const std::vector<LinearLagRun> &runs) const;
+    // One family, in named steps: the input channels (given, sensitive points, screw or all
+    // temperatures), the held-out sessions checked for them before any fitting, the training runs
+    // read, the family fitted (DataDrivenFamilyFit), reduced models, validation, MODEL.json.
     DataDrivenFitResult fitFamily(const DataDrivenFitRequest &request, const Progress &progress) const;
+    using Stage = std::function<void(double fraction, const QString &stage)>;
+    QStringList inputChannels(const DataDrivenFitRequest &q, const DataDrivenSession &first, DataDrivenFitResult &result,
+                              const Stage &stage) const;
+    void checkHeldOutChannels(const DataDrivenFitRequest &q, const QStringList &inputs, const QString &drive) const;
+    DataDrivenTrainingRuns readTrainingRuns(const DataDrivenFitRequest &q, const QStringList &inputs, const Stage &stage) const;
 
     const SessionStore &m_store;
 };
