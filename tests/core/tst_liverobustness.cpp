@@ -352,6 +352,23 @@ void TestLiveRobustness::exportedCodeSwitchesAsTheLoop()
     if (QTest::currentTestFailed())
         return;
     QCOMPARE(h[static_cast<std::size_t>(std::lround(4000.0 / kStep_s))].active, -2);
+    // Rises from the run's start (the range check on the rise, the reduced model's own reference):
+    // T2 out of range first (holding), later T3 silent (the model without T3), one run.
+    DataDrivenModel rises = model(true);
+    rises.reference.kind = rises.reduced.front().reference.kind = "start";
+    for (DataDrivenModel *x : {&rises, &rises.reduced.front()})
+        for (ModelTerm &t : x->terms)
+            t.rise = true;
+    const double range[3][2] = {{-5.0, 5.0}, {-1.0, 8.0}, {-7.0, 1.0}};
+    for (int i = 0; i < 3; ++i) {
+        rises.inputs[static_cast<std::size_t>(i)].trainingMin = range[i][0];
+        rises.inputs[static_cast<std::size_t>(i)].trainingMax = range[i][1];
+    }
+    const Run both = follow(m_dir.filePath(QStringLiteral("export-rises.sqlite")), rises, true, true);
+    const std::vector<CRow> r = exported(rises, true, true, log);
+    QVERIFY2(!r.empty(), qPrintable(log));
+    QCOMPARE(both.events.size(), 4); // T2 out, back; T3 silent, back
+    compareWithLoop(both, r, QStringLiteral("without T3"), 2);
 }
 
 QTEST_GUILESS_MAIN(TestLiveRobustness)
