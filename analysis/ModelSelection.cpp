@@ -33,7 +33,12 @@ double ModelSelection::pairedStandardError(const std::vector<double> &a, const s
     return standardError(d);
 }
 
-SelectionRuling ModelSelection::referencesFirst(const std::vector<FamilyScore> &scores)
+double ModelSelection::nadeauBengioFactor(int folds, double testOverTrain)
+{
+    return std::sqrt(1.0 + static_cast<double>(folds) * testOverTrain);
+}
+
+SelectionRuling ModelSelection::referencesFirst(const std::vector<FamilyScore> &scores, double seFactor)
 {
     SelectionRuling r = oneStandardError(scores); // the lowest, its SE and threshold
     const FamilyScore &low = scores[r.lowest];
@@ -46,6 +51,7 @@ SelectionRuling ModelSelection::referencesFirst(const std::vector<FamilyScore> &
         double se = i == r.lowest ? 0.0 : pairedStandardError(s.foldRmse, low.foldRmse);
         if (!std::isfinite(se))
             se = r.standardError;
+        se *= seFactor;
         r.pairedStandardError[i] = se;
         within[i] = s.cvRmse <= low.cvRmse + se;
     }

@@ -43,7 +43,13 @@ public:
     // among those a plain reference is chosen first (the lower CV of them), else the fewest
     // parameters (ties: lower CV RMSE). A family beyond the references must beat the better
     // reference by more than the CV noise. Throws std::invalid_argument when none was fitted.
-    static SelectionRuling referencesFirst(const std::vector<FamilyScore> &scores);
+    // seFactor scales every paired standard error (1: the rule above; nadeauBengioFactor: the
+    // corrected resampled t-test's variance, a variant measured by bench_modelsweep only).
+    static SelectionRuling referencesFirst(const std::vector<FamilyScore> &scores, double seFactor = 1.0);
+    // Nadeau & Bengio (2003): the variance of a mean over J resampled folds is
+    // (1/J + n_test/n_train) sigma^2, not sigma^2/J; the factor on the standard error is
+    // sqrt(1 + J * n_test/n_train) (1.5 for 5 equal leave-one-run-out folds).
+    static double nadeauBengioFactor(int folds, double testOverTrain);
     static double pairedStandardError(const std::vector<double> &a, const std::vector<double> &b);
 };
 

@@ -186,6 +186,17 @@ void TestMultiRunFit::referencesFirstRule()
     QVERIFY(std::fabs(r.pairedStandardError[1] - std::sqrt(0.02 / 3.0) / 2.0) < 1e-12);
     QCOMPARE(r.chosen, std::size_t(1));
     QVERIFY_EXCEPTION_THROWN(ModelSelection::referencesFirst({{"D", 0.5, {}, 1, false, true}}), std::invalid_argument);
+    // Nadeau-Bengio: 5 equal leave-one-run-out folds, n_test / n_train = 1/4: the variance
+    // (1/5 + 1/4) sigma^2 against sigma^2 / 5, the SE x sqrt(2.25) = 1.5; 4 folds: sqrt(7/3).
+    QCOMPARE(ModelSelection::nadeauBengioFactor(5, 0.25), 1.5);
+    QVERIFY(std::fabs(ModelSelection::nadeauBengioFactor(4, 1.0 / 3.0) - std::sqrt(7.0 / 3.0)) < 1e-12);
+    // R at 1.04, 1.39 paired SE (0.028868) above A: kept out by the plain SE, admitted (and
+    // chosen, a reference) by the corrected one, 1.5 x 0.028868 = 0.0433 > 0.04.
+    s = {{"A", 1.0, {0.9, 1.1, 1.0, 1.0}, 20, true, false}, {"R", 1.04, {1.0, 1.1, 1.1, 1.0}, 49, true, true}};
+    QCOMPARE(ModelSelection::referencesFirst(s).chosen, std::size_t(0));
+    r = ModelSelection::referencesFirst(s, 1.5);
+    QCOMPARE(r.chosen, std::size_t(1));
+    QVERIFY(std::fabs(r.pairedStandardError[1] - 1.5 * std::sqrt(0.01 / 3.0) / 2.0) < 1e-12);
 }
 
 void TestMultiRunFit::nestedCvByHand()
