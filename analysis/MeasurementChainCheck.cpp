@@ -539,16 +539,20 @@ std::vector<SensorFinding> MeasurementChainCheck::examine(DiagnosisRecording &tr
         }
     }
     std::vector<SensorFinding> found = check(train, validate, trainFit, validateFit, trainIO, validateIO, Options{});
-    const bool airFound = std::any_of(found.begin(), found.end(), [](const SensorFinding &f) { return f.kind == "air"; });
-    if (!airFound) {
-        // The baseline may have absorbed the air law; refit it with the law and the probe.
-        DiagnosisRecording trainProbe = train, validateProbe = validate;
-        for (const SensorFinding &f : found) { // a probe found drifting cannot anchor anything
+    // The baseline may have absorbed part of an air law (or the residual regression may take
+    // some of the machine's own air response for it): refit the baseline with the law, the
+    // probe anchoring the screw. When that names the law, its coefficient replaces the
+    // residual regression's.
+    DiagnosisRecording trainProbe = train, validateProbe = validate;
+    for (const SensorFinding &f : found) // a probe found drifting cannot anchor anything
+        if (f.kind != "air") {
             correct(trainProbe, f);
             correct(validateProbe, f);
         }
-        for (SensorFinding &f : airByJointFit(trainProbe, validateProbe, geometry, options, validateFit, Options{}))
-            found.push_back(std::move(f));
+    const std::vector<SensorFinding> joint = airByJointFit(trainProbe, validateProbe, geometry, options, validateFit, Options{});
+    if (!joint.empty()) {
+        found.erase(std::remove_if(found.begin(), found.end(), [](const SensorFinding &f) { return f.kind == "air"; }), found.end());
+        found.insert(found.begin(), joint.begin(), joint.end());
     }
     for (const SensorFinding &f : found) {
         correct(train, f);
