@@ -13,6 +13,11 @@ AcquisitionEngine::AcquisitionEngine(const Options &options) : m_options(options
 
 AcquisitionEngine::~AcquisitionEngine()
 {
+    joinAll();
+}
+
+void AcquisitionEngine::joinAll()
+{
     for (auto &w : m_workers)
         w->requestStop();
     for (auto &w : m_workers)
@@ -82,14 +87,7 @@ void AcquisitionEngine::stop()
 {
     if (!m_running)
         return;
-    for (auto &w : m_workers)
-        w->requestStop();
-    for (auto &w : m_workers)
-        w->join();
-    m_stopWriter = true;
-    m_wake.notify_all();
-    if (m_writer.joinable())
-        m_writer.join();
+    joinAll();
     m_running = false;
     std::lock_guard<std::mutex> lock(m_mutex);
     if (!m_error.empty())

@@ -69,6 +69,7 @@ public:
     int queueHighWater() const;
 
 private:
+    void joinAll(); // stops and joins the device workers, then the writer
     void writerLoop(const QString &dbPath, const SessionInfo &info);
 
     Options m_options;

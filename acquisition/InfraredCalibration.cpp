@@ -6,6 +6,12 @@
 
 namespace driftlab {
 
+InfraredCalibration InfraredCalibration::fromDevice(JsonFields &device)
+{
+    JsonFields calibration = device.object(QStringLiteral("calibration"));
+    return fromJson(calibration);
+}
+
 InfraredCalibration InfraredCalibration::fromJson(JsonFields &f)
 {
     InfraredCalibration c;

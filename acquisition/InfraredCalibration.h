@@ -24,6 +24,8 @@ struct InfraredCalibration {
     int screwWidth_px = 8;
 
     static InfraredCalibration fromJson(JsonFields &calibration);
+    // The (optional) "calibration" object of a camera device's settings.
+    static InfraredCalibration fromDevice(JsonFields &device);
     QJsonObject manifest(const QString &camera) const;
     // Count for a temperature (rounded, clamped to 0..65535); NaN gives 0.
     quint16 count(double celsius) const;

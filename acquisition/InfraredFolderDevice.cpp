@@ -35,8 +35,7 @@ InfraredFolderDevice::Config InfraredFolderDevice::Config::fromJson(const QJsonO
     c.arrivalTime = f.choice(QStringLiteral("timestamp"), {QStringLiteral("mtime"), QStringLiteral("arrival")}, QStringLiteral("mtime")) ==
                     QLatin1String("arrival");
     c.latency_s = f.number(QStringLiteral("latency_s"), 0.0, 0.0, 3600.0);
-    JsonFields cal = f.object(QStringLiteral("calibration"));
-    c.calibration = InfraredCalibration::fromJson(cal);
+    c.calibration = InfraredCalibration::fromDevice(f);
     f.finish();
     return c;
 }

@@ -29,8 +29,7 @@ UvcCameraDevice::Config UvcCameraDevice::Config::fromJson(const QJsonObject &set
     c.fps = f.number(QStringLiteral("fps"), 0.0, 0.0, 1000.0);
     c.interval_s = f.number(QStringLiteral("interval_s"), 1.0, 0.01, 86400.0);
     c.latency_s = f.number(QStringLiteral("latency_s"), 0.0, 0.0, 60.0);
-    JsonFields cal = f.object(QStringLiteral("calibration"));
-    c.calibration = InfraredCalibration::fromJson(cal);
+    c.calibration = InfraredCalibration::fromDevice(f);
     f.finish();
     return c;
 }

@@ -1,7 +1,5 @@
 #include "CrankNicolsonScrewModel.h"
 
-#include "ScrewExpansion.h"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -11,24 +9,13 @@ namespace driftlab {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-
-void require(bool ok, const char *what)
-{
-    if (!ok)
-        throw std::invalid_argument(what);
-}
 } // namespace
 
 CrankNicolsonScrewModel::CrankNicolsonScrewModel(const ScrewGeometry &geometry, const FdmParameters &parameters,
                                                  const FdmSettings &settings)
-    : m_geometry(geometry), m_parameters(parameters), m_settings(settings), m_layout(geometry, settings)
+    : ScrewCellState(geometry, parameters, settings), m_layout(geometry, settings)
 {
-    require(geometry.diameter_m > 0, "screw diameter_m must be > 0");
-    require(geometry.nutLength_m >= 0, "nut_length_m must be >= 0");
-    require(geometry.fixedBearingLength_m >= 0, "fixed_bearing_length_m must be >= 0");
-    require(geometry.density_kg_m3 > 0, "density_kg_m3 must be > 0");
-    require(geometry.specificHeat_J_kgK > 0, "specific_heat_J_kgK must be > 0");
-    require(parameters.conductivity_W_mK > 0, "conductivity (lambda) must be > 0");
+    requireMaterial(geometry, parameters);
     require(settings.dt_s > 0, "dt_s must be > 0");
     const size_t n = static_cast<size_t>(m_layout.cellCount());
     for (std::vector<double> *v : {&m_T, &m_rhs, &m_lower, &m_diag, &m_upper, &m_conv, &m_src})
@@ -36,14 +23,6 @@ CrankNicolsonScrewModel::CrankNicolsonScrewModel(const ScrewGeometry &geometry, 
     m_rhoC = geometry.density_kg_m3 * geometry.specificHeat_J_kgK;
     m_area = kPi * geometry.diameter_m * geometry.diameter_m / 4.0;
     reset(20.0);
-}
-
-void CrankNicolsonScrewModel::reset(double ambient_C)
-{
-    std::fill(m_T.begin(), m_T.end(), ambient_C);
-    m_ambient = ambient_C;
-    m_ambient0 = ambient_C;
-    m_time = 0.0;
 }
 
 void CrankNicolsonScrewModel::setTemperatures(const std::vector<double> &cells_C)
@@ -97,23 +76,6 @@ void CrankNicolsonScrewModel::step(double axisPosition_mm, double feed_mm_min, d
     m_T.swap(m_rhs);
     m_ambient = ambient_C;
     m_time += dt;
-}
-
-double CrankNicolsonScrewModel::expansionAt_um(double distanceFromFixedEnd_m) const
-{
-    return ScrewExpansion::expansionAt_um(m_T, m_ambient0, m_settings.dx_m, m_geometry.expansion_per_K,
-                                          distanceFromFixedEnd_m);
-}
-
-double CrankNicolsonScrewModel::thermalError_um(double axisPosition_mm) const
-{
-    return ScrewExpansion::thermalError_um(m_T, m_ambient0, m_settings.dx_m, m_geometry.expansion_per_K, axisPosition_mm,
-                                           m_parameters.fixedEndPosition_mm);
-}
-
-double CrankNicolsonScrewModel::elongation_um() const
-{
-    return expansionAt_um(m_settings.dx_m * cellCount());
 }
 
 } // namespace driftlab

@@ -12,46 +12,32 @@
 // the mean of its values at both ends of the step.
 
 #include "ScrewCellLayout.h"
-#include "ScrewModelTypes.h"
+#include "ScrewCellState.h"
 #include "TridiagonalSolver.h"
 
 #include <vector>
 
 namespace driftlab {
 
-class CrankNicolsonScrewModel {
+class CrankNicolsonScrewModel : public ScrewCellState {
 public:
     // Throws std::invalid_argument for non-physical geometry or settings.
     CrankNicolsonScrewModel(const ScrewGeometry &geometry, const FdmParameters &parameters,
                             const FdmSettings &settings = {});
 
-    void reset(double ambient_C);
+    // reset(), the expansion and the cell temperatures: ScrewCellState.
     // Sets the cell temperatures (e.g. an analytic initial field); the ambient reference of
     // the expansion stays that of reset(). Throws std::invalid_argument on a size mismatch.
     void setTemperatures(const std::vector<double> &cells_C);
     // Advances one step dt; arguments as FdmScrewModel::step (ambient_C = value at t + dt).
     void step(double axisPosition_mm, double feed_mm_min, double ambient_C);
 
-    double expansionAt_um(double distanceFromFixedEnd_m) const;
-    double thermalError_um(double axisPosition_mm) const;
-    double elongation_um() const;
-
-    const std::vector<double> &temperatures() const { return m_T; }
-    int cellCount() const { return static_cast<int>(m_T.size()); }
-    double time_s() const { return m_time; }
-    double ambient_C() const { return m_ambient; }
     const ScrewCellLayout &layout() const { return m_layout; }
 
 private:
-    ScrewGeometry m_geometry;
-    FdmParameters m_parameters;
-    FdmSettings m_settings;
     ScrewCellLayout m_layout;
     TridiagonalSolver m_solver;
-    std::vector<double> m_T, m_rhs, m_lower, m_diag, m_upper, m_conv, m_src;
-    double m_ambient = 20.0;
-    double m_ambient0 = 20.0;
-    double m_time = 0.0;
+    std::vector<double> m_rhs, m_lower, m_diag, m_upper, m_conv, m_src;
     double m_rhoC = 0.0;
     double m_area = 0.0;
 };

@@ -1,6 +1,7 @@
 #include "DiagnosisReportAssembler.h"
 
 #include "DiscrepancyTerm.h"
+#include "EffectGrammar.h"
 #include "FixedText.h"
 #include "ResidualLocator.h"
 
@@ -66,6 +67,7 @@ void DiagnosisReportAssembler::assemble(DiagnosisReport &report, const ForwardSe
         step.deltaIc = s.outcome.deltaIc;
         step.reasons = s.outcome.reasons;
         step.candidatesTried = s.candidatesTried;
+        step.description = EffectGrammar::describe(step.effect, step.parameters);
         if (s.choice.effect->isEmpirical()) {
             // An empirical term: `unexplained`, with what it resembles as a hypothesis.
             const std::string role = step.effect.substr(std::char_traits<char>::length(CandidateEffectLibrary::kEmpiricalPrefix));
@@ -88,11 +90,17 @@ void DiagnosisReportAssembler::assemble(DiagnosisReport &report, const ForwardSe
             report.effect += (report.effect.empty() ? "" : "+") + s.effect;
         if (report.steps.size() == 1) {
             report.explanation = report.steps.front().explanation;
+            if (!report.steps.front().description.empty() && report.steps.front().effect != "unexplained")
+                report.explanation = "In physical words: " + report.steps.front().description + ". " + report.explanation;
         } else {
             report.explanation = "Several effects the seed-000 model leaves out, accepted one after another (each tested on "
                                  "top of the ones before):";
             for (size_t k = 0; k < report.steps.size(); ++k)
-                report.explanation += " " + std::to_string(k + 1) + ". " + report.steps[k].effect + ": " + report.steps[k].explanation;
+                report.explanation += " " + std::to_string(k + 1) + ". " + report.steps[k].effect + ": " +
+                                      (report.steps[k].description.empty() || report.steps[k].effect == "unexplained"
+                                           ? std::string()
+                                           : "in physical words, " + report.steps[k].description + ". ") +
+                                      report.steps[k].explanation;
         }
         report.corrected = final->eval;
         report.correctedLocation = ResidualLocator::locate(train, final->fit.fit.points);

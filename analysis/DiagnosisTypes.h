@@ -146,6 +146,7 @@ struct DiagnosisPrediction {
 struct DiagnosisStep {
     std::string effect;
     std::string explanation;
+    std::string description;                 // the grammar member in physical words (EffectGrammar)
     std::vector<ParameterValue> parameters;  // the effect's own parameters in the model after this step
     double heldoutBefore_um = 0.0;           // validation RMS of the model before the step
     double heldoutAfter_um = 0.0;

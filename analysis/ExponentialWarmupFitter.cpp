@@ -2,6 +2,7 @@
 
 #include "DataDrivenPredictor.h"
 #include "NonlinearUncertainty.h"
+#include "SolverOptions.h"
 #include "TimeBlockedFolds.h"
 
 #include <ceres/ceres.h>
@@ -133,12 +134,8 @@ Params fitRows(const Data &d, const std::vector<std::size_t> &rows, const std::v
         problem.SetParameterLowerBound(q.data(), 4, 0.2);
         problem.SetParameterUpperBound(q.data(), 4, 4.0);
     }
-    ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_QR;
-    so.logging_type = ceres::SILENT;
-    so.max_num_iterations = 100;
     ceres::Solver::Summary summary;
-    ceres::Solve(so, &problem, &summary);
+    ceres::Solve(SolverOptions::denseQr(100), &problem, &summary);
     if (converged)
         *converged = summary.termination_type == ceres::CONVERGENCE;
     return {q[0], q[1], std::exp(q[2]), std::exp(q[3]), fitExponent ? q[4] : 1.0};

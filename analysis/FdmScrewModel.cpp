@@ -1,7 +1,5 @@
 #include "FdmScrewModel.h"
 
-#include "ScrewExpansion.h"
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -37,25 +35,14 @@ inline int cellFloor(double x, int n)
     const int k = static_cast<int>(c); // truncates toward zero
     return k > c ? k - 1 : k;
 }
-
-void require(bool ok, const char *what)
-{
-    if (!ok)
-        throw std::invalid_argument(what);
-}
 } // namespace
 
 FdmScrewModel::FdmScrewModel(const ScrewGeometry &geometry, const FdmParameters &parameters,
                              const FdmSettings &settings)
-    : m_geometry(geometry), m_parameters(parameters), m_settings(settings)
+    : ScrewCellState(geometry, parameters, settings)
 {
     require(geometry.length_m > 0, "screw length_m must be > 0");
-    require(geometry.diameter_m > 0, "screw diameter_m must be > 0");
-    require(geometry.nutLength_m >= 0, "nut_length_m must be >= 0");
-    require(geometry.fixedBearingLength_m >= 0, "fixed_bearing_length_m must be >= 0");
-    require(geometry.density_kg_m3 > 0, "density_kg_m3 must be > 0");
-    require(geometry.specificHeat_J_kgK > 0, "specific_heat_J_kgK must be > 0");
-    require(parameters.conductivity_W_mK > 0, "conductivity (lambda) must be > 0");
+    requireMaterial(geometry, parameters);
     require(settings.dx_m > 0 && settings.dx_m <= geometry.length_m, "dx_m must be in (0, length]");
     require(settings.dt_s > 0, "dt_s must be > 0");
 
@@ -69,14 +56,6 @@ FdmScrewModel::FdmScrewModel(const ScrewGeometry &geometry, const FdmParameters 
     m_r = parameters.conductivity_W_mK * settings.dt_s / (m_rhoC * settings.dx_m * settings.dx_m);
     m_srcScale = settings.dt_s / (m_rhoC * m_area); // 4 dt / (pi D^2 rho c)
     reset(20.0);
-}
-
-void FdmScrewModel::reset(double ambient_C)
-{
-    std::fill(m_T.begin(), m_T.end(), ambient_C);
-    m_ambient = ambient_C;
-    m_ambient0 = ambient_C;
-    m_time = 0.0;
 }
 
 double FdmScrewModel::maxStableTimeStep(double feed_mm_min) const
@@ -200,23 +179,6 @@ void FdmScrewModel::updateCoefficients(double v)
     m_bearingSrc = m_geometry.fixedBearingLength_m > 0 ? m_srcScale * qB / m_geometry.fixedBearingLength_m : 0.0;
     m_nutSrc = m_geometry.nutLength_m > 0 ? m_srcScale * qN / m_geometry.nutLength_m : 0.0;
     m_coeffFeed = v;
-}
-
-double FdmScrewModel::expansionAt_um(double distanceFromFixedEnd_m) const
-{
-    return ScrewExpansion::expansionAt_um(m_T, m_ambient0, m_settings.dx_m, m_geometry.expansion_per_K,
-                                          distanceFromFixedEnd_m);
-}
-
-double FdmScrewModel::thermalError_um(double axisPosition_mm) const
-{
-    return ScrewExpansion::thermalError_um(m_T, m_ambient0, m_settings.dx_m, m_geometry.expansion_per_K, axisPosition_mm,
-                                           m_parameters.fixedEndPosition_mm);
-}
-
-double FdmScrewModel::elongation_um() const
-{
-    return expansionAt_um(m_settings.dx_m * cellCount());
 }
 
 } // namespace driftlab

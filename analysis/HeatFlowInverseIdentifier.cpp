@@ -1,5 +1,7 @@
 #include "HeatFlowInverseIdentifier.h"
 
+#include "SolverOptions.h"
+
 #include <ceres/ceres.h>
 
 #include <algorithm>
@@ -121,10 +123,7 @@ HeatFlowSearchResult HeatFlowInverseIdentifier::gradient(const Eigen::VectorXd &
         problem.SetParameterLowerBound(u.data(), static_cast<int>(i), lower[i] / scale[i]);
         problem.SetParameterUpperBound(u.data(), static_cast<int>(i), upper[i] / scale[i]);
     }
-    ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_QR;
-    so.logging_type = ceres::SILENT;
-    so.max_num_iterations = 100;
+    ceres::Solver::Options so = SolverOptions::denseQr(100);
     so.function_tolerance = 1e-14;
     so.parameter_tolerance = 1e-12;
     ceres::Solver::Summary summary;

@@ -29,6 +29,7 @@ public:
     struct Options {
         double minT = 5.0;                  // |coefficient| / SE (SE scaled by the effective n)
         double confirmT = 3.0;              // the same law on the validation recording
+        double airJointMinT = 4.0;          // airByJointFit's |c1| / SE (othersim: clean 1.7-1.8, 0.93 um/m/K at 0.5 K/h: 4.4)
         double airLow_um_mK = 0.3, airHigh_um_mK = 3.0;
         double minProbeDrift_um = 1.0;      // the fitted drift's range over the recording
         double minProbeR2 = 0.5;
@@ -58,6 +59,15 @@ public:
     {
         return check(train, validate, trainFit, validateFit, trainInterferometerOnly, validateInterferometerOnly, Options{});
     }
+
+    // Interferometer vs air by a joint refit: the baseline plus (c1 P_x + c0)(T_air - T_air(t_ref))
+    // on the interferometer only, the probe anchoring the screw (the baseline alone absorbs part of
+    // the law). Named when c1 is in the air range at |t| >= airJointMinT, the validation recording refitted
+    // on its own gives the same sign at |t| >= confirmT, and the training fit with the law predicts
+    // the validation interferometer better than the baseline (validateFit). Needs a probe.
+    static std::vector<SensorFinding> airByJointFit(const DiagnosisRecording &train, const DiagnosisRecording &validate,
+                                                    const ScrewGeometry &geometry, const IdentificationOptions &options,
+                                                    const std::vector<ObservationFit> &validateFit, const Options &chainOptions);
 
     // Level steps in one recording's temperature channels (see above).
     static std::vector<SensorFinding> steps(const DiagnosisRecording &r, const Options &options);

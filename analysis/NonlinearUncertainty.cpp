@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace driftlab {
 
@@ -11,10 +12,7 @@ double NonlinearUncertainty::lag1(const std::vector<double> &e)
 {
     if (e.size() < 3)
         return 0.0;
-    double mean = 0;
-    for (double x : e)
-        mean += x;
-    mean /= static_cast<double>(e.size());
+    const double mean = std::accumulate(e.begin(), e.end(), 0.0) / static_cast<double>(e.size());
     double num = 0, den = 0;
     for (std::size_t k = 0; k < e.size(); ++k) {
         den += (e[k] - mean) * (e[k] - mean);

@@ -2,6 +2,7 @@
 
 #include "DataDrivenPredictor.h"
 #include "NonlinearUncertainty.h"
+#include "SolverOptions.h"
 
 #include <Eigen/Dense>
 #include <ceres/ceres.h>
@@ -228,12 +229,8 @@ SyntheticFit SyntheticModelFitter::fit(const SignalTable &table, const Synthetic
     problem.AddResidualBlock(fn, nullptr, q.data());
     problem.SetParameterLowerBound(q.data(), 1, -2.0);
     problem.SetParameterUpperBound(q.data(), 1, 2.0);
-    ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_QR;
-    so.logging_type = ceres::SILENT;
-    so.max_num_iterations = 200;
     ceres::Solver::Summary summary;
-    ceres::Solve(so, &problem, &summary);
+    ceres::Solve(SolverOptions::denseQr(200), &problem, &summary);
 
     DataDrivenModel &m = fit.model;
     m.kind = "synthetic";

@@ -40,6 +40,16 @@ double seconds(std::chrono::steady_clock::time_point a)
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
 }
 
+// Runs `work`, stores its wall time in *elapsed_s and returns what it returned.
+template <class Work>
+auto timed(double *elapsed_s, Work work)
+{
+    const auto a = std::chrono::steady_clock::now();
+    auto result = work();
+    *elapsed_s = seconds(a);
+    return result;
+}
+
 // 64 channels in 6 groups: each group a distinct smooth thermal history, channels = group
 // history + per-channel gain, offset and noise; the target mixes the groups.
 SignalTable syntheticTable(std::size_t samples, int channels)
@@ -309,36 +319,27 @@ void benchFlThermal(const std::string &path)
         SelectionOptions so;
         so.target = target;
         so.rows = train;
-        auto a = std::chrono::steady_clock::now();
-        const SelectionResult sel = SensitivePointSelector::select(t, so);
-        const double tSel = seconds(a);
+        double tSel = 0, tA = 0, tB = 0, tC = 0, tE = 0;
+        const SelectionResult sel = timed(&tSel, [&] { return SensitivePointSelector::select(t, so); });
         LinearLagOptions mlr;
         mlr.kind = "mlr";
         mlr.target = target;
         mlr.inputs = sel.chosen;
         mlr.trainRows = train;
-        a = std::chrono::steady_clock::now();
-        const LinearLagFit fa = LinearLagFitter::fit(t, mlr);
-        const double tA = seconds(a);
+        const LinearLagFit fa = timed(&tA, [&] { return LinearLagFitter::fit(t, mlr); });
         LinearLagOptions ridge = mlr;
         ridge.kind = "ridge";
         ridge.inputs = temps;
-        a = std::chrono::steady_clock::now();
-        const LinearLagFit fb = LinearLagFitter::fit(t, ridge);
-        const double tB = seconds(a);
+        const LinearLagFit fb = timed(&tB, [&] { return LinearLagFitter::fit(t, ridge); });
         LinearLagOptions dyn = ridge;
         dyn.kind = "dynamic";
         dyn.drive = "spindle_rpm";
-        a = std::chrono::steady_clock::now();
-        const LinearLagFit fc = LinearLagFitter::fit(t, dyn);
-        const double tC = seconds(a);
+        const LinearLagFit fc = timed(&tC, [&] { return LinearLagFitter::fit(t, dyn); });
         ExponentialOptions eo;
         eo.target = target;
         eo.drive = "spindle_rpm";
         eo.trainRows = train;
-        a = std::chrono::steady_clock::now();
-        const ExponentialFit fe = ExponentialWarmupFitter::fit(t, eo);
-        const double tE = seconds(a);
+        const ExponentialFit fe = timed(&tE, [&] { return ExponentialWarmupFitter::fit(t, eo); });
         std::string pts;
         for (const std::string &p : sel.chosen)
             pts += (pts.empty() ? "" : ",") + p;

@@ -9,6 +9,8 @@
 
 #include "FdmScrewModel.h"
 
+#include "../tests/support/Table2Duty.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -22,31 +24,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 struct Scenario {
-    double cycle_s = (84.0 + 42.0 + 42.0) * 60.0;
-    double posA_mm = -100.0, posB_mm = 550.0; // nut 41 mm .. 691 mm from the fixed end
-
-    double feed(double t) const
-    {
-        const double u = std::fmod(t, cycle_s);
-        if (u < 84.0 * 60.0)
-            return 6000.0;
-        if (u < 126.0 * 60.0)
-            return 0.0;
-        return 9000.0;
-    }
-    // Path travelled (mm) up to t, then folded onto the stroke (triangle wave).
-    double position(double t) const
-    {
-        const double cycles = std::floor(t / cycle_s);
-        const double u = t - cycles * cycle_s;
-        const double perCycle = 6000.0 / 60.0 * 84.0 * 60.0 + 9000.0 / 60.0 * 42.0 * 60.0;
-        double path = cycles * perCycle + 6000.0 / 60.0 * std::min(u, 84.0 * 60.0);
-        if (u > 126.0 * 60.0)
-            path += 9000.0 / 60.0 * (u - 126.0 * 60.0);
-        const double stroke = posB_mm - posA_mm;
-        const double w = std::fmod(path, 2.0 * stroke);
-        return posA_mm + (w <= stroke ? w : 2.0 * stroke - w);
-    }
+    testduty::Table2Duty duty{-100.0, 550.0}; // nut 41 mm .. 691 mm from the fixed end
     double ambient(double t) const { return 20.0 + 1.5 * std::sin(2.0 * kPi * t / 86400.0); }
 };
 
@@ -135,8 +113,8 @@ Inputs makeInputs(const Scenario &sc, long steps, double dt)
     in.ambient0 = sc.ambient(0.0);
     for (long k = 0; k < steps; ++k) {
         const double t = k * dt;
-        in.position.push_back(sc.position(t));
-        in.feed.push_back(sc.feed(t));
+        in.position.push_back(sc.duty.position(t));
+        in.feed.push_back(sc.duty.feed(t));
         in.ambient.push_back(sc.ambient(t + dt));
     }
     return in;

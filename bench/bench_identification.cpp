@@ -14,6 +14,8 @@
 #include "ScrewModelIdentifier.h"
 #include "SyntheticScrewTest.h"
 
+#include "../tests/support/ScrewTruth.h"
+
 #include <ceres/ceres.h>
 
 #include <algorithm>
@@ -30,18 +32,6 @@ namespace {
 double seconds(std::chrono::steady_clock::time_point a)
 {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
-}
-
-FdmParameters truthParameters()
-{
-    FdmParameters p;
-    p.k1 = 0.8e-3;
-    p.k2 = 22.0;
-    p.k3 = 0.95e-3;
-    p.k4 = 1.5e-3;
-    p.conductivity_W_mK = 420.0;
-    p.fixedEndPosition_mm = -141.0;
-    return p;
 }
 
 // Residuals of the straightforward fit: explicit model stepped over every recording.
@@ -127,7 +117,7 @@ constexpr double ReferenceCost::kScale[6];
 int main()
 {
     const ScrewGeometry g;
-    const FdmParameters truth = truthParameters();
+    const FdmParameters truth = testscrew::truthParameters();
     std::vector<ScrewRecording> recs;
     unsigned seed = 1;
     for (double feed : {3000.0, 6000.0, 9000.0})

@@ -7,6 +7,8 @@
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
 
+#include "../tests/support/OneChannelSession.h"
+
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QImage>
@@ -51,14 +53,11 @@ int main(int argc, char **argv)
     QTextStream err(stderr);
     QTemporaryDir dir;
     SessionStore store(dir.filePath(QStringLiteral("bench.sqlite")));
-    SessionInfo s;
-    s.name = QStringLiteral("bench");
-    s.started = QStringLiteral("2026-11-22T00:00:00Z");
-    const qint64 session = store.createSession(s);
-    ChannelInfo c;
-    c.key = QStringLiteral("S1");
-    c.kind = QStringLiteral("displacement");
-    const qint64 id = store.addChannel(session, c);
+    teststore::OneChannel spec;
+    spec.session = QStringLiteral("bench");
+    spec.started = QStringLiteral("2026-11-22T00:00:00Z");
+    qint64 id = 0;
+    teststore::oneChannelSession(store, &id, spec);
 
     err << "writing " << n << " samples...\n";
     err.flush();

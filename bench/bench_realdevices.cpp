@@ -11,6 +11,8 @@
 #include "ModbusDevice.h"
 #include "SessionStore.h"
 
+#include "../tests/support/OneChannelSession.h"
+
 #include <QCoreApplication>
 #include <QDir>
 #include <QJsonArray>
@@ -196,13 +198,9 @@ int main(int argc, char **argv)
     SessionStore ref(dir.filePath(QStringLiteral("ref.sqlite")));
     const qint64 refSession = ref.createSession(info);
     QVector<qint64> ids;
-    for (int i = 0; i < 64; ++i) {
-        ChannelInfo c;
-        c.key = QStringLiteral("T%1").arg(i);
-        c.kind = QStringLiteral("temperature");
-        c.unit = QStringLiteral("degC");
-        ids.push_back(ref.addChannel(refSession, c));
-    }
+    for (int i = 0; i < 64; ++i)
+        ids.push_back(ref.addChannel(refSession, teststore::channelInfo(QStringLiteral("T%1").arg(i), QStringLiteral("temperature"),
+                                                                        QStringLiteral("degC"))));
     modbus_t *ctx = modbus_new_tcp("127.0.0.1", port);
     if (!ctx || modbus_connect(ctx) != 0) {
         std::fprintf(stderr, "reference: cannot connect\n");

@@ -19,6 +19,8 @@
 #include "SessionStore.h"
 #include "SessionWriter.h"
 
+#include "../tests/support/OneChannelSession.h"
+
 #include <QCoreApplication>
 #include <QDir>
 #include <QFile>
@@ -61,12 +63,62 @@ void removeDb(const QString &path)
         QFile::remove(path + QLatin1String(suffix));
 }
 
+// The 68 channels of the ingest load: 64 temperatures T0..T63 then 4 displacements S1..S4,
+// or (anonymous) C0..C67 of kind "other".
+QVector<qint64> addLoadChannels(SessionWriter &writer, qint64 session, bool anonymous)
+{
+    QVector<qint64> channels;
+    for (int c = 0; c < 68; ++c) {
+        const bool temperature = c < 64;
+        channels.push_back(writer.addChannel(
+            session, anonymous ? teststore::channelInfo(QStringLiteral("C%1").arg(c), QStringLiteral("other"))
+                               : teststore::channelInfo(temperature ? QStringLiteral("T%1").arg(c) : QStringLiteral("S%1").arg(c - 63),
+                                                        temperature ? QStringLiteral("temperature") : QStringLiteral("displacement"))));
+    }
+    return channels;
+}
+
+// One simulated second `s` of the load: 10 samples on each of the first 64 channels, 1000 on
+// each of the last 4. Returns the samples appended.
+qint64 appendLoadSecond(SessionWriter &writer, const QVector<qint64> &channels, int s)
+{
+    qint64 appended = 0;
+    for (int c = 0; c < channels.size(); ++c) {
+        const int per = c < 64 ? 10 : 1000;
+        QVector<double> t(per), v(per);
+        for (int i = 0; i < per; ++i) {
+            t[i] = s + static_cast<double>(i) / per;
+            v[i] = value(c, static_cast<qint64>(s) * per + i, per);
+        }
+        writer.appendSamples(channels[c], t, v);
+        appended += per;
+    }
+    return appended;
+}
+
 void check(bool ok, const QSqlQuery &q, const char *what)
 {
     if (!ok) {
         std::fprintf(stderr, "bench_storage: %s: %s\n", what, qPrintable(q.lastError().text()));
         std::exit(1);
     }
+}
+
+// The version-1 layout as the references use it: a new SQLite file (WAL, synchronous=NORMAL)
+// on the connection `connection` with the narrow table samples(channel_id, t, value) and its
+// (channel_id, t) index.
+QSqlDatabase openNarrowTable(const QString &connection, const QString &path)
+{
+    QSqlDatabase db = QSqlDatabase::addDatabase(QStringLiteral("QSQLITE"), connection);
+    db.setDatabaseName(path);
+    db.open();
+    QSqlQuery q(db);
+    q.exec(QStringLiteral("PRAGMA journal_mode=WAL"));
+    q.exec(QStringLiteral("PRAGMA synchronous=NORMAL"));
+    check(q.exec(QStringLiteral("CREATE TABLE samples(channel_id INTEGER NOT NULL, t REAL NOT NULL, value REAL NOT NULL)")), q,
+          "create");
+    check(q.exec(QStringLiteral("CREATE INDEX samples_channel_time ON samples(channel_id, t)")), q, "index");
+    return db;
 }
 
 // --- 1. layout ------------------------------------------------------------------------------
@@ -81,15 +133,7 @@ void layoutBenchmark(const QString &dir)
     double narrowIngest = 0, narrowRange = 0, narrowDecim = 0;
     qint64 narrowRangeRows = 0;
     {
-        QSqlDatabase db = QSqlDatabase::addDatabase(QStringLiteral("QSQLITE"), QStringLiteral("narrow"));
-        db.setDatabaseName(narrowPath);
-        db.open();
-        QSqlQuery q(db);
-        q.exec(QStringLiteral("PRAGMA journal_mode=WAL"));
-        q.exec(QStringLiteral("PRAGMA synchronous=NORMAL"));
-        check(q.exec(QStringLiteral("CREATE TABLE samples(channel_id INTEGER NOT NULL, t REAL NOT NULL, value REAL NOT NULL)")), q,
-              "create");
-        check(q.exec(QStringLiteral("CREATE INDEX samples_channel_time ON samples(channel_id, t)")), q, "index");
+        QSqlDatabase db = openNarrowTable(QStringLiteral("narrow"), narrowPath);
         auto t0 = Clock::now();
         QSqlQuery ins(db);
         ins.prepare(QStringLiteral("INSERT INTO samples(channel_id, t, value) VALUES(?, ?, ?)"));
@@ -152,14 +196,11 @@ void layoutBenchmark(const QString &dir)
     int level = 0;
     {
         SessionStore store(blockPath);
-        SessionInfo info;
-        info.name = QStringLiteral("layout");
-        info.started = QStringLiteral("2026-11-22T00:00:00Z");
-        const qint64 session = store.createSession(info);
-        ChannelInfo c;
-        c.key = QStringLiteral("S1");
-        c.kind = QStringLiteral("displacement");
-        const qint64 channel = store.addChannel(session, c);
+        teststore::OneChannel spec;
+        spec.session = QStringLiteral("layout");
+        spec.started = QStringLiteral("2026-11-22T00:00:00Z");
+        qint64 channel = 0;
+        teststore::oneChannelSession(store, &channel, spec);
         auto t0 = Clock::now();
         QVector<double> t(1000), v(1000);
         store.begin();
@@ -216,14 +257,7 @@ double naiveReference(const QString &dir, qint64 *inserted)
     removeDb(path);
     double rate = 0;
     {
-        QSqlDatabase db = QSqlDatabase::addDatabase(QStringLiteral("QSQLITE"), QStringLiteral("naive"));
-        db.setDatabaseName(path);
-        db.open();
-        QSqlQuery q(db);
-        q.exec(QStringLiteral("PRAGMA journal_mode=WAL"));
-        q.exec(QStringLiteral("PRAGMA synchronous=NORMAL"));
-        q.exec(QStringLiteral("CREATE TABLE samples(channel_id INTEGER NOT NULL, t REAL NOT NULL, value REAL NOT NULL)"));
-        q.exec(QStringLiteral("CREATE INDEX samples_channel_time ON samples(channel_id, t)"));
+        QSqlDatabase db = openNarrowTable(QStringLiteral("naive"), path);
         QSqlQuery ins(db);
         ins.prepare(QStringLiteral("INSERT INTO samples(channel_id, t, value) VALUES(?, ?, ?)"));
         const auto t0 = Clock::now();
@@ -259,29 +293,10 @@ double scalarOnlyRate(const QString &dir, int simSeconds)
     const auto t0 = Clock::now();
     {
         SessionWriter writer(path);
-        SessionInfo info;
-        info.name = QStringLiteral("scalar ingest");
-        info.started = QStringLiteral("2026-11-22T00:00:00Z");
-        const qint64 session = writer.createSession(info);
-        QVector<qint64> channels;
-        for (int c = 0; c < 68; ++c) {
-            ChannelInfo ch;
-            ch.key = QStringLiteral("C%1").arg(c);
-            ch.kind = QStringLiteral("other");
-            channels.push_back(writer.addChannel(session, ch));
-        }
-        for (int s = 0; s < simSeconds; ++s) {
-            for (int c = 0; c < 68; ++c) {
-                const int per = c < 64 ? 10 : 1000;
-                QVector<double> t(per), v(per);
-                for (int i = 0; i < per; ++i) {
-                    t[i] = s + static_cast<double>(i) / per;
-                    v[i] = value(c, static_cast<qint64>(s) * per + i, per);
-                }
-                writer.appendSamples(channels[c], t, v);
-                scalar += per;
-            }
-        }
+        const qint64 session = teststore::emptySession(writer, QStringLiteral("scalar ingest"), QStringLiteral("2026-11-22T00:00:00Z"));
+        const QVector<qint64> channels = addLoadChannels(writer, session, true);
+        for (int s = 0; s < simSeconds; ++s)
+            scalar += appendLoadSecond(writer, channels, s);
         writer.finish();
     }
     const double rate = static_cast<double>(scalar) / seconds(t0, Clock::now());
@@ -311,28 +326,10 @@ QString ingestBenchmark(const QString &dir, int simSeconds)
     const auto t0 = Clock::now();
     {
         SessionWriter writer(path);
-        SessionInfo info;
-        info.name = QStringLiteral("ingest benchmark");
-        info.started = QStringLiteral("2026-11-22T00:00:00Z");
-        const qint64 session = writer.createSession(info);
-        QVector<qint64> channels;
-        for (int c = 0; c < 68; ++c) {
-            ChannelInfo ch;
-            ch.key = c < 64 ? QStringLiteral("T%1").arg(c) : QStringLiteral("S%1").arg(c - 63);
-            ch.kind = c < 64 ? QStringLiteral("temperature") : QStringLiteral("displacement");
-            channels.push_back(writer.addChannel(session, ch));
-        }
+        const qint64 session = teststore::emptySession(writer, QStringLiteral("ingest benchmark"), QStringLiteral("2026-11-22T00:00:00Z"));
+        const QVector<qint64> channels = addLoadChannels(writer, session, false);
         for (int s = 0; s < simSeconds; ++s) {
-            for (int c = 0; c < 68; ++c) {
-                const int per = c < 64 ? 10 : 1000;
-                QVector<double> t(per), v(per);
-                for (int i = 0; i < per; ++i) {
-                    t[i] = s + static_cast<double>(i) / per;
-                    v[i] = value(c, static_cast<qint64>(s) * per + i, per);
-                }
-                writer.appendSamples(channels[c], t, v);
-                scalar += per;
-            }
+            scalar += appendLoadSecond(writer, channels, s);
             IrFrame f;
             f.t = s;
             f.width = 640;

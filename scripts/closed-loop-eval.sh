@@ -20,10 +20,7 @@ speed="${1:-120}"
 duration="${2:-2:48:00}"
 train_seed="${3:-11}"
 test_seed="${4:-12}"
-cli="${DRIFTLAB_CLI:-$src/build/app/driftlab-cli}"
-[ -x "$cli" ] || { echo "closed-loop-eval: no $cli (build first: scripts/build.sh)" >&2; exit 2; }
-work="$(mktemp -d)"
-trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT
+. "$src/scripts/cli-work.sh" closed-loop-eval
 seconds=$(python3 -c "
 d='$duration'.split(':'); print(int(d[0])*3600+int(d[1])*60+int(d[2]) if len(d)==3 else int(float(d[0])))")
 wall=$(python3 -c "print(int($seconds/$speed)+1)")

@@ -5,15 +5,16 @@ spindle switches on from rest (the first also holds the idle minutes before it) 
 the next such switch: 6 cycles of 6-8 h (1250, 2500, 3750, 5000, 3500 rpm for 4 h on / 4 h off,
 then the 500-4500 rpm steps). Each bundle's time restarts at 0; values are unchanged (the
 probes are not re-zeroed: a cycle starts where the previous one left the machine). Channel ids
-as scripts/fl-thermal-bundle.py. Standard library only.
+as scripts/fl-thermal-bundle.py (scripts/fl_thermal.py). Standard library only.
 
     scripts/fl-thermal-cycles.py ../shared/extdata/fl_thermal/fl_thermal_data.csv OUTDIR
 """
 import csv
 import datetime
-import json
 import os
 import sys
+
+import fl_thermal
 
 
 def main():
@@ -26,18 +27,7 @@ def main():
     if header[0] != "time_s" or "spindle_rpm" not in header:
         sys.exit(f"{source}: line 1: expected time_s first and a spindle_rpm column")
     rpm = header.index("spindle_rpm")
-    channels, ids = [], ["time_s"]
-    for name in header[1:]:
-        if name.endswith("_C"):
-            cid, kind, unit, role = name[:-2], "temperature", "degC", ""
-        elif name.endswith("_um"):
-            cid, kind, unit, role = name[:-3], "displacement", "um", ""
-        elif name == "spindle_rpm":
-            cid, kind, unit, role = name, "other", "rpm", "spindle"
-        else:
-            sys.exit(f"{source}: line 1: unknown column {name!r}")
-        ids.append(cid)
-        channels.append({"id": cid, "kind": kind, "sensor": "unknown", "unit": unit, "role": role})
+    ids, channels = fl_thermal.channels(source, header)
     data = rows[1:]
     starts = [0]
     for k in range(1, len(data)):
@@ -58,13 +48,9 @@ def main():
             for row in data[begin:end]:
                 w.writerow([f"{float(row[0]) - t0:g}"] + row[1:])
         hours = t0 / 3600.0
-        manifest = {"format": "thermal-error-bundle", "version": 1,
-                    "session": {"name": f"FL_THERMAL cycle {n} (from {hours:.2f} h)",
-                                "started": (datetime.datetime(2024, 5, 23, tzinfo=datetime.timezone.utc)
-                                            + datetime.timedelta(seconds=t0)).strftime("%Y-%m-%dT%H:%M:%SZ")},
-                    "machine": {"name": "CNC spindle (FL_THERMAL)"}, "channels": channels}
-        with open(os.path.join(bundle, "manifest.json"), "w") as f:
-            json.dump(manifest, f, indent=1)
+        started = datetime.datetime(2024, 5, 23, tzinfo=datetime.timezone.utc) + datetime.timedelta(seconds=t0)
+        fl_thermal.write_manifest(bundle, {"name": f"FL_THERMAL cycle {n} (from {hours:.2f} h)",
+                                           "started": started.strftime("%Y-%m-%dT%H:%M:%SZ")}, channels)
         print(f"{bundle}: {end - begin} samples from {hours:.2f} h")
 
 

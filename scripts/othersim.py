@@ -43,6 +43,22 @@ Effects (physics the seed-000 model leaves out), fixed per machine:
   free_end_bearing_heat  k_F v into the free-end bearing section (k_F = 0.8 k_B)
   holding_heat           P_hold = 4 W into the fixed-end section while the axis stands still
   screw_coolant          g (T_c - T) per metre of screw, g = 8 W/(m K), chiller temperature T_c
+
+Measurement-chain faults (--sensor-fault, issue 36; the machine is not changed, a sensor reads
+wrong; --fault-size scales the law, default 1):
+  air_compensation  the interferometer's air compensation is frozen at the reference run: the
+                    laser head stands 150 mm beyond the travel's far end (the end away from
+                    the fixed end), and a reading carries +0.93 um/m/K x beam length (head to
+                    target) x (T_air - T_air at the point's reference run)
+  probe_holder      the eddy-current probe's bracket is bolted to the bed casting: the reading
+                    moves by -2.5 um/K x the bracket's temperature rise, the bracket following
+                    the structure temperature through a 15-min lag
+  pt100_step        the structure PT100 (TC06) reads 0.5 K low from 40 % of the recording on
+                    (a contact that worked loose)
+  pt100_drift       the ambient PT100 (TC01) drifts upwards at 0.25 K/h from 30 % of the
+                    recording on (self-heating after a cable fault); the interferometer's own
+                    compensation reads the true air
+The fault and its law go to the manifest's "othersim" block (not read by DriftLab).
 """
 
 import argparse
@@ -53,6 +69,7 @@ import random
 import sys
 
 EFFECTS = ("none", "structure_offset", "free_end_bearing_heat", "holding_heat", "screw_coolant")
+SENSOR_FAULTS = ("none", "air_compensation", "probe_holder", "pt100_step", "pt100_drift")
 
 
 # ----------------------------------------------------------------------------------------------
@@ -222,10 +239,13 @@ def duty_cycle(seed, total_s, kind):
     return phases
 
 
-def ambient(t, seed, start_C):
-    """Slowly drifting hall temperature: a linear trend and a 6-hour swing (0.1 - 0.2 K/h)."""
+def ambient(t, seed, start_C, trend_K_h=None):
+    """Slowly drifting hall temperature: a linear trend and a 6-hour swing (0.1 - 0.2 K/h);
+    trend_K_h replaces the seeded trend (--hall-trend)."""
     r = random.Random(seed * 31 + 5)
     trend = r.uniform(-0.15, 0.15) / 3600.0
+    if trend_K_h is not None:
+        trend = trend_K_h / 3600.0
     amp = r.uniform(0.1, 0.25)
     phase = r.uniform(0.0, 2.0 * math.pi)
     return start_C + trend * t + amp * (math.sin(2.0 * math.pi * t / 21600.0 + phase) - math.sin(phase))
@@ -436,12 +456,12 @@ def simulate(args, m):
                 q[i] += qh * w / LB
         exposed = [max(0.0, 1.0 - covered_fixed[i] - nut_cover[i]) for i in range(screw.n)]
         h = m["h0_W_m2K"] + m["h1_W_m2K_per_mm_min"] * v_mean
-        ta = ambient(t + 0.5 * dt, args.seed, t_amb0)
+        ta = ambient(t + 0.5 * dt, args.seed, t_amb0, getattr(args, "hall_trend", None))
         tc = chiller(t + 0.5 * dt)
         screw.step(dt, q, exposed, h, ta, m["coolant_W_mK"] if g_on else 0.0, tc)
         energy_in += sum(q) * dt
         if wide:
-            ta_mid = ambient(t + 0.5 * dt, args.seed, t_amb0)
+            ta_mid = ambient(t + 0.5 * dt, args.seed, t_amb0, getattr(args, "hall_trend", None))
             housing_body += dt / housing_capacity * (0.3 * qb - q_contact - housing_loss * (housing_body - ta_mid))
         t += dt
         # auxiliary temperatures
@@ -468,7 +488,7 @@ def simulate(args, m):
     return {
         "dt": dt, "kin": (kin_t, kin_x, kin_f), "state_t": state_t, "probe": state_probe, "aux": state_aux,
         "measurements": measurements, "events": events, "targets": targets, "screw": screw, "cells": m["cells"],
-        "energy_in": energy_in, "rnd": rnd, "total_s": total_s,
+        "energy_in": energy_in, "rnd": rnd, "total_s": total_s, "run_times": run_times,
     }
 
 
@@ -543,6 +563,17 @@ def write_bundle(args, m, sim):
     offsets = [rnd.uniform(-0.15, 0.15) if wide else 0.0 for _ in pt]
     wander = [0.0 for _ in pt]
     wander_step = 0.02 * math.sqrt(pt_period / 3600.0)
+    fault = getattr(args, "sensor_fault", "none")
+    size = getattr(args, "fault_size", 1.0)
+
+    def pt100_fault(cid, t):
+        """What a faulty PT100 adds to its reading (K)."""
+        if fault == "pt100_step" and cid == "TC06" and t >= 0.4 * total_s:
+            return -0.5 * size
+        if fault == "pt100_drift" and cid == "TC01" and t >= 0.3 * total_s:
+            return 0.25 * size * (t - 0.3 * total_s) / 3600.0
+        return 0.0
+
     t = 0.7
     while t <= total_s:
         for k, (c, ys) in enumerate(zip(pt, series)):
@@ -550,19 +581,25 @@ def write_bundle(args, m, sim):
                 wander[k] += rnd.gauss(0.0, wander_step)
             if rnd.random() < 0.01:
                 continue
-            put(t, c[0], fmt(interp(st, ys, t) + offsets[k] + wander[k] + rnd.gauss(0.0, pt_noise), 2))
+            put(t, c[0], fmt(interp(st, ys, t) + offsets[k] + wander[k] + pt100_fault(c[0], t) + rnd.gauss(0.0, pt_noise), 2))
         t += pt_period
     # eddy-current probe: every 2 s on the even seconds, 0.2 um noise, +2.0 um zero offset,
     # ~0.5 % dropouts written as "nan"
     # --wide: 1 Hz, the holder drifting 0.3 um/h
     probe_period = 1.0 if wide else 2.0
     drift_um_s = 0.3 / 3600.0 if wide else 0.0
+    # probe_holder: the bracket follows the bed casting (aux 5) through a 15-min lag
+    holder = [0.0] * len(st)
+    if fault == "probe_holder":
+        bracket = Lag(aux[0][5], 900.0)
+        for i in range(1, len(st)):
+            holder[i] = -2.5 * size * (bracket.update(aux[i][5], st[i] - st[i - 1]) - aux[0][5])
     t = 0.0
     while t <= total_s:
         if rnd.random() < 0.005:
             put(t, "EC1", "nan")
         else:
-            put(t, "EC1", fmt(interp(st, probe, t) + 2.0 + drift_um_s * t + rnd.gauss(0.0, 0.2), 2))
+            put(t, "EC1", fmt(interp(st, probe, t) + interp(st, holder, t) + 2.0 + drift_um_s * t + rnd.gauss(0.0, 0.2), 2))
         t += probe_period
 
     with open(os.path.join(out, "channels.csv"), "w", encoding="utf-8", newline="\n") as fh:
@@ -585,6 +622,15 @@ def write_bundle(args, m, sim):
         # beam path, from the reference run on
         refraction_ppm = 0.0
         last_t = None
+        # air_compensation: the compensation frozen at the start of the reference run; the laser
+        # head 150 mm beyond the travel's end away from the fixed end
+        air = [a[0] for a in aux]
+        air_frozen = interp(st, air, sim["run_times"][0]) if sim["run_times"] else air[0]
+        far_positive = m["true_fixed_end_mm"] < m["travel_mm"][0]
+
+        def air_beam_m(x):
+            head = m["travel_mm"][1] + 150.0 if far_positive else m["travel_mm"][0] - 150.0
+            return abs(head - x) / 1000.0
         for (tm, run, x, thermal) in sim["measurements"]:
             if wide and run > 0:
                 refraction_ppm += rnd.gauss(0.0, 0.4 * math.sqrt(max(0.0, tm - last_t) / 3600.0)) if last_t is not None else 0.0
@@ -592,6 +638,8 @@ def write_bundle(args, m, sim):
             elif wide:
                 last_t = tm
             drift = refraction_ppm * 1e-6 * (x - m["travel_mm"][0]) * 1e3
+            if fault == "air_compensation":
+                drift += 0.93 * size * air_beam_m(x) * (interp(st, air, tm) - air_frozen)
             noise = rnd.gauss(0.0, 0.3 if wide else 0.25)
             fh.write("%.1f,%d,%.3f,%.3f\n" % (tm, run, x, pitch(x) + thermal + drift + noise))
 
@@ -628,7 +676,8 @@ def write_bundle(args, m, sim):
         "channels": channels,
         "interferometer": {"file": "interferometer.csv", "unit": "um", "reference_run": 0},
         "events": "events.csv",
-        "othersim": {"generator": "scripts/othersim.py", "grid_cells": sim["cells"], "wide": bool(getattr(args, "wide", False)), "step_s": sim["dt"]},
+        "othersim": {"generator": "scripts/othersim.py", "grid_cells": sim["cells"], "wide": bool(getattr(args, "wide", False)), "step_s": sim["dt"],
+                    "sensor_fault": fault, "fault_size": size},
     }
     with open(os.path.join(out, "manifest.json"), "w", encoding="utf-8", newline="\n") as fh:
         json.dump(manifest, fh, indent=2)
@@ -776,6 +825,11 @@ def main(argv):
     p.add_argument("--name", default="")
     p.add_argument("--wide", action="store_true",
                    help="widen the differences from DriftLab's rig: grid, housing body, noise and sampling (see above)")
+    p.add_argument("--hall-trend", type=float, default=None,
+                   help="the hall temperature's linear trend, K/h (default: seeded, -0.15..0.15)")
+    p.add_argument("--sensor-fault", choices=SENSOR_FAULTS, default="none",
+                   help="a measurement-chain fault (see above); the machine is unchanged")
+    p.add_argument("--fault-size", type=float, default=1.0, help="scale of the sensor fault's law")
     p.add_argument("--selftest", action="store_true", help="run the physics checks and exit")
     args = p.parse_args(argv)
     if args.selftest:
@@ -795,8 +849,9 @@ def main(argv):
     m = perturb_machine(m, args.machine_seed)
     sim = simulate(args, m)
     write_bundle(args, m, sim)
-    print("othersim: %s (%s, seed %d, %g h, step %.2f s, %d interferometer points)"
-          % (args.out, args.effect, args.seed, args.hours, sim["dt"], len(sim["measurements"])), file=sys.stderr)
+    print("othersim: %s (%s, sensor fault %s, seed %d, %g h, step %.2f s, %d interferometer points)"
+          % (args.out, args.effect, args.sensor_fault, args.seed, args.hours, sim["dt"], len(sim["measurements"])),
+          file=sys.stderr)
     return 0
 
 

@@ -18,10 +18,7 @@ src="$(cd "$(dirname "$0")/.." && pwd)"
 hours="${1:-24}"
 speed="${2:-240}"
 bound_mb="${BOUND_MB:-300}"
-cli="${DRIFTLAB_CLI:-$src/build/app/driftlab-cli}"
-[ -x "$cli" ] || { echo "soak: no $cli (build first: scripts/build.sh)" >&2; exit 2; }
-work="$(mktemp -d)"
-trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT
+. "$src/scripts/cli-work.sh" soak
 duration=$(python3 -c "print(int(round($hours*3600)))")
 
 # Outages in session seconds: PT100 module 120 s every 2 h, probe 90 s every 3 h, CNC 150 s

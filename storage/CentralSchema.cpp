@@ -16,6 +16,26 @@ namespace {
 // put a temporary table named like ours in front of it. @S@ is the quoted schema.
 const char *const kSetPath = " SET search_path = @S@, pg_temp ";
 
+// The trigger function that lets a row of a session's table be written only as
+// driftlab_may_write allows; sessionOf is the SQL for the row's session id, %1 standing for
+// OLD or NEW.
+QString guardRows(const char *name, const QString &sessionOf, const QString &path)
+{
+    return QStringLiteral("CREATE OR REPLACE FUNCTION %1() RETURNS trigger LANGUAGE plpgsql").arg(QLatin1String(name)) + path +
+           QStringLiteral(R"(AS $f$
+BEGIN
+  IF TG_OP <> 'INSERT' THEN
+    PERFORM driftlab_may_write(%1, TG_TABLE_NAME::text, TG_OP);
+  END IF;
+  IF TG_OP <> 'DELETE' THEN
+    PERFORM driftlab_may_write(%2, TG_TABLE_NAME::text, TG_OP);
+    RETURN NEW;
+  END IF;
+  RETURN OLD;
+END $f$)")
+               .arg(sessionOf.arg(QLatin1String("OLD")), sessionOf.arg(QLatin1String("NEW")));
+}
+
 QStringList statements()
 {
     const QString path = QString::fromLatin1(kSetPath);
@@ -117,30 +137,8 @@ BEGIN
       USING ERRCODE = '42501';
   END IF;
 END $f$)"),
-        QStringLiteral("CREATE OR REPLACE FUNCTION driftlab_guard_session_rows() RETURNS trigger LANGUAGE plpgsql") + path +
-            QStringLiteral(R"(AS $f$
-BEGIN
-  IF TG_OP <> 'INSERT' THEN
-    PERFORM driftlab_may_write(OLD.session_id, TG_TABLE_NAME::text, TG_OP);
-  END IF;
-  IF TG_OP <> 'DELETE' THEN
-    PERFORM driftlab_may_write(NEW.session_id, TG_TABLE_NAME::text, TG_OP);
-    RETURN NEW;
-  END IF;
-  RETURN OLD;
-END $f$)"),
-        QStringLiteral("CREATE OR REPLACE FUNCTION driftlab_guard_channel_rows() RETURNS trigger LANGUAGE plpgsql") + path +
-            QStringLiteral(R"(AS $f$
-BEGIN
-  IF TG_OP <> 'INSERT' THEN
-    PERFORM driftlab_may_write((SELECT session_id FROM channels WHERE id = OLD.channel_id), TG_TABLE_NAME::text, TG_OP);
-  END IF;
-  IF TG_OP <> 'DELETE' THEN
-    PERFORM driftlab_may_write((SELECT session_id FROM channels WHERE id = NEW.channel_id), TG_TABLE_NAME::text, TG_OP);
-    RETURN NEW;
-  END IF;
-  RETURN OLD;
-END $f$)"),
+        guardRows("driftlab_guard_session_rows", QStringLiteral("%1.session_id"), path),
+        guardRows("driftlab_guard_channel_rows", QStringLiteral("(SELECT session_id FROM channels WHERE id = %1.channel_id)"), path),
         // Sessions: a rig adds its own open; it only marks it complete, once, with the digest the
         // server computes; nobody but the owner deletes or changes a finished one.
         QStringLiteral("CREATE OR REPLACE FUNCTION driftlab_guard_sessions() RETURNS trigger LANGUAGE plpgsql") + path +

@@ -61,24 +61,29 @@ public:
         }
         m_hash.add(m_buffer);
     }
+    // Each value in turn, by its type: text(), json(), integer() or real() (a missing real is NaN).
+    template <class... Values>
+    void add(const Values &...values)
+    {
+        (one(values), ...);
+    }
     QString hex() { return m_hash.hex(); }
 
 private:
+    void one(const QString &s) { text(s); }
+    void one(const QJsonObject &o) { json(o); }
+    void one(int v) { integer(v); }
+    void one(qint64 v) { integer(v); }
+    void one(double v) { real(v); }
+    void one(const std::optional<double> &v) { real(v ? *v : std::nan("")); }
+
     Sha256 m_hash;
     QByteArray m_buffer;
 };
 
 void describe(Digest &d, const SessionInfo &s)
 {
-    d.text(s.uuid);
-    d.text(s.contentSha256);
-    d.text(s.name);
-    d.text(s.started);
-    d.text(s.operatorName);
-    d.text(s.notes);
-    d.json(s.machine);
-    d.json(s.manifest);
-    d.integer(s.complete ? 1 : 0);
+    d.add(s.uuid, s.contentSha256, s.name, s.started, s.operatorName, s.notes, s.machine, s.manifest, s.complete ? 1 : 0);
 }
 
 } // namespace
@@ -187,9 +192,7 @@ QString SessionCopier::walk(const SessionStore &store, qint64 sessionId, Counts 
         writer->session(info);
     for (const ChannelInfo &ch : store.channels(sessionId)) {
         ++c.channels;
-        for (const QString &s : {ch.key, ch.kind, ch.sensor, ch.unit, ch.location, ch.role})
-            d.text(s);
-        d.real(ch.screwPosition_m ? *ch.screwPosition_m : std::nan(""));
+        d.add(ch.key, ch.kind, ch.sensor, ch.unit, ch.location, ch.role, ch.screwPosition_m);
         if (writer)
             writer->channel(ch);
         qint64 n = 0;
@@ -208,11 +211,7 @@ QString SessionCopier::walk(const SessionStore &store, qint64 sessionId, Counts 
     for (const IrFrame &f : store.irFrames(sessionId)) {
         ++c.frames;
         const IrFrame full = store.irFrame(f.id);
-        d.real(full.t);
-        d.integer(full.width);
-        d.integer(full.height);
-        d.text(full.sourceName);
-        d.integer(full.pixels.size());
+        d.add(full.t, full.width, full.height, full.sourceName, full.pixels.size());
         d.words(full.pixels);
         if (writer)
             writer->frame(full);
@@ -220,34 +219,22 @@ QString SessionCopier::walk(const SessionStore &store, qint64 sessionId, Counts 
     const QVector<InterferometerPoint> points = store.interferometerPoints(sessionId);
     for (const InterferometerPoint &p : points) {
         ++c.points;
-        d.real(p.t);
-        d.integer(p.run);
-        d.real(p.position_mm);
-        d.real(p.error_um);
-        d.text(p.direction);
+        d.add(p.t, p.run, p.position_mm, p.error_um, p.direction);
     }
     const QVector<EventRecord> events = store.events(sessionId);
     for (const EventRecord &e : events) {
         ++c.events;
-        d.real(e.t);
-        d.text(e.label);
+        d.add(e.t, e.label);
     }
     const QVector<FittedModel> models = store.fittedModels(sessionId);
     for (const FittedModel &m : models) {
         ++c.models;
-        d.text(m.model);
-        d.text(m.created);
-        d.json(m.parameters);
-        d.json(m.uncertainties);
-        d.json(m.provenance);
-        d.json(m.metrics);
+        d.add(m.model, m.created, m.parameters, m.uncertainties, m.provenance, m.metrics);
     }
     const QVector<AnalysisResult> results = store.analysisResults(sessionId);
     for (const AnalysisResult &r : results) {
         ++c.results;
-        d.text(r.kind);
-        d.text(r.created);
-        d.json(r.result);
+        d.add(r.kind, r.created, r.result);
     }
     if (writer)
         writer->rest(points, events, models, results);

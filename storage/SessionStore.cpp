@@ -158,15 +158,8 @@ qint64 SessionStore::createSession(const SessionInfo &info)
     QSqlQuery q = SqlSupport::prepared(m_db, m_path,
                            QStringLiteral("INSERT INTO sessions(name, started, operator, notes, machine_json, complete, "
                                           "manifest_json, uuid, content_sha256) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?)"));
-    q.addBindValue(text(info.name));
-    q.addBindValue(text(info.started));
-    q.addBindValue(text(info.operatorName));
-    q.addBindValue(text(info.notes));
-    q.addBindValue(QString::fromUtf8(QJsonDocument(info.machine).toJson(QJsonDocument::Compact)));
-    q.addBindValue(info.complete ? 1 : 0);
-    q.addBindValue(json(info.manifest));
-    q.addBindValue(uuid);
-    q.addBindValue(text(info.contentSha256));
+    SqlSupport::bind(q, {text(info.name), text(info.started), text(info.operatorName), text(info.notes), json(info.machine),
+                         info.complete ? 1 : 0, json(info.manifest), uuid, text(info.contentSha256)});
     SqlSupport::run(q, m_path, QStringLiteral("cannot create session"));
     return SqlSupport::insertedId(q, m_db, m_path);
 }
@@ -229,14 +222,8 @@ qint64 SessionStore::addChannel(qint64 sessionId, const ChannelInfo &c)
     QSqlQuery q = SqlSupport::prepared(m_db, m_path,
                            QStringLiteral("INSERT INTO channels(session_id, key, kind, sensor, unit, location, role, "
                                           "screw_position_m) VALUES(?, ?, ?, ?, ?, ?, ?, ?)"));
-    q.addBindValue(sessionId);
-    q.addBindValue(text(c.key));
-    q.addBindValue(text(c.kind));
-    q.addBindValue(text(c.sensor));
-    q.addBindValue(text(c.unit));
-    q.addBindValue(text(c.location));
-    q.addBindValue(text(c.role));
-    q.addBindValue(optionalReal(c.screwPosition_m));
+    SqlSupport::bind(q, {sessionId, text(c.key), text(c.kind), text(c.sensor), text(c.unit), text(c.location), text(c.role),
+                         optionalReal(c.screwPosition_m)});
     SqlSupport::run(q, m_path, QStringLiteral("cannot add channel '%1'").arg(c.key));
     return SqlSupport::insertedId(q, m_db, m_path);
 }
@@ -254,13 +241,7 @@ qint64 SessionStore::addCompressedIrFrame(qint64 sessionId, const IrFrame &frame
 {
     QSqlQuery &q = cached("INSERT INTO ir_frames(session_id, t, width, height, encoding, source_name, data) "
                           "VALUES(?, ?, ?, ?, ?, ?, ?)");
-    q.bindValue(0, sessionId);
-    q.bindValue(1, frame.t);
-    q.bindValue(2, frame.width);
-    q.bindValue(3, frame.height);
-    q.bindValue(4, IrFrameCodec::storeEncoding());
-    q.bindValue(5, text(frame.sourceName));
-    q.bindValue(6, compressed);
+    SqlSupport::bind(q, {sessionId, frame.t, frame.width, frame.height, IrFrameCodec::storeEncoding(), text(frame.sourceName), compressed});
     SqlSupport::run(q, m_path, QStringLiteral("cannot store infrared frame at %1 s").arg(frame.t));
     return SqlSupport::insertedId(q, m_db, m_path);
 }
@@ -271,12 +252,7 @@ void SessionStore::addInterferometerPoints(qint64 sessionId, const QVector<Inter
         QSqlQuery &q = cached("INSERT INTO interferometer_points(session_id, t, run, position_mm, error_um, direction) "
                               "VALUES(?, ?, ?, ?, ?, ?)");
         for (const InterferometerPoint &p : points) {
-            q.bindValue(0, sessionId);
-            q.bindValue(1, p.t);
-            q.bindValue(2, p.run);
-            q.bindValue(3, p.position_mm);
-            q.bindValue(4, p.error_um);
-            q.bindValue(5, text(p.direction));
+            SqlSupport::bind(q, {sessionId, p.t, p.run, p.position_mm, p.error_um, text(p.direction)});
             SqlSupport::run(q, m_path, QStringLiteral("cannot store interferometer point"));
         }
     });
@@ -291,14 +267,11 @@ qint64 SessionStore::addFittedModel(qint64 sessionId, const FittedModel &model)
                                                 "provenance_json, metrics_json) VALUES(?, ?, ?, ?, ?, ?)")
                                : QStringLiteral("INSERT INTO fitted_models(session_id, model, parameters_json, uncertainties_json, "
                                                 "provenance_json, metrics_json, created) VALUES(?, ?, ?, ?, ?, ?, ?)"));
-    q.addBindValue(sessionId);
-    q.addBindValue(text(model.model));
-    q.addBindValue(json(model.parameters));
-    q.addBindValue(json(model.uncertainties));
-    q.addBindValue(json(model.provenance));
-    q.addBindValue(json(model.metrics));
+    QVariantList values{sessionId, text(model.model), json(model.parameters), json(model.uncertainties), json(model.provenance),
+                        json(model.metrics)};
     if (!model.created.isEmpty())
-        q.addBindValue(model.created);
+        values.append(model.created);
+    SqlSupport::bind(q, values);
     SqlSupport::run(q, m_path, QStringLiteral("cannot store fitted model '%1'").arg(model.model));
     return SqlSupport::insertedId(q, m_db, m_path);
 }
@@ -332,9 +305,7 @@ void SessionStore::appendSamples(qint64 channelId, const QVector<double> &t, con
 void SessionStore::addEvent(qint64 sessionId, const EventRecord &event)
 {
     QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("INSERT INTO events(session_id, t, label) VALUES(?, ?, ?)"));
-    q.addBindValue(sessionId);
-    q.addBindValue(event.t);
-    q.addBindValue(text(event.label));
+    SqlSupport::bind(q, {sessionId, event.t, text(event.label)});
     SqlSupport::run(q, m_path, QStringLiteral("cannot add event"));
 }
 
@@ -351,9 +322,7 @@ void SessionStore::setComplete(qint64 sessionId, bool complete, const QString &c
         m_samples->flush(); // the server reads every sample of the session
     const QString digest = !complete ? QString() : !centralDigest.isEmpty() ? centralDigest : CentralDigest::of(*this, sessionId);
     QSqlQuery q = SqlSupport::prepared(m_db, m_path, QStringLiteral("UPDATE sessions SET complete = ?, verified_sha256 = ? WHERE id = ?"));
-    q.addBindValue(complete ? 1 : 0);
-    q.addBindValue(digest);
-    q.addBindValue(sessionId);
+    SqlSupport::bind(q, {complete ? 1 : 0, digest, sessionId});
     SqlSupport::run(q, m_path, QStringLiteral("cannot mark session %1 %2").arg(sessionId).arg(complete ? "complete" : "incomplete"));
     if (q.numRowsAffected() != 1)
         throw StorageError(QStringLiteral("%1: no session with id %2").arg(m_path).arg(sessionId).toStdString());
@@ -364,11 +333,10 @@ qint64 SessionStore::addAnalysisResult(qint64 sessionId, const QString &kind, co
     QSqlQuery q = SqlSupport::prepared(m_db, m_path,
                            created.isEmpty() ? QStringLiteral("INSERT INTO analysis_results(session_id, kind, result_json) VALUES(?, ?, ?)")
                                              : QStringLiteral("INSERT INTO analysis_results(session_id, kind, result_json, created) VALUES(?, ?, ?, ?)"));
-    q.addBindValue(sessionId);
-    q.addBindValue(text(kind));
-    q.addBindValue(QString::fromUtf8(QJsonDocument(result).toJson(QJsonDocument::Compact)));
+    QVariantList values{sessionId, text(kind), json(result)};
     if (!created.isEmpty())
-        q.addBindValue(created);
+        values.append(created);
+    SqlSupport::bind(q, values);
     SqlSupport::run(q, m_path, QStringLiteral("cannot store analysis result"));
     return SqlSupport::insertedId(q, m_db, m_path);
 }

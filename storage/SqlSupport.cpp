@@ -52,6 +52,12 @@ void SqlSupport::run(QSqlQuery &q, const QString &path, const QString &what)
         fail(path, what, q.lastError());
 }
 
+void SqlSupport::bind(QSqlQuery &q, const QVariantList &values)
+{
+    for (int i = 0; i < values.size(); ++i)
+        q.bindValue(i, values[i]);
+}
+
 QSqlQuery SqlSupport::select(const QSqlDatabase &db, const QString &path, const QString &sql, const QVariantList &params,
                              const QString &what)
 {

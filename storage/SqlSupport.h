@@ -19,6 +19,8 @@ public:
     [[noreturn]] static void fail(const QString &path, const QString &what, const QSqlError &error);
     static QSqlQuery prepared(const QSqlDatabase &db, const QString &path, const QString &sql);
     static void run(QSqlQuery &q, const QString &path, const QString &what);
+    // values bound to q's placeholders in order (positions 0, 1, ...), as for a statement kept and rerun.
+    static void bind(QSqlQuery &q, const QVariantList &values);
     // The id the INSERT just run by q gave its row: SQLite's rowid, PostgreSQL's lastval() of
     // the BIGSERIAL column (QPSQL has no lastInsertId without OIDs).
     static qint64 insertedId(QSqlQuery &q, const QSqlDatabase &db, const QString &path);

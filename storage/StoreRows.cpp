@@ -6,6 +6,40 @@
 
 namespace driftlab {
 
+namespace {
+
+// The columns of a result row in order, each read as the type of the field it fills: the
+// column list of a record kind and one call instead of an index and a conversion per field.
+class Row {
+public:
+    explicit Row(const QSqlQuery &q) : m_q(q) {}
+    template <class... Fields>
+    void read(Fields &...fields)
+    {
+        (field(fields), ...);
+    }
+
+private:
+    QVariant next() { return m_q.value(m_column++); }
+    void field(qint64 &v) { v = next().toLongLong(); }
+    void field(int &v) { v = next().toInt(); }
+    void field(double &v) { v = next().toDouble(); }
+    void field(bool &v) { v = next().toInt() != 0; }
+    void field(QString &v) { v = next().toString(); }
+    void field(QJsonObject &v) { v = StoreRows::object(next()); }
+    void field(std::optional<double> &v)
+    {
+        const QVariant x = next();
+        if (!x.isNull())
+            v = x.toDouble();
+    }
+
+    const QSqlQuery &m_q;
+    int m_column = 0;
+};
+
+} // namespace
+
 QJsonObject StoreRows::object(const QVariant &v)
 {
     return QJsonDocument::fromJson(v.toString().toUtf8()).object();
@@ -19,16 +53,7 @@ const char *StoreRows::sessionColumns()
 SessionInfo StoreRows::session(const QSqlQuery &q)
 {
     SessionInfo s;
-    s.id = q.value(0).toLongLong();
-    s.name = q.value(1).toString();
-    s.started = q.value(2).toString();
-    s.operatorName = q.value(3).toString();
-    s.notes = q.value(4).toString();
-    s.machine = object(q.value(5));
-    s.complete = q.value(6).toInt() != 0;
-    s.manifest = object(q.value(7));
-    s.uuid = q.value(8).toString();
-    s.contentSha256 = q.value(9).toString();
+    Row(q).read(s.id, s.name, s.started, s.operatorName, s.notes, s.machine, s.complete, s.manifest, s.uuid, s.contentSha256);
     return s;
 }
 
@@ -40,16 +65,7 @@ const char *StoreRows::channelColumns()
 ChannelInfo StoreRows::channel(const QSqlQuery &q)
 {
     ChannelInfo c;
-    c.id = q.value(0).toLongLong();
-    c.sessionId = q.value(1).toLongLong();
-    c.key = q.value(2).toString();
-    c.kind = q.value(3).toString();
-    c.sensor = q.value(4).toString();
-    c.unit = q.value(5).toString();
-    c.location = q.value(6).toString();
-    c.role = q.value(7).toString();
-    if (!q.value(8).isNull())
-        c.screwPosition_m = q.value(8).toDouble();
+    Row(q).read(c.id, c.sessionId, c.key, c.kind, c.sensor, c.unit, c.location, c.role, c.screwPosition_m);
     return c;
 }
 
@@ -61,11 +77,7 @@ const char *StoreRows::irFrameColumns()
 IrFrame StoreRows::irFrame(const QSqlQuery &q)
 {
     IrFrame f;
-    f.id = q.value(0).toLongLong();
-    f.t = q.value(1).toDouble();
-    f.width = q.value(2).toInt();
-    f.height = q.value(3).toInt();
-    f.sourceName = q.value(4).toString();
+    Row(q).read(f.id, f.t, f.width, f.height, f.sourceName);
     return f;
 }
 
@@ -77,27 +89,14 @@ const char *StoreRows::fittedModelColumns()
 FittedModel StoreRows::fittedModel(const QSqlQuery &q)
 {
     FittedModel m;
-    m.id = q.value(0).toLongLong();
-    m.model = q.value(1).toString();
-    m.created = q.value(2).toString();
-    m.parameters = object(q.value(3));
-    m.uncertainties = object(q.value(4));
-    m.provenance = object(q.value(5));
-    m.metrics = object(q.value(6));
+    Row(q).read(m.id, m.model, m.created, m.parameters, m.uncertainties, m.provenance, m.metrics);
     return m;
 }
 
 SessionSummary StoreRows::summary(const QSqlQuery &q)
 {
     SessionSummary m;
-    m.id = q.value(0).toLongLong();
-    m.uuid = q.value(1).toString();
-    m.name = q.value(2).toString();
-    m.started = q.value(3).toString();
-    m.complete = q.value(4).toInt() != 0;
-    m.channels = q.value(5).toInt();
-    m.samples = q.value(6).toLongLong();
-    m.irFrames = q.value(7).toInt();
+    Row(q).read(m.id, m.uuid, m.name, m.started, m.complete, m.channels, m.samples, m.irFrames);
     return m;
 }
 

@@ -177,6 +177,9 @@ int DiagnoseCommand::run(const QStringList &args)
                              .arg(report.baseline.heldoutRms_um, 0, 'f', 3)
                              .arg(report.corrected.heldoutRms_um, 0, 'f', 3)
                              .arg(report.wallTime_s, 0, 'f', 1));
+    for (const DiagnosisStep &s : report.steps)
+        if (!s.description.empty() && s.effect != "unexplained")
+            CliSupport::progress(QStringLiteral("  %1: %2").arg(QString::fromStdString(s.effect), QString::fromStdString(s.description)));
     if (report.advice.given) {
         CliSupport::progress(QStringLiteral("which test would decide (%1): %2")
                                  .arg(QString::fromStdString(report.advice.trigger), QString::fromStdString(report.advice.summary)));

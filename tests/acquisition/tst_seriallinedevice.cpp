@@ -41,6 +41,21 @@ QString protocolError(const char *json)
     return QString();
 }
 
+// A device's rig-file block with the pseudo-terminal's path for %1, as "devices[0]".
+SerialLineDevice::Config configOnPort(const char *json, const QString &port)
+{
+    return SerialLineDevice::Config::fromJson(QJsonDocument::fromJson(QString::fromUtf8(json).arg(port).toUtf8()).object(),
+                                              QStringLiteral("devices[0]"));
+}
+
+// Opens the device and starts it on a clock that starts now.
+void openAndStart(SerialLineDevice &d, SessionClock &clock)
+{
+    clock.start();
+    d.open();
+    d.start(clock);
+}
+
 // The instrument's end of the pseudo-terminal: plain POSIX I/O, none of our code.
 class Instrument {
 public:
@@ -165,17 +180,11 @@ void TestSerialLineDevice::readsLinesThroughPseudoTerminal()
     QVERIFY(pty.start(m_dir.path()));
     Instrument instrument(pty.a());
     QVERIFY(instrument.ok());
-    SerialLineDevice d(QStringLiteral("indicator"),
-                       SerialLineDevice::Config::fromJson(QJsonDocument::fromJson(QStringLiteral(R"({"serial_port":"%1","baud":115200,"latency_s":0.01,"protocol":{
-        "regex":"^S1=\\s*(?<S1>[-+0-9.]+|OVER)\\s*mm$","channels":[{"id":"S1","kind":"displacement","unit":"um","scale":1000,"invalid":["OVER"]}]}})")
-                                                                                              .arg(pty.b())
-                                                                                              .toUtf8())
-                                                              .object(),
-                                                          QStringLiteral("devices[0]")));
+    SerialLineDevice d(QStringLiteral("indicator"), configOnPort(R"({"serial_port":"%1","baud":115200,"latency_s":0.01,"protocol":{
+        "regex":"^S1=\\s*(?<S1>[-+0-9.]+|OVER)\\s*mm$","channels":[{"id":"S1","kind":"displacement","unit":"um","scale":1000,"invalid":["OVER"]}]}})",
+                                                      pty.b()));
     SessionClock clock;
-    clock.start();
-    d.open();
-    d.start(clock);
+    openAndStart(d, clock);
     Recording r;
     int sent = 0;
     const QList<QByteArray> lines{"S1= 0.0100 mm\r\n", "S1= 0.0200 mm\r\n", "hello there\r\n", "S1=OVER mm\r\n", "S1= 0.0400 mm\r\n", "S1= 0.0500 mm\r\n"};
@@ -214,17 +223,11 @@ void TestSerialLineDevice::pollsWithARequest()
     testpeers::PtyPair pty;
     QVERIFY(pty.start(m_dir.path()));
     Instrument instrument(pty.a());
-    SerialLineDevice d(QStringLiteral("scanner"),
-                       SerialLineDevice::Config::fromJson(QJsonDocument::fromJson(QStringLiteral(R"({"serial_port":"%1","poll_Hz":10,"protocol":{
-        "request":"#01\\r","separator":",","channels":[{"id":"T1","field":0,"kind":"temperature","unit":"degC"},{"id":"T2","field":1,"kind":"temperature","unit":"degC"}]}})")
-                                                                                              .arg(pty.b())
-                                                                                              .toUtf8())
-                                                              .object(),
-                                                          QStringLiteral("devices[0]")));
+    SerialLineDevice d(QStringLiteral("scanner"), configOnPort(R"({"serial_port":"%1","poll_Hz":10,"protocol":{
+        "request":"#01\\r","separator":",","channels":[{"id":"T1","field":0,"kind":"temperature","unit":"degC"},{"id":"T2","field":1,"kind":"temperature","unit":"degC"}]}})",
+                                                      pty.b()));
     SessionClock clock;
-    clock.start();
-    d.open();
-    d.start(clock);
+    openAndStart(d, clock);
     Recording r;
     int answered = 0;
     QByteArray pending;
@@ -251,15 +254,11 @@ void TestSerialLineDevice::silentInstrumentIsADeviceError()
         QSKIP("socat is not installed");
     testpeers::PtyPair pty;
     QVERIFY(pty.start(m_dir.path()));
-    SerialLineDevice d(QStringLiteral("probe"),
-                       SerialLineDevice::Config::fromJson(QJsonDocument::fromJson(QStringLiteral(R"({"serial_port":"%1","timeout_s":0.3,"protocol":{
-        "channels":[{"id":"S1","field":0,"kind":"displacement","unit":"um"}]}})").arg(pty.b()).toUtf8())
-                                                              .object(),
-                                                          QStringLiteral("devices[0]")));
+    SerialLineDevice d(QStringLiteral("probe"), configOnPort(R"({"serial_port":"%1","timeout_s":0.3,"protocol":{
+        "channels":[{"id":"S1","field":0,"kind":"displacement","unit":"um"}]}})",
+                                                      pty.b()));
     SessionClock clock;
-    clock.start();
-    d.open();
-    d.start(clock);
+    openAndStart(d, clock);
     Recording r;
     QElapsedTimer t;
     t.start();

@@ -21,7 +21,25 @@ using namespace driftlab;
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
+
+// A rod of the given length on the given number of nodes, defaults otherwise.
+BoundaryDrivenScrewParameters rod(double length_m, int nodeCount)
+{
+    BoundaryDrivenScrewParameters p;
+    p.length_m = length_m;
+    p.nodeCount = nodeCount;
+    return p;
 }
+
+// Both bearings held at the given temperatures, no nut.
+BoundarySample bearingsAt(double bearing1_C, double bearing2_C)
+{
+    BoundarySample b;
+    b.bearing1_C = bearing1_C;
+    b.bearing2_C = bearing2_C;
+    return b;
+}
+} // namespace
 
 class TestBoundaryDrivenScrewModel : public QObject {
     Q_OBJECT
@@ -36,14 +54,10 @@ private slots:
 
 void TestBoundaryDrivenScrewModel::linearSteadyStateWithoutConvection()
 {
-    BoundaryDrivenScrewParameters p;
-    p.length_m = 0.8;
-    p.nodeCount = 81;
+    const BoundaryDrivenScrewParameters p = rod(0.8, 81);
     BoundaryDrivenScrewModel model(p);
     model.reset(20.0);
-    BoundarySample b;
-    b.bearing1_C = 31.0;
-    b.bearing2_C = 24.0;
+    const BoundarySample b = bearingsAt(31.0, 24.0);
     for (int k = 0; k < 400; ++k) // implicit: large steps, time constant L^2/(pi^2 kappa) ~ 5400 s
         model.step(2000.0, b);
     double worst = 0.0;
@@ -59,14 +73,10 @@ void TestBoundaryDrivenScrewModel::linearSteadyStateWithoutConvection()
 
 void TestBoundaryDrivenScrewModel::nutRegionHeldGivesPiecewiseLinearProfile()
 {
-    BoundaryDrivenScrewParameters p;
-    p.length_m = 1.0;
-    p.nodeCount = 101;
+    const BoundaryDrivenScrewParameters p = rod(1.0, 101);
     BoundaryDrivenScrewModel model(p);
     model.reset(20.0);
-    BoundarySample b;
-    b.bearing1_C = 25.0;
-    b.bearing2_C = 20.0;
+    BoundarySample b = bearingsAt(25.0, 20.0);
     b.hasNut = true;
     b.nut_C = 40.0;
     b.nutLength_m = 0.08;
@@ -95,16 +105,12 @@ void TestBoundaryDrivenScrewModel::nutRegionHeldGivesPiecewiseLinearProfile()
 
 void TestBoundaryDrivenScrewModel::finSteadyStateWithConvection()
 {
-    BoundaryDrivenScrewParameters p;
-    p.length_m = 1.0;
-    p.nodeCount = 201;
+    BoundaryDrivenScrewParameters p = rod(1.0, 201);
     p.convection_W_m2K = 20.0; // m^2 = 4 h/(k d) = 57.7 1/m^2, m L = 7.6
     BoundaryDrivenScrewModel model(p);
     const double air = 20.0, t1 = 35.0, t2 = 28.0;
     model.reset(air);
-    BoundarySample b;
-    b.bearing1_C = t1;
-    b.bearing2_C = t2;
+    BoundarySample b = bearingsAt(t1, t2);
     b.air_C = air;
     QVERIFY(model.maxStep_s() > 2000.0);
     for (int k = 0; k < 2000; ++k) // 2e5 s >> 1/(kappa m^2) ~ 1400 s
@@ -127,9 +133,7 @@ void TestBoundaryDrivenScrewModel::finSteadyStateWithConvection()
 
 void TestBoundaryDrivenScrewModel::slabStepTransientMatchesFourierSeries()
 {
-    BoundaryDrivenScrewParameters p;
-    p.length_m = 0.5;
-    p.nodeCount = 101;
+    const BoundaryDrivenScrewParameters p = rod(0.5, 101);
     BoundaryDrivenScrewModel model(p);
     const double t0 = 20.0, t1 = 30.0;
     model.reset(t0);

@@ -10,6 +10,8 @@
 #include "ScrewCellLayout.h"
 #include "TridiagonalSolver.h"
 
+#include "../support/Table2Duty.h"
+
 #include <QtTest>
 
 #include <algorithm>
@@ -20,28 +22,6 @@ using namespace driftlab;
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-
-// Triangle-wave stroke between lo and hi at feed v (mm/min), phase by travelled path.
-struct Duty {
-    double lo = 0.0, hi = 550.0;
-    double feedAt(double t) const
-    {
-        if (t < 84 * 60.0)
-            return 6000.0;
-        if (t < 126 * 60.0)
-            return 0.0;
-        return 9000.0;
-    }
-    double positionAt(double t) const
-    {
-        double path = 100.0 * std::min(t, 84 * 60.0);
-        if (t > 126 * 60.0)
-            path += 150.0 * (t - 126 * 60.0);
-        const double stroke = hi - lo;
-        const double w = std::fmod(path, 2 * stroke);
-        return lo + (w <= stroke ? w : 2 * stroke - w);
-    }
-};
 } // namespace
 
 class TestCrankNicolsonScrewModel : public QObject {
@@ -197,7 +177,7 @@ void TestCrankNicolsonScrewModel::agreesWithExplicitAtSmallStep()
     const FdmSettings s; // dx 0.01, dt 0.1
     FdmScrewModel ex(g, p, s);
     CrankNicolsonScrewModel cn(g, p, s);
-    const Duty duty;
+    const testduty::Table2Duty duty; // one cycle, nut 0 .. 550 mm
     auto ambient = [](double t) { return 20.0 + 0.5 * std::sin(2 * kPi * t / 7200.0); };
     ex.reset(ambient(0));
     cn.reset(ambient(0));
@@ -205,8 +185,8 @@ void TestCrankNicolsonScrewModel::agreesWithExplicitAtSmallStep()
     const long steps = std::lround(168 * 60.0 / s.dt_s);
     for (long k = 0; k < steps; ++k) {
         const double t = k * s.dt_s;
-        ex.step(duty.positionAt(t), duty.feedAt(t), ambient(t + s.dt_s));
-        cn.step(duty.positionAt(t), duty.feedAt(t), ambient(t + s.dt_s));
+        ex.step(duty.position(t), duty.feed(t), ambient(t + s.dt_s));
+        cn.step(duty.position(t), duty.feed(t), ambient(t + s.dt_s));
         if (k % 600 == 0) {
             peak = std::max(peak, std::fabs(ex.elongation_um()));
             worst = std::max(worst, std::fabs(ex.elongation_um() - cn.elongation_um()));

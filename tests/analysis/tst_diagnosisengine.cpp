@@ -161,6 +161,9 @@ void TestDiagnosisEngine::findsStructureDrift()
             QVERIFY2(std::fabs(p.value - 4.0) < 1.0, std::to_string(p.value).c_str());
         }
     QVERIFY(found);
+    // Named in physical words from the grammar (issue 36 item 2), in the step and the explanation.
+    QCOMPARE(r.steps.front().description, std::string("a shift of every target, the same along the travel, following the structure temperature"));
+    QVERIFY2(r.explanation.rfind("In physical words: a shift of every target", 0) == 0, r.explanation.c_str());
     // Predictions of the validation interferometer points.
     QCOMPARE(static_cast<int>(r.predictions.size()), static_cast<int>(b.screw.interferometer.size()));
 }

@@ -14,7 +14,10 @@ using namespace driftlab;
 
 namespace {
 
-DataDrivenModel seed001()
+// The exponential warm-up model of feed F (mm/min) on S1 (um), on above 100 mm/min, 0.8 m
+// long: k (um at the reference drive), p, the two time constants and the baseline.
+DataDrivenModel warmupModel(double referenceDrive, double steadyState_um, double exponent, double tauWarm_s,
+                            double tauCool_s, double baseline_um)
 {
     DataDrivenModel m;
     m.kind = "exp";
@@ -22,14 +25,20 @@ DataDrivenModel seed001()
     m.inputs = {{"F", "mm/min", "feed"}};
     m.exponential.drive = 0;
     m.exponential.onThreshold = 100.0;
-    m.exponential.referenceDrive = 21000.0; // 21 m/min
-    m.exponential.steadyState = 96.87;
-    m.exponential.exponent = 1.0;
-    m.exponential.tauWarm_s = 1350.0;
-    m.exponential.tauCool_s = 1250.0;
-    m.exponential.baseline = 0.0;
+    m.exponential.referenceDrive = referenceDrive;
+    m.exponential.steadyState = steadyState_um;
+    m.exponential.exponent = exponent;
+    m.exponential.tauWarm_s = tauWarm_s;
+    m.exponential.tauCool_s = tauCool_s;
+    m.exponential.baseline = baseline_um;
     m.exponential.length_m = 0.8;
     return m;
+}
+
+// seed-001's published parameters: 96.87 um at 21 m/min, p = 1, 1350 s warm, 1250 s cool.
+DataDrivenModel seed001()
+{
+    return warmupModel(21000.0, 96.87, 1.0, 1350.0, 1250.0, 0.0);
 }
 
 } // namespace
@@ -94,12 +103,7 @@ void TestExponentialWarmupFitter::recoversParameters()
 {
     // Truth: k = 60 um at v_ref, p = 1.5, tau_warm 1350 s, tau_cool 2500 s, baseline 2 um;
     // warm-up / cool-down cycles at 12 and 24 m/min; noise 0.5 um.
-    DataDrivenModel truth = seed001();
-    truth.exponential.referenceDrive = 24000.0;
-    truth.exponential.steadyState = 60.0;
-    truth.exponential.exponent = 1.5;
-    truth.exponential.tauCool_s = 2500.0;
-    truth.exponential.baseline = 2.0;
+    const DataDrivenModel truth = warmupModel(24000.0, 60.0, 1.5, 1350.0, 2500.0, 2.0);
     SignalTable t;
     std::vector<double> f;
     for (int s = 0; s < 16 * 3600; s += 10) {

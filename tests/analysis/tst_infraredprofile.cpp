@@ -4,6 +4,8 @@
 #include "InfraredFrame.h"
 #include "InfraredProfileExtractor.h"
 
+#include "../support/InfraredLine.h"
+
 #include <QTemporaryDir>
 #include <QtTest>
 
@@ -21,15 +23,7 @@ double truthProfile(double x_m) { return 21.0 + 6.0 * std::exp(-x_m / 0.25) + 2.
 // the nut housing a hot block (45 degC) over [nutCentre +- 0.106 m].
 InfraredCalibration makeCalibration()
 {
-    InfraredCalibration c;
-    c.lineX0_px = 20.0;
-    c.lineY0_px = 50.0;
-    c.lineX1_px = 300.0;
-    c.lineY1_px = 70.0;
-    c.line0_m = 0.0;
-    c.line1_m = 0.8;
-    c.screwWidth_px = 7.0;
-    return c;
+    return testinfrared::screwLine(20.0, 50.0, 300.0, 70.0, 7.0, 0.0, 0.8);
 }
 
 cv::Mat makeCounts(const InfraredCalibration &c, double nutCentre_m)

@@ -4,6 +4,8 @@
 // machine (both sensors see it, or another channel drives it), where no sensor may be named.
 
 #include "MeasurementChainCheck.h"
+#include "ScrewModelIdentifier.h"
+#include "SyntheticScrewTest.h"
 
 #include <QtTest>
 
@@ -87,6 +89,8 @@ private slots:
     void airLawOnAnotherChannelIsTheMachine();
     void namesTheProbeFollowingTheBed();
     void probeAndInterferometerAgreeingIsTheMachine();
+    void airLawThroughTheWholeCheck_data();
+    void airLawThroughTheWholeCheck();
 };
 
 void TestMeasurementChainCheck::namesAJumpingPt100AndUndoesIt()
@@ -221,6 +225,85 @@ void TestMeasurementChainCheck::probeAndInterferometerAgreeingIsTheMachine()
     const auto fb = residuals(b, inter(b, true), [](double t) { return 3.0 * (bedAt(t, true) - bedAt(0.0, true)); }, 12);
     const std::vector<SensorFinding> f = MeasurementChainCheck::check(a, b, fa, fb, fa, fb);
     QVERIFY2(f.empty(), f.empty() ? "" : f[0].law.c_str());
+}
+
+namespace {
+
+// A pair recorded by the explicit seed-000 model on a fine grid (SyntheticScrewTest) in a hall
+// whose air swings, the interferometer's air compensation off by `k` um/m/K over a beam
+// from a head 60 mm below the travel (error k (x + 60 mm) (T_air(t) - T_air(t_ref)));
+// the air swings by +-1.5 K over 4 h (3.5 h in B).
+DiagnosisRecording airRecording(bool validation, double k_um_mK)
+{
+    SyntheticTestSpec spec;
+    spec.name = validation ? "B" : "A";
+    spec.phases = validation ? std::vector<SyntheticPhase>{{2400, 4500}, {1800, 0}, {3600, 7500}}
+                             : std::vector<SyntheticPhase>{{3000, 6000}, {1800, 0}, {2400, 9000}, {2400, 0}, {1200, 3000}};
+    spec.seed = validation ? 4 : 3;
+    spec.ambientAmplitude_K = 1.0;
+    spec.ambientAmplitude_K = 1.5;
+    spec.ambientPeriod_s = validation ? 3.5 * 3600.0 : 4.0 * 3600.0;
+    spec.interferometerInterval_s = 900.0;
+    spec.targets_mm = {20, 100, 180, 260, 340, 420, 500};
+    spec.probeInterval_s = 5.0;
+    spec.driveInterval_s = 1.0;
+    FdmParameters truth;
+    truth.conductivity_W_mK = 45.0;
+    DiagnosisRecording r;
+    r.screw = SyntheticScrewTest::generate(spec, ScrewGeometry{}, truth, FdmSettings{0.01, 0.2});
+    r.drawingFixedEnd_mm = truth.fixedEndPosition_mm;
+    r.channelsByRole["ambient"] = r.screw.drive.ambient_C;
+    for (PositioningErrorPoint &p : r.screw.interferometer) {
+        const double ref = MeasurementChainCheck::referenceTime(r.screw, p);
+        p.error_um += k_um_mK * (p.position_mm + 60.0) / 1000.0 * (spec.ambientAt(p.t_s) - spec.ambientAt(ref));
+    }
+    return r;
+}
+
+} // namespace
+
+// examine() as the diagnosis runs it, on model-exact recordings (the baseline fits them but for
+// the fault): the baseline's own fit bends to absorb part of an air law (othersim: its residual
+// kept t = -1.3 of 0.93 um/m/K), the joint refit with the probe anchoring the screw does not.
+void TestMeasurementChainCheck::airLawThroughTheWholeCheck_data()
+{
+    QTest::addColumn<double>("k");
+    QTest::newRow("compensation off, 1 um/m/K") << 1.0;
+    QTest::newRow("clean") << 0.0;
+}
+
+void TestMeasurementChainCheck::airLawThroughTheWholeCheck()
+{
+    QFETCH(double, k);
+    DiagnosisRecording a = airRecording(false, k), b = airRecording(true, k);
+    IdentificationOptions opts;
+    opts.simulator.grid.dt_s = 20.0;
+    opts.simulator.driveSample_s = 1.0;
+    opts.maxIterations = 60;
+    ScrewModelIdentifier id(ScrewGeometry{}, opts);
+    const IdentificationResult base = id.fit({a.screw});
+    opts.initial = base.parameters; // later fits start here, as in DiagnosisEngine
+    opts.initial = base.parameters; // later fits start here, as in DiagnosisEngine
+    const FitStatistics heldout = id.predict(base, {b.screw});
+    const std::vector<SensorFinding> f =
+        MeasurementChainCheck::examine(a, b, ScrewGeometry{}, opts, base.fit.points, heldout.points);
+    if (k == 0.0) {
+        QVERIFY2(f.empty(), f.empty() ? "" : f.front().law.c_str());
+        return;
+    }
+    QCOMPARE(f.size(), size_t(1));
+    QCOMPARE(f.front().kind, std::string("air"));
+    QCOMPARE(f.front().driver, std::string("ambient"));
+    // Within 0.5 um/m/K: on this model-exact pair the joint refit reads +0.40 um/m/K on the clean
+    // training recording (+0.22 on the validation one) and 1.40 with the fault, i.e. the law to the
+    // digit on top of a bias the identifier and SyntheticScrewTest share no explanation for yet
+    // (docs/diagnosis.md). The residual regression alone read 1.51 here.
+    QVERIFY2(std::fabs(f.front().coefficient - k) <= 0.5, std::to_string(f.front().coefficient).c_str());
+    // Corrected: B's readings carry less than 0.5 um of the law anywhere on the travel (0.56 um/K x
+    // dT_air at the last target before).
+    const DiagnosisRecording clean = airRecording(true, 0.0);
+    for (size_t i = 0; i < b.screw.interferometer.size(); ++i)
+        QVERIFY(std::fabs(b.screw.interferometer[i].error_um - clean.screw.interferometer[i].error_um) < 0.5);
 }
 
 QTEST_GUILESS_MAIN(TestMeasurementChainCheck)

@@ -10,6 +10,8 @@
 #include "LinearLagFitter.h"
 #include "ModelSelection.h"
 
+#include "../support/TwoHeatSources.h"
+
 #include <QtTest>
 
 #include <cmath>
@@ -24,31 +26,19 @@ namespace {
 // 3 um/K * lag_1800(T1 - A) + 2 um/K * (T2 - A) + noise. Column ids T1, T2, y.
 SignalTable makeRun(double ambient_C, double onHours, double power, unsigned seed)
 {
+    const testruns::TwoHeatSources h = testruns::twoHeatSources(onHours, power);
     SignalTable table;
-    for (double t = 0; t <= 8 * 3600.0; t += 60.0)
-        table.t.push_back(t);
-    // Two independent heat sources (the second with its own programme), so that the ambient
-    // cannot be told from the temperatures' shapes.
-    const double on2 = 0.6 * onHours + 0.7;
-    std::vector<double> q(table.t.size()), q2(table.t.size());
-    for (std::size_t k = 0; k < q.size(); ++k) {
-        q[k] = std::fmod(table.t[k], 2 * onHours * 3600.0) >= onHours * 3600.0 ? power : 0.0; // off first
-        q2[k] = std::fmod(table.t[k], 2 * on2 * 3600.0) >= on2 * 3600.0 ? 1.0 : 0.0;
+    table.t = h.t;
+    std::vector<double> T1(h.t.size()), T2(h.t.size());
+    for (std::size_t k = 0; k < h.t.size(); ++k) {
+        T1[k] = ambient_C + h.rise1_K[k];
+        T2[k] = ambient_C + h.rise2_K[k];
     }
-    const std::vector<double> r1 = DataDrivenPredictor::lagSeries(table.t, q, 1200.0);
-    const std::vector<double> r2 = DataDrivenPredictor::lagSeries(table.t, q2, 3600.0);
-    std::vector<double> T1(q.size()), T2(q.size()), rise1(q.size());
-    for (std::size_t k = 0; k < q.size(); ++k) {
-        rise1[k] = 8.0 * r1[k]; // q(0) = 0: every run starts cold
-        T1[k] = ambient_C + rise1[k];
-        T2[k] = ambient_C + 5.0 * r2[k];
-    }
-    const std::vector<double> lagged = DataDrivenPredictor::lagSeries(table.t, rise1, 1800.0);
     std::mt19937 rng(seed);
     std::normal_distribution<double> noise(0.0, 0.05);
-    std::vector<double> y(q.size());
-    for (std::size_t k = 0; k < q.size(); ++k)
-        y[k] = 3.0 * lagged[k] + 2.0 * (T2[k] - ambient_C) + noise(rng);
+    std::vector<double> y(h.t.size());
+    for (std::size_t k = 0; k < h.t.size(); ++k)
+        y[k] = 3.0 * h.lagged1_K[k] + 2.0 * (T2[k] - ambient_C) + noise(rng);
     table.columns.push_back({"T1", "degC", "temperature", "", T1});
     table.columns.push_back({"T2", "degC", "temperature", "", T2});
     table.columns.push_back({"y", "um", "displacement", "", y});

@@ -12,6 +12,8 @@
 #include "ScrewModelIdentifier.h"
 #include "SyntheticScrewTest.h"
 
+#include "../support/ScrewTruth.h"
+
 #include <QtTest>
 
 #include <cmath>
@@ -20,18 +22,6 @@
 using namespace driftlab;
 
 namespace {
-
-FdmParameters truthParameters()
-{
-    FdmParameters p;
-    p.k1 = 0.8e-3;
-    p.k2 = 22.0;
-    p.k3 = 0.95e-3;
-    p.k4 = 1.5e-3;
-    p.conductivity_W_mK = 420.0;
-    p.fixedEndPosition_mm = -141.0;
-    return p;
-}
 
 SyntheticTestSpec heldOutSpec()
 {
@@ -88,7 +78,7 @@ private:
 
 void TestScrewModelIdentifier::initTestCase()
 {
-    m_train = generate(truthParameters(), m_heldOut);
+    m_train = generate(testscrew::truthParameters(), m_heldOut);
 }
 
 void TestScrewModelIdentifier::identifiesTable2Programme_data()
@@ -105,12 +95,12 @@ void TestScrewModelIdentifier::identifiesTable2Programme()
 {
     QFETCH(double, fixedEnd_mm);
     QFETCH(double, start_mm);
-    FdmParameters truth = truthParameters();
+    FdmParameters truth = testscrew::truthParameters();
     truth.fixedEndPosition_mm = fixedEnd_mm;
     ScrewRecording heldOut;
     const std::vector<ScrewRecording> train =
-        fixedEnd_mm == truthParameters().fixedEndPosition_mm ? m_train : generate(truth, heldOut);
-    if (fixedEnd_mm == truthParameters().fixedEndPosition_mm)
+        fixedEnd_mm == testscrew::truthParameters().fixedEndPosition_mm ? m_train : generate(truth, heldOut);
+    if (fixedEnd_mm == testscrew::truthParameters().fixedEndPosition_mm)
         heldOut = m_heldOut;
     IdentificationOptions options = startOptions();
     options.initial.fixedEndPosition_mm = start_mm;
@@ -177,7 +167,7 @@ void TestScrewModelIdentifier::addedComponentIsIdentified()
     // with the EndHeatSource component (amplitude solved linearly, lag as a nonlinear
     // parameter started at 600 s).
     const ScrewGeometry g;
-    const FdmParameters truth = truthParameters();
+    const FdmParameters truth = testscrew::truthParameters();
     const double freeEnd = 0.3e-3; // W/(mm/min): 1.8 W at 6000 mm/min
     const double lag = 1200.0;
     std::vector<ScrewRecording> data = {m_train[0], m_train[2]};

@@ -17,6 +17,16 @@ using namespace driftlab;
 
 namespace {
 
+// Selection for the target S1 with K from kMin to kMax, the other options at their defaults.
+SelectionOptions optionsForS1(int kMin, int kMax)
+{
+    SelectionOptions o;
+    o.target = "S1";
+    o.kMin = kMin;
+    o.kMax = kMax;
+    return o;
+}
+
 // `groups` distinct smooth histories, `perGroup` channels each (gain, offset and noise per
 // channel; the first channel of a group is the least noisy); target = a mix of the groups.
 SignalTable groupedTable(int groups, int perGroup, std::size_t samples, unsigned seed)
@@ -101,10 +111,7 @@ void TestSensitivePointSelector::greyGradesByHand()
 void TestSensitivePointSelector::silhouetteEqualsFullSeries()
 {
     const SignalTable t = groupedTable(3, 3, 2000, 5);
-    SelectionOptions o;
-    o.target = "S1";
-    o.kMin = 2;
-    o.kMax = 6;
+    const SelectionOptions o = optionsForS1(2, 6);
     const SelectionResult r = SensitivePointSelector::select(t, o);
     // Independent: z-score every channel and compute distances on the full series.
     const std::size_t n = r.channels.size();
@@ -139,10 +146,7 @@ void TestSensitivePointSelector::silhouetteEqualsFullSeries()
 void TestSensitivePointSelector::findsKnownGroups()
 {
     const SignalTable t = groupedTable(4, 3, 3000, 11);
-    SelectionOptions o;
-    o.target = "S1";
-    o.kMin = 2;
-    o.kMax = 8;
+    const SelectionOptions o = optionsForS1(2, 8);
     const SelectionResult r = SensitivePointSelector::select(t, o);
     QCOMPARE(r.chosenK, 4);
     QCOMPARE(static_cast<int>(r.perK.size()), 7);
@@ -185,10 +189,7 @@ void TestSensitivePointSelector::gapAndConstantRules()
     t.columns.push_back(flat);
     t.columns.push_back(holes);
     t.columns.push_back(fewHoles);
-    SelectionOptions o;
-    o.target = "S1";
-    o.kMin = 2;
-    o.kMax = 5;
+    SelectionOptions o = optionsForS1(2, 5);
     const SelectionResult r = SensitivePointSelector::select(t, o);
     QCOMPARE(static_cast<int>(r.excluded.size()), 2);
     std::map<std::string, std::string> why;

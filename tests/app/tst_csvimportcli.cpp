@@ -15,6 +15,7 @@
 #include <QtTest>
 
 #include "../support/CliRunner.h"
+#include "../support/TestFiles.h"
 
 #include <cmath>
 #include <cstdio>
@@ -45,11 +46,7 @@ private:
 
 QString TestCsvImportCli::write(const QString &name, const QByteArray &bytes)
 {
-    const QString path = m_dir.filePath(name);
-    QFile f(path);
-    if (!f.open(QIODevice::WriteOnly) || f.write(bytes) != bytes.size())
-        qFatal("cannot write %s", qPrintable(path));
-    return path;
+    return testfiles::write(m_dir.path(), name, bytes);
 }
 
 void TestCsvImportCli::initTestCase()

@@ -10,6 +10,7 @@
 // checked again from its own table.
 
 #include "../support/CliRunner.h"
+#include "../support/FlThermalBundle.h"
 
 #include <QDir>
 #include <QFile>
@@ -462,45 +463,13 @@ void TestDataDriven::badInputExitsTwo()
 
 void TestDataDriven::flThermalHeldOut()
 {
-    // DRIFTLAB_SHARED_DIR in the environment overrides the checkout's ../shared (worktrees).
-    const QString source = qEnvironmentVariable("DRIFTLAB_SHARED_DIR", QStringLiteral(DRIFTLAB_SHARED_DIR)) +
-                           QStringLiteral("/extdata/fl_thermal/fl_thermal_data.csv");
+    const QString source = flthermal::sourcePath();
     if (!QFileInfo::exists(source))
         QSKIP("../shared/extdata is not beside this checkout");
     // A bundle with the agreed channel ids (t1..t16 degC, ch1..ch5 um, spindle_rpm role spindle).
-    QFile in(source);
-    QVERIFY(in.open(QIODevice::ReadOnly | QIODevice::Text));
     const QString bundle = m_dir.filePath(QStringLiteral("fl.bundle"));
-    QVERIFY(QDir().mkpath(bundle));
-    QFile channels(bundle + QStringLiteral("/channels.csv"));
-    QVERIFY(channels.open(QIODevice::WriteOnly | QIODevice::Text));
-    QTextStream src(&in), dst(&channels);
-    QStringList header = src.readLine().trimmed().split(QLatin1Char(','));
-    QJsonArray list;
-    for (int i = 1; i < header.size(); ++i) {
-        const bool temp = header[i].endsWith(QLatin1String("_C")), disp = header[i].endsWith(QLatin1String("_um"));
-        header[i] = header[i].section(QLatin1Char('_'), 0, temp || disp ? 0 : 1);
-        list.append(QJsonObject{{QStringLiteral("id"), header[i]},
-                                {QStringLiteral("kind"), temp ? "temperature" : (disp ? "displacement" : "other")},
-                                {QStringLiteral("unit"), temp ? "degC" : (disp ? "um" : "rpm")},
-                                {QStringLiteral("role"), temp || disp ? "" : "spindle"}});
-    }
-    dst << header.join(QLatin1Char(',')) << '\n';
-    while (!src.atEnd()) {
-        const QString line = src.readLine().trimmed();
-        if (!line.isEmpty())
-            dst << line << '\n';
-    }
-    channels.close();
-    QFile manifest(bundle + QStringLiteral("/manifest.json"));
-    QVERIFY(manifest.open(QIODevice::WriteOnly));
-    manifest.write(QJsonDocument(QJsonObject{{QStringLiteral("format"), QStringLiteral("thermal-error-bundle")},
-                                             {QStringLiteral("version"), 1},
-                                             {QStringLiteral("session"), QJsonObject{{QStringLiteral("name"), QStringLiteral("FL_THERMAL")},
-                                                                                     {QStringLiteral("started"), QStringLiteral("2024-05-23T00:00:00Z")}}},
-                                             {QStringLiteral("channels"), list}})
-                       .toJson());
-    manifest.close();
+    const flthermal::Bundle written = flthermal::writeBundle(source, bundle, QStringLiteral("FL_THERMAL"), true);
+    QVERIFY2(written.error.isEmpty(), qPrintable(written.error));
     const QString db = m_dir.filePath(QStringLiteral("fl.sqlite"));
     QCOMPARE(run({QStringLiteral("import"), bundle, QStringLiteral("--db"), db}), 0);
     auto heldOut = [&](const char *model, const char *target) {

@@ -69,14 +69,21 @@ private:
         return session;
     }
 
+    // Selection on the one session for its target S1, the other options at their defaults.
+    static PointSelectionRequest targetS1(qint64 session)
+    {
+        PointSelectionRequest q;
+        q.sessions = {session};
+        q.target = QStringLiteral("S1");
+        return q;
+    }
+
 private slots:
     void findsTheKnownGroupsAndStoresWhatItReturns()
     {
         SessionStore store(m_dir.filePath(QStringLiteral("groups.sqlite")));
         const qint64 session = groupedSession(store);
-        PointSelectionRequest q;
-        q.sessions = {session};
-        q.target = QStringLiteral("S1");
+        const PointSelectionRequest q = targetS1(session);
         double last = -1;
         const PointSelection::Result r = PointSelection(store).run(q, [&](double f, const QString &) {
             last = f;
@@ -107,9 +114,7 @@ private slots:
     {
         SessionStore store(m_dir.filePath(QStringLiteral("cancel.sqlite")));
         const qint64 session = groupedSession(store);
-        PointSelectionRequest q;
-        q.sessions = {session};
-        q.target = QStringLiteral("S1");
+        const PointSelectionRequest q = targetS1(session);
         QVERIFY_EXCEPTION_THROWN((PointSelection(store).run(q, [](double f, const QString &) { return f < 0.3; })), std::runtime_error);
         PointSelectionRequest twice = q;
         twice.sessions = {session, session};

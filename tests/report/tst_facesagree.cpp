@@ -6,15 +6,14 @@
 
 #include "AnalysisResultKind.h"
 #include "BundleTransfer.h"
-#include "../support/CliRunner.h"
 #include "DiagnosisPanel.h"
 #include "ModelsPanel.h"
 #include "ReportBuilder.h"
 #include "ReportTemplate.h"
-#include "RigConfigLoader.h"
-#include "RigRecorder.h"
 #include "SessionStore.h"
-#include "SimulatedRig.h"
+
+#include "../support/CliRunner.h"
+#include "../support/WidgetTestSetup.h"
 
 #include <QElapsedTimer>
 #include <QFile>
@@ -73,18 +72,8 @@ void TestFacesAgree::initTestCase()
     // The example bundle: one feed, 1.5 h; its fit puts lambda far from steel (flagged).
     m_example = BundleTransfer::importBundle(*m_store, QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/bundles/example.bundle"));
     // Two short simulated recordings with a concealed structure drift for the diagnosis.
-    RigConfig config = RigConfigLoader::preset(QStringLiteral("structure-offset"));
-    config.program = FeedProgram::seed000Table2(6000.0, config.travelLow_mm, config.travelHigh_mm);
-    {
-        SimulatedRig rig(config);
-        m_train = RigRecorder(*m_store, rig).record(QStringLiteral("train"), 2 * 3600.0);
-    }
-    config.program = FeedProgram::seed000Table2(8000.0, config.travelLow_mm, config.travelHigh_mm);
-    config.seed += 1;
-    {
-        SimulatedRig rig(config);
-        m_validate = RigRecorder(*m_store, rig).record(QStringLiteral("validate"), 2 * 3600.0);
-    }
+    m_train = widgettest::record(*m_store, widgettest::structureOffsetRig(6000.0), QStringLiteral("train"), 2 * 3600.0);
+    m_validate = widgettest::record(*m_store, widgettest::structureOffsetRig(8000.0, 1), QStringLiteral("validate"), 2 * 3600.0);
 }
 
 QString TestFacesAgree::reportText(qint64 session, const QString &section) const

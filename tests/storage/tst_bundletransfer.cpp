@@ -8,6 +8,7 @@
 #include "IrFrameCodec.h"
 #include "SessionStore.h"
 #include "../support/DatabaseHash.h"
+#include "../support/TestFiles.h"
 
 #include <QCryptographicHash>
 #include <QDir>
@@ -36,11 +37,7 @@ namespace {
 
 void writeFile(const QString &dir, const QString &rel, const QByteArray &data)
 {
-    const QString path = QDir(dir).filePath(rel);
-    QDir().mkpath(QFileInfo(path).absolutePath());
-    QFile f(path);
-    if (!f.open(QIODevice::WriteOnly) || f.write(data) != data.size())
-        qFatal("cannot write %s", qPrintable(path));
+    testfiles::write(dir, rel, data);
 }
 
 QByteArray readFile(const QString &dir, const QString &rel)

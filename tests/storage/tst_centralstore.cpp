@@ -8,6 +8,7 @@
 #include "SessionStore.h"
 #include "StorageError.h"
 
+#include "../support/OneChannelSession.h"
 #include "../support/PostgresServer.h"
 
 #include <QCryptographicHash>
@@ -275,10 +276,7 @@ void TestCentralStore::cancelledPushLeavesNothing()
 void TestCentralStore::incompleteSessionIsNotPushed()
 {
     SessionStore local(m_dir.filePath(QStringLiteral("rig4.sqlite")));
-    SessionInfo info;
-    info.name = QStringLiteral("recording");
-    info.started = QStringLiteral("2026-11-26T09:00:00Z");
-    const qint64 id = local.createSession(info);
+    const qint64 id = teststore::emptySession(local, QStringLiteral("recording"), QStringLiteral("2026-11-26T09:00:00Z"));
     SessionStore central(m_central);
     try {
         SessionCopier::copy(local, id, central);

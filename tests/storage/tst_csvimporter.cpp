@@ -8,6 +8,7 @@
 #include "CsvImporter.h"
 #include "SessionStore.h"
 #include "../support/DatabaseHash.h"
+#include "../support/TestFiles.h"
 
 #include <QCryptographicHash>
 #include <QJsonArray>
@@ -67,11 +68,7 @@ private:
 
 QString TestCsvImporter::write(const QString &name, const QByteArray &bytes)
 {
-    const QString path = m_dir.filePath(name);
-    QFile f(path);
-    if (!f.open(QIODevice::WriteOnly) || f.write(bytes) != bytes.size())
-        qFatal("cannot write %s", qPrintable(path));
-    return path;
+    return testfiles::write(m_dir.path(), name, bytes);
 }
 
 void TestCsvImporter::initTestCase()

@@ -1,9 +1,11 @@
 #pragma once
 // Set-up shared by the widget tests that open a window on a recorded database (tst_mainwindow,
 // tst_sessionbrowser, tst_layout1366, tst_iso230view): the user's settings kept out of the
-// test, and short recordings of the baseline simulated rig.
+// test, and short recordings of the baseline simulated rig; and by the tests that diagnose
+// recordings of the rig with a concealed structure drift (tst_diagnosispanel, tst_facesagree).
 
 #include "RigConfig.h"
+#include "RigConfigLoader.h"
 #include "RigRecorder.h"
 #include "SessionStore.h"
 #include "SimulatedRig.h"
@@ -29,6 +31,16 @@ inline driftlab::RigConfig baselineRig(const QString &rigName = QString())
     if (!rigName.isEmpty())
         config.name = rigName;
     config.program = driftlab::FeedProgram::seed000Table2(6000.0);
+    return config;
+}
+
+// The "structure-offset" preset (a structure drift the screw model does not explain) running
+// the seed-000 programme at `feed_mm_min` over its travel, its noise seed advanced by `seedStep`.
+inline driftlab::RigConfig structureOffsetRig(double feed_mm_min, unsigned seedStep = 0)
+{
+    driftlab::RigConfig config = driftlab::RigConfigLoader::preset(QStringLiteral("structure-offset"));
+    config.program = driftlab::FeedProgram::seed000Table2(feed_mm_min, config.travelLow_mm, config.travelHigh_mm);
+    config.seed += seedStep;
     return config;
 }
 

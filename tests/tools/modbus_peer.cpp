@@ -174,6 +174,29 @@ bool readCommands(Peer &p, std::string &buffer, bool &drop)
     return true;
 }
 
+// Waits until a descriptor in `set` (the highest `top`) is readable; false when a signal
+// interrupted the wait (the caller checks quit and waits again).
+bool waitReadable(fd_set &set, int top)
+{
+    if (select(top + 1, &set, nullptr, nullptr, nullptr) < 0) {
+        if (errno == EINTR)
+            return false;
+        die("select");
+    }
+    return true;
+}
+
+// Reads the test's commands when standard input is readable; true when one asked to drop the
+// connections. stdinOpen turns false at the end of standard input.
+bool commandsAskDrop(Peer &p, fd_set &set, bool &stdinOpen, std::string &buffer)
+{
+    if (!stdinOpen || !FD_ISSET(STDIN_FILENO, &set))
+        return false;
+    bool drop = false;
+    stdinOpen = readCommands(p, buffer, drop);
+    return drop;
+}
+
 int runTcp(Peer &p, int port)
 {
     const int server = modbus_tcp_listen(p.ctx, 16);
@@ -200,20 +223,13 @@ int runTcp(Peer &p, int port)
             FD_SET(c, &set);
             top = std::max(top, c);
         }
-        if (select(top + 1, &set, nullptr, nullptr, nullptr) < 0) {
-            if (errno == EINTR)
-                continue;
-            die("select");
-        }
-        if (stdinOpen && FD_ISSET(STDIN_FILENO, &set)) {
-            bool drop = false;
-            stdinOpen = readCommands(p, buffer, drop);
-            if (drop) {
-                for (int c : clients)
-                    close(c);
-                clients.clear();
-                continue;
-            }
+        if (!waitReadable(set, top))
+            continue;
+        if (commandsAskDrop(p, set, stdinOpen, buffer)) {
+            for (int c : clients)
+                close(c);
+            clients.clear();
+            continue;
         }
         if (FD_ISSET(server, &set)) {
             const int c = accept(server, nullptr, nullptr);
@@ -255,17 +271,10 @@ int runRtu(Peer &p)
         FD_SET(fd, &set);
         if (stdinOpen)
             FD_SET(STDIN_FILENO, &set);
-        if (select(std::max(fd, STDIN_FILENO) + 1, &set, nullptr, nullptr, nullptr) < 0) {
-            if (errno == EINTR)
-                continue;
-            die("select");
-        }
-        if (stdinOpen && FD_ISSET(STDIN_FILENO, &set)) {
-            bool drop = false;
-            stdinOpen = readCommands(p, buffer, drop);
-            if (drop)
-                modbus_flush(p.ctx);
-        }
+        if (!waitReadable(set, std::max(fd, STDIN_FILENO)))
+            continue;
+        if (commandsAskDrop(p, set, stdinOpen, buffer))
+            modbus_flush(p.ctx);
         if (FD_ISSET(fd, &set))
             serve(p); // a bad frame (CRC) is answered by nothing, as a real module does
     }

@@ -9,6 +9,8 @@
 #include "MainWindow.h"
 #include "SessionStore.h"
 
+#include "../support/TestFiles.h"
+
 #include <QAction>
 #include <QComboBox>
 #include <QDateTimeEdit>
@@ -48,11 +50,7 @@ private:
 
 QString TestCsvImportDialog::write(const QString &name, const QByteArray &bytes)
 {
-    const QString path = m_dir.filePath(name);
-    QFile f(path);
-    if (!f.open(QIODevice::WriteOnly) || f.write(bytes) != bytes.size())
-        qFatal("cannot write %s", qPrintable(path));
-    return path;
+    return testfiles::write(m_dir.path(), name, bytes);
 }
 
 int TestCsvImportDialog::row(CsvImportDialog &d, const QString &header)

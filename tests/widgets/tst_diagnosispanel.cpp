@@ -4,11 +4,10 @@
 
 #include "DiagnosisPanel.h"
 #include "ErrorSurfacePlot.h"
-#include "RigConfigLoader.h"
-#include "RigRecorder.h"
 #include "SessionStore.h"
-#include "SimulatedRig.h"
 #include "UnitLabels.h"
+
+#include "../support/WidgetTestSetup.h"
 
 #include <QComboBox>
 #include <QLabel>
@@ -38,24 +37,10 @@ private:
 void TestDiagnosisPanel::initTestCase()
 {
     m_store = std::make_unique<SessionStore>(m_dir.filePath(QStringLiteral("diag.sqlite")));
-    RigConfig config = RigConfigLoader::preset(QStringLiteral("structure-offset"));
-    config.program = FeedProgram::seed000Table2(6000.0, config.travelLow_mm, config.travelHigh_mm);
-    {
-        SimulatedRig rig(config);
-        m_train = RigRecorder(*m_store, rig).record(QStringLiteral("train"), 4 * 3600.0);
-    }
-    config.program = FeedProgram::seed000Table2(8000.0, config.travelLow_mm, config.travelHigh_mm);
-    config.seed += 1;
-    {
-        SimulatedRig rig(config);
-        m_validate = RigRecorder(*m_store, rig).record(QStringLiteral("validate"), 3 * 3600.0);
-    }
+    m_train = widgettest::record(*m_store, widgettest::structureOffsetRig(6000.0), QStringLiteral("train"), 4 * 3600.0);
+    m_validate = widgettest::record(*m_store, widgettest::structureOffsetRig(8000.0, 1), QStringLiteral("validate"), 3 * 3600.0);
     // A third session, so that the boxes' default pair (first, last) is not the pair diagnosed.
-    config.seed += 1;
-    {
-        SimulatedRig rig(config);
-        m_other = RigRecorder(*m_store, rig).record(QStringLiteral("other"), 1800.0);
-    }
+    m_other = widgettest::record(*m_store, widgettest::structureOffsetRig(8000.0, 2), QStringLiteral("other"), 1800.0);
 }
 
 namespace {

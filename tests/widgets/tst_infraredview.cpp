@@ -2,6 +2,8 @@
 
 #include "InfraredView.h"
 
+#include "../support/InfraredLine.h"
+
 #include <QSignalSpy>
 #include <QtTest>
 
@@ -30,12 +32,7 @@ cv::Mat gradientFrame()
 
 void TestInfraredView::readoutAndRange()
 {
-    InfraredCalibration cal;
-    cal.lineX0_px = 5;
-    cal.lineY0_px = 30;
-    cal.lineX1_px = 195;
-    cal.lineY1_px = 30;
-    cal.screwWidth_px = 8;
+    const InfraredCalibration cal = testinfrared::screwLine(5, 30, 195, 30, 8);
     const cv::Mat t = InfraredFrame::countsToTemperature(gradientFrame(), cal);
     InfraredView view;
     view.resize(800, 400);

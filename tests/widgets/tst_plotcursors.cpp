@@ -40,6 +40,18 @@ void fill(TimeSeriesPlot &plot)
     plot.resize(800, 500);
     plot.zoomToData();
 }
+
+// The plot filled, shown and drawn, ready for mouse events on its canvas; false when it never
+// became visible.
+bool showFilled(TimeSeriesPlot &plot)
+{
+    fill(plot);
+    plot.show();
+    if (!QTest::qWaitForWindowExposed(&plot))
+        return false;
+    plot.replot();
+    return true;
+}
 } // namespace
 
 void TestPlotCursors::valuesAndDeltaWithUnits()
@@ -84,10 +96,7 @@ void TestPlotCursors::valuesAndDeltaWithUnits()
 void TestPlotCursors::shiftClickPlacesAThenB()
 {
     TimeSeriesPlot plot;
-    fill(plot);
-    plot.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&plot));
-    plot.replot();
+    QVERIFY(showFilled(plot));
     PlotCursors *c = PlotCursors::of(&plot);
     const QwtScaleMap map = plot.canvasMap(QwtPlot::xBottom);
     const double perPixel = std::fabs(map.sDist() / map.pDist());
@@ -115,10 +124,7 @@ void TestPlotCursors::shiftClickPlacesAThenB()
 void TestPlotCursors::dragMovesAPlacedCursor()
 {
     TimeSeriesPlot plot;
-    fill(plot);
-    plot.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&plot));
-    plot.replot();
+    QVERIFY(showFilled(plot));
     PlotCursors *c = PlotCursors::of(&plot);
     c->setCursor(PlotCursors::A, 1800.0);
     c->setCursor(PlotCursors::B, 5400.0);

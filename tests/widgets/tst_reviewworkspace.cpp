@@ -12,6 +12,8 @@
 #include "SimulatedRig.h"
 #include "TimeSeriesPlot.h"
 
+#include "../support/OneChannelSession.h"
+
 #include <QJsonArray>
 #include <qwt_plot_curve.h>
 #include <qwt_scale_map.h>
@@ -73,24 +75,16 @@ void TestReviewWorkspace::initTestCase()
                                {QStringLiteral("screw"), QJsonObject{{QStringLiteral("nut_length_m"), 0.212}}}};
     info.manifest = manifest();
     m_full = m_store->createSession(info);
-    ChannelInfo x;
-    x.key = QStringLiteral("X");
-    x.kind = QStringLiteral("position");
-    x.unit = QStringLiteral("mm");
-    x.role = QStringLiteral("axis_position");
-    const qint64 xId = m_store->addChannel(m_full, x);
+    const qint64 xId = m_store->addChannel(
+        m_full, teststore::channelInfo(QStringLiteral("X"), QStringLiteral("position"), QStringLiteral("mm"), QStringLiteral("axis_position")));
     QVector<double> t, v;
     for (double ti = 0; ti <= 12600; ti += 1.0) {
         t.push_back(ti);
         v.push_back(axisPosition(ti));
     }
     m_store->appendSamples(xId, t, v);
-    ChannelInfo nut;
-    nut.key = QStringLiteral("T_nut");
-    nut.kind = QStringLiteral("temperature");
-    nut.unit = QStringLiteral("degC");
-    nut.role = QStringLiteral("nut");
-    const qint64 nutId = m_store->addChannel(m_full, nut);
+    const qint64 nutId = m_store->addChannel(
+        m_full, teststore::channelInfo(QStringLiteral("T_nut"), QStringLiteral("temperature"), QStringLiteral("degC"), QStringLiteral("nut")));
     QVector<double> tn;
     for (double ti : t)
         tn.push_back(20.0 + thermal(550.0, ti) / 5.0);
@@ -130,10 +124,7 @@ void TestReviewWorkspace::initTestCase()
     }
     m_store->addEvent(m_full, {0.0, QStringLiteral("feed 3000 mm/min")});
     m_store->addEvent(m_full, {7200.0, QStringLiteral("standstill")});
-    SessionInfo bare;
-    bare.name = QStringLiteral("no interferometer, no infrared");
-    bare.started = QStringLiteral("2026-11-22T09:00:00Z");
-    m_bare = m_store->createSession(bare);
+    m_bare = teststore::emptySession(*m_store, QStringLiteral("no interferometer, no infrared"), QStringLiteral("2026-11-22T09:00:00Z"));
 }
 
 void TestReviewWorkspace::surfaceHoldsThermalErrors()
@@ -251,10 +242,7 @@ void TestReviewWorkspace::longChannelsDrawTheirStoredEnvelopes()
     // show, pixel column by pixel column, the same min/max as its own channel's envelope
     // read alone, and the short one its samples.
     SessionStore store(m_dir.filePath(QStringLiteral("long.sqlite")));
-    SessionInfo info;
-    info.name = QStringLiteral("long channels");
-    info.started = QStringLiteral("2026-11-27T00:00:00Z");
-    const qint64 session = store.createSession(info);
+    const qint64 session = teststore::emptySession(store, QStringLiteral("long channels"), QStringLiteral("2026-11-27T00:00:00Z"));
     struct Known {
         qint64 id;
         QString key;
