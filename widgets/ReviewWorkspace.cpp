@@ -99,6 +99,7 @@ void ReviewWorkspace::clear()
     m_overlay.clear();
     m_timeSeries->clearCurves();
     m_heading->setText(tr("No session"));
+    m_tabs->setCurrentIndex(TimeSeriesTab); // before disabling the others (see setSession)
     for (int t = SurfaceTab; t <= InfraredTab; ++t)
         m_tabs->setTabEnabled(t, false);
 }
@@ -120,12 +121,20 @@ void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
     m_timeSeries->setEvents(store->events(sessionId));
 
     m_hasErrors = data->hasInterferometer();
+    // Leave a tab before disabling it: QTabWidget would move on to the next enabled one,
+    // the 3-D tab among them, and build its OpenGL view for nothing.
+    const int current = m_tabs->currentIndex();
+    if ((current >= SurfaceTab && current <= ThreeDTab && !m_hasErrors) ||
+        (current == InfraredTab && data->infraredFrames().isEmpty()))
+        m_tabs->setCurrentIndex(TimeSeriesTab);
     for (int t = SurfaceTab; t <= ThreeDTab; ++t) {
         m_tabs->setTabEnabled(t, m_hasErrors);
         m_tabs->setTabToolTip(t, m_hasErrors ? QString()
                                              : tr("This session has no interferometer runs besides the reference run: "
                                                   "no thermal errors to show"));
     }
+    m_profiles->clearCurves();
+    m_profiles->setFooter(QString());
     if (m_hasErrors) {
         const ThermalErrorTable table = data->thermalErrors();
         m_surface->setTable(table);
@@ -212,7 +221,41 @@ void ReviewWorkspace::setOverlay(const QVector<qint64> &sessionIds)
         names << tr("#%1 %2 (%3)").arg(m_overlay[k]).arg(m_store->session(m_overlay[k]).name, styles[k % 3]);
     m_timeSeries->setTitle(m_overlay.isEmpty() ? m_data->info().name : names.join(QStringLiteral(", ")));
     showChannels(m_shown);
-    m_tabs->setCurrentIndex(TimeSeriesTab);
+    updateProfiles();
+    if (m_tabs->currentIndex() != ProfilesTab || !m_tabs->isTabEnabled(ProfilesTab))
+        m_tabs->setCurrentIndex(TimeSeriesTab);
+}
+
+void ReviewWorkspace::updateProfiles()
+{
+    m_profiles->setFooter(QString());
+    if (m_overlay.isEmpty()) {
+        if (m_hasErrors)
+            ThermalErrorViews::showProfiles(*m_profiles, m_data->thermalErrors());
+        m_tabs->setTabEnabled(ProfilesTab, m_hasErrors);
+        return;
+    }
+    QStringList names, without;
+    std::vector<ThermalErrorTable> tables;
+    auto add = [&](qint64 id, const SessionReviewData &d) {
+        const QString name = QStringLiteral("#%1 %2").arg(id).arg(d.info().name);
+        if (!d.hasInterferometer()) {
+            without << name;
+            return;
+        }
+        tables.push_back(d.thermalErrors());
+        names << QStringLiteral("%1 (%2)").arg(name, d.info().started);
+    };
+    add(m_sessionId, *m_data);
+    for (qint64 id : m_overlay)
+        add(id, SessionReviewData(*m_store, id));
+    ThermalErrorViews::showLastRuns(*m_profiles, names, tables);
+    if (!without.isEmpty())
+        m_profiles->setFooter(tr("No interferometer runs: %1").arg(without.join(QStringLiteral(", "))));
+    if (tables.empty() && m_tabs->currentIndex() == ProfilesTab)
+        m_tabs->setCurrentIndex(TimeSeriesTab);
+    m_tabs->setTabEnabled(ProfilesTab, !tables.empty());
+    m_tabs->setTabToolTip(ProfilesTab, tables.empty() ? tr("None of these sessions has interferometer runs") : QString());
 }
 
 void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
@@ -334,7 +377,7 @@ QwtPlot *ReviewWorkspace::plotForView(const QString &name)
         return errors ? m_surface : nullptr;
     case 2:
         m_tabs->setCurrentIndex(ProfilesTab);
-        return errors ? m_profiles : nullptr;
+        return m_tabs->isTabEnabled(ProfilesTab) ? m_profiles : nullptr; // own runs, or an overlay's
     case 3:
         m_tabs->setCurrentIndex(HistoriesTab);
         return errors ? m_histories : nullptr;

@@ -42,6 +42,9 @@ public:
     // the shown channels' namesakes (same key and unit) of each, on the same elapsed-time
     // axis, dashed / dotted / dash-dot; legend entries "#id key", the title names each
     // session and its line style. Empty: this session alone. A new session clears it.
+    // The error-vs-position view then shows the last interferometer run of each session
+    // with runs on one position axis, legend "#id name (started) run N (h:mm)", same styles;
+    // its footer names the sessions without runs.
     void setOverlay(const QVector<qint64> &sessionIds);
     QVector<qint64> overlay() const { return m_overlay; }
     // Channels showChannels() left out because their unit needed a third axis ("" for none).
@@ -68,6 +71,7 @@ public:
 private:
     QwtPlotCurve *addChannelCurve(qint64 channelId, const QString &title, bool rightAxis);
     void updateTemperatureView();
+    void updateProfiles();
     void ensure3D();
 
     const SessionStore *m_store = nullptr;
