@@ -22,9 +22,6 @@
 namespace driftlab {
 
 namespace {
-// Channels longer than this are drawn from decimated min/max levels.
-constexpr qint64 kRawCurveLimit = 20000;
-
 enum Tab { TimeSeriesTab, SurfaceTab, ProfilesTab, HistoriesTab, TemperatureTab, ThreeDTab, InfraredTab };
 } // namespace
 
@@ -97,6 +94,7 @@ void ReviewWorkspace::clear()
     m_data.reset();
     m_hasErrors = false;
     m_overlay.clear();
+    m_envelopes.clear();
     m_timeSeries->clearCurves();
     m_heading->setText(tr("No session"));
     m_tabs->setCurrentIndex(TimeSeriesTab); // before disabling the others (see setSession)
@@ -111,6 +109,9 @@ void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
     m_sessionId = sessionId;
     m_data = data;
     m_overlay.clear();
+    m_envelopes.clear();
+    // Envelopes of a finished session do not change (overlaid sessions' channels: same rule).
+    m_envelopesComplete = data->info().complete;
     m_timeSeries->setTitle(data->info().name);
     const SessionInfo &info = data->info();
     m_heading->setText(tr("<b>Session #%1</b>&nbsp;&nbsp;%2&nbsp;&nbsp;<span style='color:#555'>started %3%4%5</span>")
@@ -192,16 +193,30 @@ QVector<qint64> ReviewWorkspace::defaultChannels() const
     return shown;
 }
 
-QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, bool right)
+QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, bool right, bool keep)
 {
-    if (m_store->sampleCount(id) > kRawCurveLimit) {
-        const SessionStore *store = m_store;
-        const DecimatedSeries whole = store->decimated(id, -1e300, 1e300, 1);
-        const double tFirst = whole.tFirst.isEmpty() ? 0.0 : whole.tFirst.front();
-        const double tLast = whole.tLast.isEmpty() ? 0.0 : whole.tLast.back();
+    // One query decides and draws (a 10-hour open spent most of its time in three per
+    // channel: count, span, envelope): the whole channel's envelope at one bucket per pixel
+    // column. Coarser than the raw samples (level >= 1: over 16 samples a column) it is
+    // drawn decimated; otherwise raw (the level-0 answer is the samples themselves when no
+    // more than one falls in a bucket). A finished session's envelopes are kept for the
+    // next showChannels() or overlay.
+    const SessionStore *store = m_store;
+    const int buckets = m_timeSeries->decimationBuckets();
+    auto cached = m_envelopes.constFind(id);
+    const DecimatedSeries whole = cached != m_envelopes.cend() && cached->tFirst.size() <= buckets
+                                      ? *cached
+                                      : store->decimated(id, -1e300, 1e300, buckets);
+    if (keep && m_envelopesComplete)
+        m_envelopes.insert(id, whole);
+    if (whole.level >= 1)
         return m_timeSeries->addDecimatedCurve(
-            title, [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); }, tFirst, tLast, right);
-    }
+            title, [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); }, whole, right);
+    bool raw = true;
+    for (int i = 0; i < whole.tFirst.size() && raw; ++i)
+        raw = whole.tFirst[i] == whole.tLast[i];
+    if (raw)
+        return m_timeSeries->addCurve(title, whole.tFirst, whole.min, right);
     const SampleBlock block = m_store->samples(id);
     return m_timeSeries->addCurve(title, block.t, block.v, right);
 }
@@ -300,7 +315,7 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
             if (id == 0)
                 continue;
             const QString name = m_overlay.isEmpty() ? c.key : QStringLiteral("#%1 %2").arg(session).arg(c.key);
-            QwtPlotCurve *curve = addChannelCurve(id, name, right);
+            QwtPlotCurve *curve = addChannelCurve(id, name, right, k == 0); // keeps this session's envelopes
             if (k > 0) {
                 QPen pen = curve->pen();
                 pen.setStyle(k % 3 == 1 ? Qt::DashLine : k % 3 == 2 ? Qt::DotLine : Qt::DashDotLine);

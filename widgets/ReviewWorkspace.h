@@ -3,11 +3,14 @@
 // of the interferometer runs (surface, against position, time and temperature, 3-D) and
 // the infrared frames. Each view can be exported by name.
 
+#include <QHash>
 #include <QStringList>
 #include <QVector>
 #include <QWidget>
 
 #include <memory>
+
+#include "StorageTypes.h"
 
 class QComboBox;
 class QLabel;
@@ -69,7 +72,7 @@ public:
     QString heading() const;
 
 private:
-    QwtPlotCurve *addChannelCurve(qint64 channelId, const QString &title, bool rightAxis);
+    QwtPlotCurve *addChannelCurve(qint64 channelId, const QString &title, bool rightAxis, bool keep);
     void updateTemperatureView();
     void updateProfiles();
     void ensure3D();
@@ -94,6 +97,9 @@ private:
     QString m_leftOut;
     QVector<qint64> m_shown;
     QVector<qint64> m_overlay;
+    // Whole-channel envelopes already read (finished sessions only: a recording grows).
+    QHash<qint64, DecimatedSeries> m_envelopes;
+    bool m_envelopesComplete = false;
 };
 
 } // namespace driftlab
