@@ -113,6 +113,17 @@ void TimeSeriesPlot::envelopePoints(const DecimatedSeries &d, QVector<double> &x
     }
 }
 
+void TimeSeriesPlot::resizeEvent(QResizeEvent *event)
+{
+    QwtPlot::resizeEvent(event);
+    const int ticks = std::max(2, std::min(10, width() / 90));
+    if (axisMaxMajor(QwtPlot::xBottom) != ticks) {
+        setAxisMaxMajor(QwtPlot::xBottom, ticks);
+        updateAxes(); // the new steps now, not at the next data change
+        updateLayout();
+    }
+}
+
 int TimeSeriesPlot::decimationBuckets() const
 {
     return std::max(200, canvas()->width());

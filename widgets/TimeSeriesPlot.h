@@ -49,6 +49,10 @@ public:
     bool timeAxis() const { return m_timeAxis; }
     void zoomToData();
 
+protected:
+    // Fewer x ticks on a narrow plot: "0:00:00" labels need about 90 px each.
+    void resizeEvent(QResizeEvent *event) override;
+
 private:
     void refreshDecimated();
     struct DecimatedCurve {

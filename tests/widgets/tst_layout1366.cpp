@@ -38,6 +38,11 @@
 #include <QtTest>
 
 #include <qwt_plot.h>
+#include <qwt_scale_draw.h>
+#include <qwt_scale_map.h>
+#include <qwt_scale_widget.h>
+
+#include <cmath>
 
 using namespace driftlab;
 
@@ -119,6 +124,20 @@ QStringList problems(QWidget *top)
         } else if (auto *plot = qobject_cast<QwtPlot *>(w)) {
             if (plot->width() < 260 || plot->height() < 160)
                 out << QStringLiteral("plot '%1' is a sliver: %2 x %3").arg(plot->title().text()).arg(plot->width()).arg(plot->height());
+            // Bottom-axis tick labels must not run together ("0100200300400500").
+            const QwtScaleDraw *draw = plot->axisScaleDraw(QwtPlot::xBottom);
+            const QwtScaleMap map = plot->canvasMap(QwtPlot::xBottom);
+            const QList<double> ticks = plot->axisScaleDiv(QwtPlot::xBottom).ticks(QwtScaleDiv::MajorTick);
+            const QFont font = plot->axisWidget(QwtPlot::xBottom)->font();
+            for (int i = 1; i < ticks.size() && plot->axisEnabled(QwtPlot::xBottom); ++i) {
+                const double gap = std::fabs(map.transform(ticks[i]) - map.transform(ticks[i - 1]));
+                const double need = (draw->labelSize(font, ticks[i]).width() + draw->labelSize(font, ticks[i - 1]).width()) / 2.0;
+                if (gap < need + 2.0) {
+                    out << QStringLiteral("plot '%1': x tick labels %2 and %3 run together (%4 px apart, need %5)")
+                               .arg(plot->title().text()).arg(ticks[i - 1]).arg(ticks[i]).arg(gap).arg(need + 2.0);
+                    break;
+                }
+            }
         }
     }
     return out;
