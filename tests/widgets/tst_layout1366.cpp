@@ -143,6 +143,16 @@ QStringList problems(QWidget *top)
     return out;
 }
 
+// The main window on database `db`, filling the simulated 1366 x 768 screen.
+void showOnTheScreen(MainWindow &window, const QString &db)
+{
+    QVERIFY(window.workbench()->openDatabase(db));
+    window.resize(kScreen.size());
+    window.move(0, 0);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+}
+
 void checkDialog(QWidget *dialog)
 {
     dialog->show();
@@ -191,11 +201,9 @@ void TestLayout1366::cleanupTestCase()
 void TestLayout1366::everyDockFits()
 {
     MainWindow window;
-    QVERIFY(window.workbench()->openDatabase(m_db));
-    window.resize(kScreen.size());
-    window.move(0, 0);
-    window.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    showOnTheScreen(window, m_db);
+    if (QTest::currentTestFailed())
+        return;
     QCOMPARE(window.size(), kScreen.size());
     const QStringList docks{QStringLiteral("SessionsDock"), QStringLiteral("AcquisitionDock"), QStringLiteral("ModelsDock"),
                             QStringLiteral("DiagnosisDock"), QStringLiteral("AnalysisDock"), QStringLiteral("CompensationDock")};
@@ -301,11 +309,9 @@ void TestLayout1366::wheelLeavesUnfocusedCombosAlone()
 void TestLayout1366::deviceTableFitsWhileRecording()
 {
     MainWindow window;
-    QVERIFY(window.workbench()->openDatabase(m_db));
-    window.resize(kScreen.size());
-    window.move(0, 0);
-    window.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    showOnTheScreen(window, m_db);
+    if (QTest::currentTestFailed())
+        return;
     QDockWidget *d = window.dock(QStringLiteral("AcquisitionDock"));
     d->show();
     d->raise();
