@@ -22,6 +22,9 @@
 namespace driftlab {
 
 namespace {
+// Channels longer than this are drawn from decimated min/max levels.
+constexpr qint64 kRawCurveLimit = 20000;
+
 enum Tab { TimeSeriesTab, SurfaceTab, ProfilesTab, HistoriesTab, TemperatureTab, ThreeDTab, InfraredTab };
 } // namespace
 
@@ -197,9 +200,8 @@ QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, 
 {
     // One query decides and draws (a 10-hour open spent most of its time in three per
     // channel: count, span, envelope): the whole channel's envelope at one bucket per pixel
-    // column. Coarser than the raw samples (level >= 1: over 16 samples a column) it is
-    // drawn decimated; otherwise raw (the level-0 answer is the samples themselves when no
-    // more than one falls in a bucket). A finished session's envelopes are kept for the
+    // column. Channels over kRawCurveLimit samples are drawn decimated; shorter ones raw (the
+    // level-0 answer is the samples themselves when no more than one falls in a bucket). A finished session's envelopes are kept for the
     // next showChannels() or overlay.
     const SessionStore *store = m_store;
     const int buckets = m_timeSeries->decimationBuckets();
@@ -209,7 +211,9 @@ QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, 
                                       : store->decimated(id, -1e300, 1e300, buckets);
     if (keep && m_envelopesComplete)
         m_envelopes.insert(id, whole);
-    if (whole.level >= 1)
+    // Level 2 or coarser holds >= 200 entries of 256 samples: far over kRawCurveLimit. At
+    // level 1 the count decides (one more query, only for such mid-length channels).
+    if (whole.level >= 2 || (whole.level == 1 && store->sampleCount(id) > kRawCurveLimit))
         return m_timeSeries->addDecimatedCurve(
             title, [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); }, whole, right);
     bool raw = true;
