@@ -38,6 +38,8 @@ for size in 1366x768 1920x1080; do
   cp "$db" "$tmp/live-$size.sqlite"
   shot live --db "$tmp/live-$size.sqlite" --record baseline --live-limit T_motor:22
   shot overlay --db "$db" --show-session 1 --overlay 2
+  # The same overlay on one position axis: the last interferometer run of each session.
+  shot overlay-position --db "$db" --show-session 1 --overlay 2,3 --view error-position
   shot models --db "$db" --fit 1:2
   shot diagnosis --db "$db" --diagnose 1:2
   shot analysis --db "$db" --analysis 1:S1:2

@@ -86,8 +86,21 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     m_run = new QPushButton(tr("Measurement run..."), this);
     m_elapsed = new QLabel(tr("not recording"), this);
     m_devices = new QTableWidget(0, 5, this);
-    m_devices->setHorizontalHeaderLabels({tr("Device"), tr("State"), tr("Rate (Hz)"), tr("Samples"), tr("Gaps")});
-    m_devices->horizontalHeader()->setStretchLastSection(true);
+    // Fits the dock at 1366 px without sideways scrolling: short headers (the long names in
+    // their tooltips), the device name takes the room left and elides (full name in its
+    // tooltip), the state column shows the state alone (its message is the cell's tooltip).
+    m_devices->setHorizontalHeaderLabels({tr("Device"), tr("State"), tr("Hz"), tr("Samples"), tr("Gaps")});
+    const QStringList headerTips{tr("Device id in the rig file"), tr("Device state; hover a cell for its last message"),
+                                 tr("Rate (Hz): samples per second over the last seconds"), tr("Samples recorded"),
+                                 tr("Gaps: missed reads")};
+    for (int c = 0; c < headerTips.size(); ++c)
+        m_devices->horizontalHeaderItem(c)->setToolTip(headerTips[c]);
+    m_devices->horizontalHeader()->setStretchLastSection(false);
+    m_devices->horizontalHeader()->setMinimumSectionSize(24);
+    m_devices->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    m_devices->horizontalHeader()->setSectionResizeMode(0, QHeaderView::Stretch);
+    m_devices->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+    m_devices->setTextElideMode(Qt::ElideMiddle);
     m_devices->verticalHeader()->hide();
     m_devices->setEditTriggers(QAbstractItemView::NoEditTriggers);
     m_showLive = new QPushButton(tr("Show live view"), this);
@@ -276,7 +289,9 @@ bool AcquisitionPanel::startRecording(const QString &rigNameOrPath, const QStrin
     }
     m_devices->setRowCount(m_engine->deviceCount());
     for (int i = 0; i < m_engine->deviceCount(); ++i) {
-        m_devices->setItem(i, 0, new QTableWidgetItem(m_engine->device(i).id()));
+        auto *name = new QTableWidgetItem(m_engine->device(i).id());
+        name->setToolTip(m_engine->device(i).id());
+        m_devices->setItem(i, 0, name);
         for (int c = 1; c < 5; ++c)
             m_devices->setItem(i, c, new QTableWidgetItem);
     }
@@ -408,9 +423,10 @@ void AcquisitionPanel::onTick()
     const QVector<DeviceHealth> health = m_engine->health();
     for (int i = 0; i < health.size() && i < m_devices->rowCount(); ++i) {
         const DeviceHealth &h = health[i];
-        m_devices->item(i, 1)->setText(DeviceHealth::stateName(h.state) +
-                                       (h.message.isEmpty() || h.state == DeviceHealth::State::Running ? QString()
-                                                                                                      : QStringLiteral(": ") + h.message));
+        QTableWidgetItem *state = m_devices->item(i, 1);
+        const QString message = h.message.isEmpty() || h.state == DeviceHealth::State::Running ? QString() : h.message;
+        state->setText(DeviceHealth::stateName(h.state) + (message.isEmpty() ? QString() : QStringLiteral(" ⚠")));
+        state->setToolTip(message.isEmpty() ? DeviceHealth::stateName(h.state) : DeviceHealth::stateName(h.state) + QStringLiteral(": ") + message);
         m_devices->item(i, 2)->setText(QString::number(h.rate_Hz, 'f', 1));
         m_devices->item(i, 3)->setText(QString::number(h.samples));
         m_devices->item(i, 4)->setText(QString::number(h.gaps));

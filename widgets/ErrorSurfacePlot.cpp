@@ -154,4 +154,16 @@ double ErrorSurfacePlot::valueAt(double position_mm, double time_s) const
     return data ? data->value(position_mm, time_s) : 0.0;
 }
 
+void ErrorSurfacePlot::resizeEvent(QResizeEvent *event)
+{
+    QwtPlot::resizeEvent(event);
+    // About one label per 70 px of plot width ("500" plus a gap, in the bold-free tick font).
+    const int ticks = std::max(2, std::min(8, width() / 70));
+    if (axisMaxMajor(QwtPlot::xBottom) != ticks) {
+        setAxisMaxMajor(QwtPlot::xBottom, ticks);
+        updateAxes(); // the new steps now, not at the next data change
+        updateLayout();
+    }
+}
+
 } // namespace driftlab

@@ -26,6 +26,11 @@ public:
     double valueAt(double position_mm, double time_s) const;
     QwtPlotSpectrogram *spectrogram() const { return m_spectrogram; }
 
+protected:
+    // Fewer position ticks on a narrow plot: three side by side at 1366 px read
+    // "0100200300400500" with a label every 100 mm.
+    void resizeEvent(QResizeEvent *event) override;
+
 private:
     QwtPlotSpectrogram *m_spectrogram;
 };

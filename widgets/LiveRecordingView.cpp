@@ -75,7 +75,11 @@ LiveRecordingView::LiveRecordingView(QWidget *parent) : QWidget(parent)
     QFont bold = m_title->font();
     bold.setBold(true);
     m_title->setFont(bold);
+    // Both wrap: a long session name or clock line must not widen the central area past a
+    // 1366-pixel screen beside the docks (it did, by 20 px, while recording).
+    m_title->setWordWrap(true);
     m_clock = new QLabel(this);
+    m_clock->setWordWrap(true);
     m_alarm = new QLabel(this);
     m_alarm->setObjectName(QStringLiteral("LiveAlarm"));
     m_alarm->setWordWrap(true);
@@ -91,7 +95,13 @@ LiveRecordingView::LiveRecordingView(QWidget *parent) : QWidget(parent)
     // Column widths are set once per recording: ResizeToContents would measure every row at
     // every value change (10 times a second, 68 rows).
     m_table->horizontalHeader()->setSectionResizeMode(QHeaderView::Interactive);
-    m_table->horizontalHeader()->setStretchLastSection(true);
+    m_table->horizontalHeader()->setSectionResizeMode(ColChannel, QHeaderView::Stretch);
+    m_table->horizontalHeader()->setStretchLastSection(false);
+    m_table->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+    // Before the first recording (no rows to size by) the four headers at their own width,
+    // not Qt's 100 px each: the empty table fits its side of the view as the filled one does.
+    m_table->horizontalHeader()->setMinimumSectionSize(24);
+    m_table->horizontalHeader()->setDefaultSectionSize(m_table->fontMetrics().horizontalAdvance(QStringLiteral("-000.0")) + 10);
     m_table->setToolTip(tr("Tick the channels to plot; a value outside the low or high limit raises an alarm, "
                            "stored as an event of the session (empty: no limit)"));
     m_silent = new QDoubleSpinBox(this);
@@ -109,7 +119,7 @@ LiveRecordingView::LiveRecordingView(QWidget *parent) : QWidget(parent)
     m_plot->setAxisScale(QwtPlot::xBottom, 0.0, 60.0);
 
     auto *top = new QHBoxLayout;
-    top->addWidget(m_title);
+    top->addWidget(m_title, 1);
     top->addSpacing(12);
     top->addWidget(m_clock, 1);
     top->addWidget(m_stop);
@@ -253,9 +263,12 @@ void LiveRecordingView::rebuildTable(const QVector<ChannelInfo> &channels)
     for (int r = 0; r < channels.size(); ++r)
         m_table->item(r, ColValue)->setText(QString());
     // The whole table beside the plot, without sideways scrolling (at most 45 % of the view).
+    // The channel column stretches (and elides, its tooltip naming it): the side is sized
+    // for the longest name, yet a narrower side never scrolls sideways.
     int width = 2 * m_table->frameWidth() + m_table->verticalScrollBar()->sizeHint().width() + 4;
     for (int c = 0; c < ColCount; ++c)
-        width += m_table->columnWidth(c);
+        width += c == ColChannel ? std::max(static_cast<const QAbstractItemView *>(m_table)->sizeHintForColumn(c), m_table->horizontalHeader()->sectionSizeHint(c))
+                                 : m_table->columnWidth(c);
     if (m_split)
         m_split->setSizes({std::min(width, m_split->width() * 9 / 20), std::max(1, m_split->width() - width)});
     m_filling = false;

@@ -277,7 +277,7 @@ void MainWindow::buildMenus()
     m_viewDocksEnd = m_viewMenu->addSeparator(); // dock toggles go above
     m_viewMenu->addAction(tr("&Compare with session..."), this, &MainWindow::chooseComparison);
     m_viewMenu->addAction(tr("Close c&omparison"), this, [this] { compareWith(0); });
-    m_viewMenu->addAction(tr("O&verlay sessions on the time plot..."), this, &MainWindow::chooseOverlay)
+    m_viewMenu->addAction(tr("O&verlay sessions (time and position plots)..."), this, &MainWindow::chooseOverlay)
         ->setObjectName(QStringLiteral("OverlayAction"));
     m_viewMenu->addSeparator();
     m_viewMenu->addAction(tr("&Reset layout"), this, &MainWindow::resetLayout)->setObjectName(QStringLiteral("ResetLayoutAction"));
@@ -504,7 +504,10 @@ void MainWindow::chooseOverlay()
     connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
     connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
     auto *layout = new QVBoxLayout(&dialog);
-    layout->addWidget(new QLabel(tr("Sessions to draw on the current session's time plot (same channels, same elapsed time):"), &dialog));
+    auto *what = new QLabel(tr("Sessions to draw with the current one: the same channels on the time plot, the last "
+                               "interferometer run on the error-vs-position plot:"), &dialog);
+    what->setWordWrap(true);
+    layout->addWidget(what);
     layout->addWidget(list);
     layout->addWidget(buttons);
     if (dialog.exec() != QDialog::Accepted)

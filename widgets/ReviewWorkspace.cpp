@@ -97,8 +97,10 @@ void ReviewWorkspace::clear()
     m_data.reset();
     m_hasErrors = false;
     m_overlay.clear();
+    m_envelopes.clear();
     m_timeSeries->clearCurves();
     m_heading->setText(tr("No session"));
+    m_tabs->setCurrentIndex(TimeSeriesTab); // before disabling the others (see setSession)
     for (int t = SurfaceTab; t <= InfraredTab; ++t)
         m_tabs->setTabEnabled(t, false);
 }
@@ -110,6 +112,9 @@ void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
     m_sessionId = sessionId;
     m_data = data;
     m_overlay.clear();
+    m_envelopes.clear();
+    // Envelopes of a finished session do not change (overlaid sessions' channels: same rule).
+    m_envelopesComplete = data->info().complete;
     m_timeSeries->setTitle(data->info().name);
     const SessionInfo &info = data->info();
     m_heading->setText(tr("<b>Session #%1</b>&nbsp;&nbsp;%2&nbsp;&nbsp;<span style='color:#555'>started %3%4%5</span>")
@@ -120,12 +125,20 @@ void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
     m_timeSeries->setEvents(store->events(sessionId));
 
     m_hasErrors = data->hasInterferometer();
+    // Leave a tab before disabling it: QTabWidget would move on to the next enabled one,
+    // the 3-D tab among them, and build its OpenGL view for nothing.
+    const int current = m_tabs->currentIndex();
+    if ((current >= SurfaceTab && current <= ThreeDTab && !m_hasErrors) ||
+        (current == InfraredTab && data->infraredFrames().isEmpty()))
+        m_tabs->setCurrentIndex(TimeSeriesTab);
     for (int t = SurfaceTab; t <= ThreeDTab; ++t) {
         m_tabs->setTabEnabled(t, m_hasErrors);
         m_tabs->setTabToolTip(t, m_hasErrors ? QString()
                                              : tr("This session has no interferometer runs besides the reference run: "
                                                   "no thermal errors to show"));
     }
+    m_profiles->clearCurves();
+    m_profiles->setFooter(QString());
     if (m_hasErrors) {
         const ThermalErrorTable table = data->thermalErrors();
         m_surface->setTable(table);
@@ -183,16 +196,31 @@ QVector<qint64> ReviewWorkspace::defaultChannels() const
     return shown;
 }
 
-QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, bool right)
+QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, bool right, bool keep)
 {
-    if (m_store->sampleCount(id) > kRawCurveLimit) {
-        const SessionStore *store = m_store;
-        const DecimatedSeries whole = store->decimated(id, -1e300, 1e300, 1);
-        const double tFirst = whole.tFirst.isEmpty() ? 0.0 : whole.tFirst.front();
-        const double tLast = whole.tLast.isEmpty() ? 0.0 : whole.tLast.back();
+    // One query decides and draws (a 10-hour open spent most of its time in three per
+    // channel: count, span, envelope): the whole channel's envelope at one bucket per pixel
+    // column. Channels over kRawCurveLimit samples are drawn decimated; shorter ones raw (the
+    // level-0 answer is the samples themselves when no more than one falls in a bucket). A finished session's envelopes are kept for the
+    // next showChannels() or overlay.
+    const SessionStore *store = m_store;
+    const int buckets = m_timeSeries->decimationBuckets();
+    auto cached = m_envelopes.constFind(id);
+    const DecimatedSeries whole = cached != m_envelopes.cend() && cached->tFirst.size() <= buckets
+                                      ? *cached
+                                      : store->decimated(id, -1e300, 1e300, buckets);
+    if (keep && m_envelopesComplete)
+        m_envelopes.insert(id, whole);
+    // Level 2 or coarser holds >= 200 entries of 256 samples: far over kRawCurveLimit. At
+    // level 1 the count decides (one more query, only for such mid-length channels).
+    if (whole.level >= 2 || (whole.level == 1 && store->sampleCount(id) > kRawCurveLimit))
         return m_timeSeries->addDecimatedCurve(
-            title, [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); }, tFirst, tLast, right);
-    }
+            title, [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); }, whole, right);
+    bool raw = true;
+    for (int i = 0; i < whole.tFirst.size() && raw; ++i)
+        raw = whole.tFirst[i] == whole.tLast[i];
+    if (raw)
+        return m_timeSeries->addCurve(title, whole.tFirst, whole.min, right);
     const SampleBlock block = m_store->samples(id);
     return m_timeSeries->addCurve(title, block.t, block.v, right);
 }
@@ -212,7 +240,41 @@ void ReviewWorkspace::setOverlay(const QVector<qint64> &sessionIds)
         names << tr("#%1 %2 (%3)").arg(m_overlay[k]).arg(m_store->session(m_overlay[k]).name, styles[k % 3]);
     m_timeSeries->setTitle(m_overlay.isEmpty() ? m_data->info().name : names.join(QStringLiteral(", ")));
     showChannels(m_shown);
-    m_tabs->setCurrentIndex(TimeSeriesTab);
+    updateProfiles();
+    if (m_tabs->currentIndex() != ProfilesTab || !m_tabs->isTabEnabled(ProfilesTab))
+        m_tabs->setCurrentIndex(TimeSeriesTab);
+}
+
+void ReviewWorkspace::updateProfiles()
+{
+    m_profiles->setFooter(QString());
+    if (m_overlay.isEmpty()) {
+        if (m_hasErrors)
+            ThermalErrorViews::showProfiles(*m_profiles, m_data->thermalErrors());
+        m_tabs->setTabEnabled(ProfilesTab, m_hasErrors);
+        return;
+    }
+    QStringList names, without;
+    std::vector<ThermalErrorTable> tables;
+    auto add = [&](qint64 id, const SessionReviewData &d) {
+        const QString name = QStringLiteral("#%1 %2").arg(id).arg(d.info().name);
+        if (!d.hasInterferometer()) {
+            without << name;
+            return;
+        }
+        tables.push_back(d.thermalErrors());
+        names << QStringLiteral("%1 (%2)").arg(name, d.info().started);
+    };
+    add(m_sessionId, *m_data);
+    for (qint64 id : m_overlay)
+        add(id, SessionReviewData(*m_store, id));
+    ThermalErrorViews::showLastRuns(*m_profiles, names, tables);
+    if (!without.isEmpty())
+        m_profiles->setFooter(tr("No interferometer runs: %1").arg(without.join(QStringLiteral(", "))));
+    if (tables.empty() && m_tabs->currentIndex() == ProfilesTab)
+        m_tabs->setCurrentIndex(TimeSeriesTab);
+    m_tabs->setTabEnabled(ProfilesTab, !tables.empty());
+    m_tabs->setTabToolTip(ProfilesTab, tables.empty() ? tr("None of these sessions has interferometer runs") : QString());
 }
 
 void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
@@ -257,7 +319,7 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
             if (id == 0)
                 continue;
             const QString name = m_overlay.isEmpty() ? c.key : QStringLiteral("#%1 %2").arg(session).arg(c.key);
-            QwtPlotCurve *curve = addChannelCurve(id, name, right);
+            QwtPlotCurve *curve = addChannelCurve(id, name, right, k == 0); // keeps this session's envelopes
             if (k > 0) {
                 QPen pen = curve->pen();
                 pen.setStyle(k % 3 == 1 ? Qt::DashLine : k % 3 == 2 ? Qt::DotLine : Qt::DashDotLine);
@@ -334,7 +396,7 @@ QwtPlot *ReviewWorkspace::plotForView(const QString &name)
         return errors ? m_surface : nullptr;
     case 2:
         m_tabs->setCurrentIndex(ProfilesTab);
-        return errors ? m_profiles : nullptr;
+        return m_tabs->isTabEnabled(ProfilesTab) ? m_profiles : nullptr; // own runs, or an overlay's
     case 3:
         m_tabs->setCurrentIndex(HistoriesTab);
         return errors ? m_histories : nullptr;

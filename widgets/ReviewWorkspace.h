@@ -3,11 +3,14 @@
 // of the interferometer runs (surface, against position, time and temperature, 3-D) and
 // the infrared frames. Each view can be exported by name.
 
+#include <QHash>
 #include <QStringList>
 #include <QVector>
 #include <QWidget>
 
 #include <memory>
+
+#include "StorageTypes.h"
 
 class QComboBox;
 class QLabel;
@@ -42,6 +45,9 @@ public:
     // the shown channels' namesakes (same key and unit) of each, on the same elapsed-time
     // axis, dashed / dotted / dash-dot; legend entries "#id key", the title names each
     // session and its line style. Empty: this session alone. A new session clears it.
+    // The error-vs-position view then shows the last interferometer run of each session
+    // with runs on one position axis, legend "#id name (started) run N (h:mm)", same styles;
+    // its footer names the sessions without runs.
     void setOverlay(const QVector<qint64> &sessionIds);
     QVector<qint64> overlay() const { return m_overlay; }
     // Channels showChannels() left out because their unit needed a third axis ("" for none).
@@ -66,8 +72,9 @@ public:
     QString heading() const;
 
 private:
-    QwtPlotCurve *addChannelCurve(qint64 channelId, const QString &title, bool rightAxis);
+    QwtPlotCurve *addChannelCurve(qint64 channelId, const QString &title, bool rightAxis, bool keep);
     void updateTemperatureView();
+    void updateProfiles();
     void ensure3D();
 
     const SessionStore *m_store = nullptr;
@@ -90,6 +97,9 @@ private:
     QString m_leftOut;
     QVector<qint64> m_shown;
     QVector<qint64> m_overlay;
+    // Whole-channel envelopes already read (finished sessions only: a recording grows).
+    QHash<qint64, DecimatedSeries> m_envelopes;
+    bool m_envelopesComplete = false;
 };
 
 } // namespace driftlab

@@ -23,6 +23,33 @@ void markPoints(QwtPlotCurve *curve)
 {
     curve->setSymbol(new QwtSymbol(QwtSymbol::Ellipse, QBrush(curve->pen().color()), QPen(Qt::NoPen), QSize(5, 5)));
 }
+
+void positionAxes(TimeSeriesPlot &plot, const QString &title)
+{
+    plot.clearCurves();
+    plot.setTitle(title);
+    plot.setTimeAxis(false);
+    plot.setAxisTitle(QwtPlot::xBottom, QObject::tr("axis position (mm)"));
+    plot.setAxisTitles(QObject::tr("thermal error (µm)"), QString());
+    plot.enableAxis(QwtPlot::yRight, false);
+}
+
+// Run r of the table against position, titled "<prefix> run N (h:mm)".
+QwtPlotCurve *addRun(TimeSeriesPlot &plot, const ThermalErrorTable &table, std::size_t r, const QString &prefix)
+{
+    QVector<double> x, y;
+    for (std::size_t k = 0; k < table.targetCount(); ++k) {
+        const double e = table.error(r, k);
+        if (std::isnan(e))
+            continue;
+        x.push_back(table.targets_mm()[k]);
+        y.push_back(e);
+    }
+    const QString run = QObject::tr("run %1 (%2)").arg(table.runs()[r]).arg(hoursMinutes(table.runTimes_s()[r]));
+    QwtPlotCurve *curve = plot.addCurve(prefix.isEmpty() ? run : prefix + QLatin1Char(' ') + run, x, y, false);
+    markPoints(curve);
+    return curve;
+}
 } // namespace
 
 QString ThermalErrorViews::targetLabel(double position_mm)
@@ -33,23 +60,24 @@ QString ThermalErrorViews::targetLabel(double position_mm)
 
 void ThermalErrorViews::showProfiles(TimeSeriesPlot &plot, const ThermalErrorTable &table)
 {
-    plot.clearCurves();
-    plot.setTitle(QObject::tr("Thermal error against position, per run"));
-    plot.setTimeAxis(false);
-    plot.setAxisTitle(QwtPlot::xBottom, QObject::tr("axis position (mm)"));
-    plot.setAxisTitles(QObject::tr("thermal error (µm)"), QString());
-    plot.enableAxis(QwtPlot::yRight, false);
-    for (std::size_t r = 0; r < table.runCount(); ++r) {
-        QVector<double> x, y;
-        for (std::size_t k = 0; k < table.targetCount(); ++k) {
-            const double e = table.error(r, k);
-            if (std::isnan(e))
-                continue;
-            x.push_back(table.targets_mm()[k]);
-            y.push_back(e);
+    positionAxes(plot, QObject::tr("Thermal error against position, per run"));
+    for (std::size_t r = 0; r < table.runCount(); ++r)
+        addRun(plot, table, r, QString());
+    plot.zoomToData();
+}
+
+void ThermalErrorViews::showLastRuns(TimeSeriesPlot &plot, const QStringList &names, const std::vector<ThermalErrorTable> &tables)
+{
+    positionAxes(plot, QObject::tr("Thermal error against position, last run of each session"));
+    for (std::size_t i = 0; i < tables.size(); ++i) {
+        if (tables[i].runCount() == 0)
+            continue;
+        QwtPlotCurve *curve = addRun(plot, tables[i], tables[i].runCount() - 1, names.value(static_cast<int>(i)));
+        if (i > 0) {
+            QPen pen = curve->pen();
+            pen.setStyle(i % 3 == 1 ? Qt::DashLine : i % 3 == 2 ? Qt::DotLine : Qt::DashDotLine);
+            curve->setPen(pen);
         }
-        const QString title = QObject::tr("run %1 (%2)").arg(table.runs()[r]).arg(hoursMinutes(table.runTimes_s()[r]));
-        markPoints(plot.addCurve(title, x, y, false));
     }
     plot.zoomToData();
 }

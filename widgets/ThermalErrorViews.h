@@ -3,8 +3,10 @@
 // run, and error against time for each target.
 
 #include <QString>
+#include <QStringList>
 
 #include <cstddef>
+#include <vector>
 
 namespace driftlab {
 
@@ -23,6 +25,10 @@ class ThermalErrorViews {
 public:
     // One curve per run: thermal error (um) against axis position (mm).
     static void showProfiles(TimeSeriesPlot &plot, const ThermalErrorTable &table);
+    // Several sessions on one position axis (issue 33 item 4): the last run of each table,
+    // thermal error (um) against axis position (mm), named names[i] + " run N (h:mm)"; the
+    // first solid, then dashed, dotted, dash-dot as the time-axis overlay draws them.
+    static void showLastRuns(TimeSeriesPlot &plot, const QStringList &names, const std::vector<ThermalErrorTable> &tables);
     // One curve per target: thermal error (um) against time (s).
     static void showHistories(TimeSeriesPlot &plot, const ThermalErrorTable &table);
     // Thermal error at one target against a temperature channel (interpolated at each

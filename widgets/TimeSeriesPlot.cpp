@@ -113,7 +113,33 @@ void TimeSeriesPlot::envelopePoints(const DecimatedSeries &d, QVector<double> &x
     }
 }
 
+void TimeSeriesPlot::resizeEvent(QResizeEvent *event)
+{
+    QwtPlot::resizeEvent(event);
+    const int ticks = std::max(2, std::min(10, width() / 90));
+    if (axisMaxMajor(QwtPlot::xBottom) != ticks) {
+        setAxisMaxMajor(QwtPlot::xBottom, ticks);
+        updateAxes(); // the new steps now, not at the next data change
+        updateLayout();
+    }
+}
+
+int TimeSeriesPlot::decimationBuckets() const
+{
+    return std::max(200, canvas()->width());
+}
+
 QwtPlotCurve *TimeSeriesPlot::addDecimatedCurve(const QString &title, RangeFetcher fetch, double tFirst, double tLast,
+                                                bool rightAxis)
+{
+    DecimatedSeries first = fetch(tFirst, tLast, decimationBuckets());
+    QwtPlotCurve *c = addDecimatedCurve(title, std::move(fetch), first, rightAxis);
+    m_decimated.back().tFirst = tFirst;
+    m_decimated.back().tLast = tLast;
+    return c;
+}
+
+QwtPlotCurve *TimeSeriesPlot::addDecimatedCurve(const QString &title, RangeFetcher fetch, const DecimatedSeries &whole,
                                                 bool rightAxis)
 {
     QwtPlotCurve *c = addCurve(title, {}, {}, rightAxis);
@@ -121,10 +147,11 @@ QwtPlotCurve *TimeSeriesPlot::addDecimatedCurve(const QString &title, RangeFetch
     QPen pen = c->pen();
     pen.setWidth(0); // cosmetic 1-px pen: the fast raster path for thousands of segments
     c->setPen(pen);
+    const double tFirst = whole.tFirst.isEmpty() ? 0.0 : whole.tFirst.front();
+    const double tLast = whole.tLast.isEmpty() ? 0.0 : whole.tLast.back();
     m_decimated.push_back({c, std::move(fetch), tFirst, tLast});
-    const DecimatedCurve &d = m_decimated.back();
     QVector<double> x, y;
-    envelopePoints(d.fetch(tFirst, tLast, std::max(200, canvas()->width())), x, y);
+    envelopePoints(whole, x, y);
     c->setSamples(x, y);
     return c;
 }

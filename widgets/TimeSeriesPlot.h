@@ -31,6 +31,11 @@ public:
     // (PulseView style): a 36-million-sample channel draws as fast as a 2,000-point one.
     using RangeFetcher = std::function<DecimatedSeries(double t0, double t1, int buckets)>;
     QwtPlotCurve *addDecimatedCurve(const QString &title, RangeFetcher fetch, double tFirst, double tLast, bool rightAxis);
+    // The same with the whole channel's envelope already fetched (at decimationBuckets()):
+    // its first and last times are the channel's span, so opening costs one query, not two.
+    QwtPlotCurve *addDecimatedCurve(const QString &title, RangeFetcher fetch, const DecimatedSeries &whole, bool rightAxis);
+    // Buckets a decimated curve asks for: one per pixel column of the canvas (at least 200).
+    int decimationBuckets() const;
     // Polyline through (t, min), (t, max) per bucket: its envelope holds every sample.
     static void envelopePoints(const DecimatedSeries &d, QVector<double> &x, QVector<double> &y);
     QVector<QwtPlotCurve *> curves() const { return m_curves; }
@@ -43,6 +48,10 @@ public:
     void setTimeAxis(bool time);
     bool timeAxis() const { return m_timeAxis; }
     void zoomToData();
+
+protected:
+    // Fewer x ticks on a narrow plot: "0:00:00" labels need about 90 px each.
+    void resizeEvent(QResizeEvent *event) override;
 
 private:
     void refreshDecimated();

@@ -7,7 +7,10 @@
 
 #include "../support/TestPeers.h"
 
+#include <QAbstractButton>
+#include <QApplication>
 #include <QJsonArray>
+#include <QMessageBox>
 #include <QTemporaryDir>
 #include <QtTest>
 
@@ -17,6 +20,7 @@ class TestRigSetupDialog : public QObject {
     Q_OBJECT
 private slots:
     void setUpTestAndSave();
+    void escapeAsksBeforeDiscarding();
 };
 
 void TestRigSetupDialog::setUpTestAndSave()
@@ -103,6 +107,40 @@ void TestRigSetupDialog::setUpTestAndSave()
     QVERIFY(again.loadFrom(path));
     QCOMPARE(again.deviceCount(), 2);
     QCOMPARE(again.device(0).settings, rig.devices[0].settings);
+}
+
+// Issue 33: Esc discarded a configured device without asking. Now it asks: Cancel keeps the
+// dialog and its device, Discard closes it; with nothing set up, Esc closes at once.
+void TestRigSetupDialog::escapeAsksBeforeDiscarding()
+{
+    RigSetupDialog dialog;
+    dialog.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&dialog));
+    QTest::keyClick(&dialog, Qt::Key_Escape);
+    QVERIFY(!dialog.isVisible()); // nothing set up: nothing to lose
+    dialog.addDevice(QStringLiteral("modbus-tcp"), QStringLiteral("adam-6015"));
+    dialog.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&dialog));
+    QStringList asked;
+    auto answer = [&asked](QMessageBox::StandardButton button) {
+        QTimer::singleShot(50, [&asked, button] {
+            auto *box = qobject_cast<QMessageBox *>(QApplication::activeModalWidget());
+            if (!box)
+                return;
+            asked << box->text();
+            box->button(button)->click();
+        });
+    };
+    answer(QMessageBox::Cancel);
+    QTest::keyClick(&dialog, Qt::Key_Escape);
+    QCOMPARE(asked.size(), 1);
+    QVERIFY2(asked.front().contains(QStringLiteral("not saved")), qPrintable(asked.front()));
+    QVERIFY(dialog.isVisible());
+    QVERIFY(dialog.unsaved());
+    answer(QMessageBox::Discard);
+    QTest::keyClick(&dialog, Qt::Key_Escape);
+    QCOMPARE(asked.size(), 2);
+    QVERIFY(!dialog.isVisible());
 }
 
 QTEST_MAIN(TestRigSetupDialog)
