@@ -1,7 +1,5 @@
 #include "Iso230Report.h"
 
-#include "InterferometerReadings.h"
-#include "SessionStore.h"
 
 #include <QJsonArray>
 #include <QStringList>
@@ -69,43 +67,189 @@ QString um(double v)
     return std::isfinite(v) ? QString::number(v, 'f', 2) : QStringLiteral("-");
 }
 
+// Reading a toJson() document back: every field is required, an error names its path.
+class Reader {
+public:
+    Reader(const QJsonObject &o, const QString &path) : m_o(o), m_path(path) {}
+
+    QJsonValue value(const char *key) const
+    {
+        const QJsonValue v = m_o.value(QLatin1String(key));
+        if (v.isUndefined())
+            bad(key, "is missing");
+        return v;
+    }
+    // A number; null is NaN (num() writes non-finite values as null).
+    double number(const char *key) const
+    {
+        const QJsonValue v = value(key);
+        if (v.isNull())
+            return NAN;
+        if (!v.isDouble())
+            bad(key, "is not a number");
+        return v.toDouble();
+    }
+    int integer(const char *key) const
+    {
+        const double v = number(key);
+        if (!(std::fabs(v) < 1e9) || v != std::floor(v))
+            bad(key, "is not an integer");
+        return static_cast<int>(v);
+    }
+    bool flag(const char *key) const
+    {
+        const QJsonValue v = value(key);
+        if (!v.isBool())
+            bad(key, "is not true or false");
+        return v.toBool();
+    }
+    QString text(const char *key) const
+    {
+        const QJsonValue v = value(key);
+        if (!v.isString())
+            bad(key, "is not a string");
+        return v.toString();
+    }
+    QJsonArray array(const char *key) const
+    {
+        const QJsonValue v = value(key);
+        if (!v.isArray())
+            bad(key, "is not an array");
+        return v.toArray();
+    }
+    Reader object(const char *key) const
+    {
+        const QJsonValue v = value(key);
+        if (!v.isObject())
+            bad(key, "is not an object");
+        return Reader(v.toObject(), field(key));
+    }
+    Reader element(const char *key, const QJsonValue &v, int i) const
+    {
+        if (!v.isObject())
+            bad(key, "holds a value that is not an object");
+        return Reader(v.toObject(), QStringLiteral("%1[%2]").arg(field(key)).arg(i));
+    }
+    int direction(const char *key) const
+    {
+        const QString d = text(key);
+        if (d == QLatin1String("+"))
+            return 1;
+        if (d == QLatin1String("-"))
+            return -1;
+        if (!d.isEmpty())
+            bad(key, "is not \"+\", \"-\" or \"\"");
+        return 0;
+    }
+
+private:
+    QString field(const char *key) const { return m_path.isEmpty() ? QString::fromLatin1(key) : m_path + QLatin1Char('.') + QLatin1String(key); }
+    [[noreturn]] void bad(const char *key, const char *what) const
+    {
+        throw std::invalid_argument(QStringLiteral("ISO 230 result: \"%1\" %2").arg(field(key), QLatin1String(what)).toStdString());
+    }
+
+    QJsonObject m_o;
+    QString m_path;
+};
+
+Iso230Axis readAxis(const Reader &r)
+{
+    Iso230Axis a;
+    a.reversal_um = r.number("B_um");
+    a.meanReversal_um = r.number("B_mean_um");
+    a.repeatUp_um = r.number("R_up_um");
+    a.repeatDown_um = r.number("R_down_um");
+    a.repeat_um = r.number("R_um");
+    a.systematicUp_um = r.number("E_up_um");
+    a.systematicDown_um = r.number("E_down_um");
+    a.systematic_um = r.number("E_um");
+    a.meanRange_um = r.number("M_um");
+    a.accuracyUp_um = r.number("A_up_um");
+    a.accuracyDown_um = r.number("A_down_um");
+    a.accuracy_um = r.number("A_um");
+    return a;
+}
+
+Iso230Target readTarget(const Reader &r)
+{
+    Iso230Target t;
+    t.position_mm = r.number("position_mm");
+    t.approachesUp = r.integer("n_up");
+    t.approachesDown = r.integer("n_down");
+    t.meanUp_um = r.number("mean_up_um");
+    t.meanDown_um = r.number("mean_down_um");
+    t.mean_um = r.number("mean_um");
+    t.reversal_um = r.number("B_um");
+    t.sUp_um = r.number("s_up_um");
+    t.sDown_um = r.number("s_down_um");
+    t.repeatUp_um = r.number("R_up_um");
+    t.repeatDown_um = r.number("R_down_um");
+    t.repeat_um = r.number("R_um");
+    return t;
+}
+
+Iso230Test readTest(const Reader &r)
+{
+    Iso230Test t;
+    for (const QJsonValue &v : r.array("runs"))
+        t.runs.push_back(v.toInt());
+    t.time_s = r.number("time_s");
+    t.directionRecorded = r.flag("direction_recorded");
+    t.bidirectional = r.flag("bidirectional");
+    t.minApproaches = r.integer("approaches_min");
+    t.axis = readAxis(r.object("axis"));
+    const QJsonArray targets = r.array("targets");
+    for (int i = 0; i < targets.size(); ++i)
+        t.targets.push_back(readTarget(r.element("targets", targets[i], i)));
+    for (const QJsonValue &n : r.array("notes"))
+        t.notes.push_back(n.toString().toStdString());
+    return t;
+}
+
+Iso230DriftSeries readSeries(const Reader &r)
+{
+    Iso230DriftSeries s;
+    s.position_mm = r.number("position_mm");
+    s.direction = r.direction("direction");
+    s.maxDrift_um = r.number("max_drift_um");
+    s.maxDriftTime_s = r.number("max_drift_time_s");
+    s.maxDriftRun = r.integer("max_drift_run");
+    s.slope_um_per_K = r.number("slope_um_per_K");
+    s.offset_um = r.number("offset_um");
+    s.correlation = r.number("correlation");
+    const QJsonArray points = r.array("points");
+    for (int i = 0; i < points.size(); ++i) {
+        const Reader p = r.element("points", points[i], i);
+        Iso230DriftPoint d;
+        d.run = p.integer("run");
+        d.time_s = p.number("time_s");
+        d.drift_um = p.number("drift_um");
+        d.temperatureChange_K = p.number("delta_T_K");
+        s.points.push_back(d);
+    }
+    return s;
+}
+
 } // namespace
 
-Iso230Report::Iso230Report(const SessionStore &store, qint64 sessionId, const Iso230Options &options)
-    : m_sessionId(sessionId), m_info(store.session(sessionId)), m_options(options)
+Iso230Report::Iso230Report(const Iso230Request &request, const QString &sessionName, int referenceRun,
+                           std::vector<Iso230Test> tests, Iso230DriftSummary drift, QStringList leftOut)
+    : m_request(request), m_name(sessionName), m_referenceRun(referenceRun), m_tests(std::move(tests)),
+      m_drift(std::move(drift)), m_leftOut(std::move(leftOut))
 {
-    const QVector<InterferometerPoint> points = store.interferometerPoints(sessionId);
-    const std::vector<InterferometerReading> readings = InterferometerReadings::fromPoints(points); // complete runs
-    for (const InterferometerReadings::PartialRun &r : InterferometerReadings::partialRuns(points))
-        m_leftOut << r.note();
-    if (readings.empty())
-        throw std::invalid_argument(QStringLiteral("session %1 has no interferometer runs: nothing to evaluate").arg(sessionId).toStdString());
-    m_referenceRun = InterferometerReadings::referenceRun(m_info, readings);
-    TimeSeries temperature;
-    if (!options.temperatureChannel.isEmpty()) {
-        QStringList temperatures;
-        const ChannelInfo *found = nullptr;
-        const QVector<ChannelInfo> channels = store.channels(sessionId);
-        for (const ChannelInfo &c : channels) {
-            if (c.key == options.temperatureChannel)
-                found = &c;
-            if (c.kind == QLatin1String("temperature"))
-                temperatures << c.key;
-        }
-        if (!found)
-            throw std::invalid_argument(QStringLiteral("session %1 has no channel '%2' (temperature channels: %3)")
-                                            .arg(sessionId)
-                                            .arg(options.temperatureChannel, temperatures.isEmpty() ? QStringLiteral("none")
-                                                                                                    : temperatures.join(QStringLiteral(", ")))
-                                            .toStdString());
-        const SampleBlock samples = store.samples(found->id);
-        if (samples.t.isEmpty())
-            throw std::invalid_argument(QStringLiteral("channel '%1' has no samples").arg(found->key).toStdString());
-        temperature.t.assign(samples.t.begin(), samples.t.end());
-        temperature.v.assign(samples.v.begin(), samples.v.end());
+    if (m_tests.empty())
+        throw std::invalid_argument("Iso230Report: no ISO 230-2 test");
+}
+
+int Iso230Report::referenceTest() const
+{
+    for (std::size_t i = 0; i < m_tests.size(); ++i) {
+        const std::vector<int> &runs = m_tests[i].runs;
+        if (std::find(runs.begin(), runs.end(), m_referenceRun) != runs.end())
+            return static_cast<int>(i);
     }
-    m_tests = Iso230Positioning::evaluateRuns(readings, options.targetTolerance_mm, options.runsPerTest);
-    m_drift = Iso230Drift::evaluate(m_tests, m_referenceRun, temperature.empty() ? nullptr : &temperature, options.targetTolerance_mm);
+    return 0;
 }
 
 QJsonObject Iso230Report::toJson() const
@@ -147,7 +291,7 @@ QJsonObject Iso230Report::toJson() const
     const Iso230DriftSummary &d = m_drift;
     const QJsonObject drift{{QStringLiteral("reference_run"), d.referenceRun},
                             {QStringLiteral("temperature_channel"),
-                             d.withTemperature ? QJsonValue(m_options.temperatureChannel) : QJsonValue(QJsonValue::Null)},
+                             d.withTemperature ? QJsonValue(m_request.temperatureChannel) : QJsonValue(QJsonValue::Null)},
                             {QStringLiteral("temperature_range_K"), num(d.temperatureRange_K)},
                             {QStringLiteral("max_drift_um"), d.maxDrift_um},
                             {QStringLiteral("max_drift_position_mm"), d.maxDriftPosition_mm},
@@ -155,29 +299,67 @@ QJsonObject Iso230Report::toJson() const
                             {QStringLiteral("max_drift_time_s"), num(d.maxDriftTime_s)},
                             {QStringLiteral("max_drift_run"), d.maxDriftRun},
                             {QStringLiteral("series"), series}};
-    return QJsonObject{{QStringLiteral("session"), static_cast<double>(m_sessionId)},
-                       {QStringLiteral("name"), m_info.name},
+    return QJsonObject{{QStringLiteral("schema_version"), kSchemaVersion},
+                       {QStringLiteral("session"), static_cast<double>(m_request.session)},
+                       {QStringLiteral("name"), m_name},
                        {QStringLiteral("standard"), QStringLiteral("ISO 230-2:2014 positioning evaluation; ISO 230-3-style thermal drift")},
                        {QStringLiteral("unit"), QStringLiteral("um")},
                        {QStringLiteral("reference_run"), m_referenceRun},
-                       {QStringLiteral("runs_per_test"), m_options.runsPerTest},
-                       {QStringLiteral("target_tolerance_mm"), m_options.targetTolerance_mm},
+                       {QStringLiteral("runs_per_test"), m_request.runsPerTest},
+                       {QStringLiteral("target_tolerance_mm"), m_request.targetTolerance_mm},
                        {QStringLiteral("tests"), tests},
                        {QStringLiteral("left_out"), QJsonArray::fromStringList(m_leftOut)},
                        {QStringLiteral("drift"), drift}};
 }
 
+Iso230Report Iso230Report::fromJson(const QJsonObject &json)
+{
+    const Reader r(json, QString());
+    const int version = r.integer("schema_version");
+    if (version < 1 || version > kSchemaVersion)
+        throw std::invalid_argument(QStringLiteral("ISO 230 result: schema_version %1 is not one this version reads (1..%2)")
+                                        .arg(version)
+                                        .arg(kSchemaVersion)
+                                        .toStdString());
+    Iso230Request request;
+    request.session = static_cast<qint64>(r.number("session"));
+    request.runsPerTest = r.integer("runs_per_test");
+    request.targetTolerance_mm = r.number("target_tolerance_mm");
+    std::vector<Iso230Test> tests;
+    const QJsonArray testArray = r.array("tests");
+    for (int i = 0; i < testArray.size(); ++i)
+        tests.push_back(readTest(r.element("tests", testArray[i], i)));
+    const Reader d = r.object("drift");
+    Iso230DriftSummary drift;
+    drift.referenceRun = d.integer("reference_run");
+    const QJsonValue channel = d.value("temperature_channel");
+    drift.withTemperature = !channel.isNull();
+    if (drift.withTemperature)
+        request.temperatureChannel = d.text("temperature_channel");
+    drift.temperatureRange_K = d.number("temperature_range_K");
+    drift.maxDrift_um = d.number("max_drift_um");
+    drift.maxDriftPosition_mm = d.number("max_drift_position_mm");
+    drift.maxDriftDirection = d.direction("max_drift_direction");
+    drift.maxDriftTime_s = d.number("max_drift_time_s");
+    drift.maxDriftRun = d.integer("max_drift_run");
+    const QJsonArray series = d.array("series");
+    for (int i = 0; i < series.size(); ++i)
+        drift.series.push_back(readSeries(d.element("series", series[i], i)));
+    QStringList leftOut;
+    for (const QJsonValue &n : r.array("left_out"))
+        leftOut << n.toString();
+    if (tests.empty())
+        throw std::invalid_argument("ISO 230 result: \"tests\" is empty");
+    return Iso230Report(request, r.text("name"), r.integer("reference_run"), std::move(tests), std::move(drift), std::move(leftOut));
+}
+
 QString Iso230Report::text() const
 {
     QStringList lines;
-    const Iso230Test *ref = &m_tests.front();
-    for (const Iso230Test &t : m_tests) {
-        if (std::find(t.runs.begin(), t.runs.end(), m_referenceRun) != t.runs.end())
-            ref = &t;
-    }
+    const Iso230Test *ref = &m_tests[static_cast<std::size_t>(referenceTest())];
     lines << QStringLiteral("session %1 '%2': %3 test(s) of %4 target(s), %5, at least %6 approach(es) per target and direction")
-                 .arg(m_sessionId)
-                 .arg(m_info.name)
+                 .arg(m_request.session)
+                 .arg(m_name)
                  .arg(m_tests.size())
                  .arg(ref->targets.size())
                  .arg(ref->bidirectional ? QStringLiteral("bidirectional")
@@ -221,7 +403,7 @@ QString Iso230Report::text() const
         for (const Iso230DriftSeries &s : d.series) {
             if (s.position_mm == d.maxDriftPosition_mm && s.direction == d.maxDriftDirection)
                 lines << QStringLiteral("against %1 (range %2 K): %3 um/K there (r = %4)")
-                             .arg(m_options.temperatureChannel)
+                             .arg(m_request.temperatureChannel)
                              .arg(d.temperatureRange_K, 0, 'f', 2)
                              .arg(um(s.slope_um_per_K), std::isfinite(s.correlation) ? QString::number(s.correlation, 'f', 3) : QStringLiteral("-"));
         }
