@@ -34,12 +34,13 @@ class Iso230View : public QWidget {
     Q_OBJECT
 public:
     explicit Iso230View(QWidget *parent = nullptr);
-    ~Iso230View() override;
+    ~Iso230View() override; // cancels a storeResult() job and waits for it
 
+    // No session: empty tables and plots.
+    void clear();
     // Evaluates a session of `store` (which must outlive the call only). A session without
     // interferometer runs shows why instead of tables; returns whether there is a result.
     bool setSession(const SessionStore *store, qint64 sessionId);
-    void clear();
     // Test shown in the tables and the 230-2 plot (index into the report's tests).
     void showTest(int index);
     // Channel the drift is regressed on ("" none); re-evaluates the current session.

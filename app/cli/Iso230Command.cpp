@@ -27,9 +27,7 @@ QString Iso230Command::summary() const
 int Iso230Command::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db = CliOptions::db();
-    const QCommandLineOption json = CliOptions::json();
-    const QCommandLineOption force = CliOptions::force();
+    const auto [db, json, force] = CliOptions::dbJsonForce(p);
     const QCommandLineOption temperature(QStringLiteral("temperature"),
                                          QStringLiteral("Channel id to regress the drift on (um/K), e.g. the nut or bearing PT100."),
                                          QStringLiteral("channel"));
@@ -40,7 +38,7 @@ int Iso230Command::run(const QStringList &args)
     const QCommandLineOption tolerance(QStringLiteral("target-tolerance"),
                                        QStringLiteral("Positions closer than this (mm) are one target (default 0.05)."),
                                        QStringLiteral("mm"), QStringLiteral("0.05"));
-    p.addOptions({db, json, force, temperature, perTest, tolerance});
+    p.addOptions({temperature, perTest, tolerance});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
     if (!parse(p, args))
         return 0;
@@ -61,8 +59,7 @@ int Iso230Command::run(const QStringList &args)
     } catch (const std::invalid_argument &e) {
         throw UsageError(QStringLiteral("iso230: %1").arg(QString::fromUtf8(e.what())));
     }
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
     request.session = SessionArgument::one(store, p.positionalArguments().first(), QStringLiteral("SESSION"), name());
