@@ -30,36 +30,59 @@ QJsonArray runList(const std::vector<int> &runs)
     return a;
 }
 
+// The numbers of an axis and a target and their JSON keys, written and read through one list.
+template <class T>
+struct NumberField {
+    const char *key;
+    double T::*member;
+};
+
+const NumberField<Iso230Axis> kAxisFields[] = {
+    {"B_um", &Iso230Axis::reversal_um},         {"B_mean_um", &Iso230Axis::meanReversal_um},
+    {"R_up_um", &Iso230Axis::repeatUp_um},      {"R_down_um", &Iso230Axis::repeatDown_um},
+    {"R_um", &Iso230Axis::repeat_um},           {"E_up_um", &Iso230Axis::systematicUp_um},
+    {"E_down_um", &Iso230Axis::systematicDown_um}, {"E_um", &Iso230Axis::systematic_um},
+    {"M_um", &Iso230Axis::meanRange_um},        {"A_up_um", &Iso230Axis::accuracyUp_um},
+    {"A_down_um", &Iso230Axis::accuracyDown_um}, {"A_um", &Iso230Axis::accuracy_um}};
+
+const NumberField<Iso230Target> kTargetFields[] = {
+    {"position_mm", &Iso230Target::position_mm}, {"mean_up_um", &Iso230Target::meanUp_um},
+    {"mean_down_um", &Iso230Target::meanDown_um}, {"mean_um", &Iso230Target::mean_um},
+    {"B_um", &Iso230Target::reversal_um},        {"s_up_um", &Iso230Target::sUp_um},
+    {"s_down_um", &Iso230Target::sDown_um},      {"R_up_um", &Iso230Target::repeatUp_um},
+    {"R_down_um", &Iso230Target::repeatDown_um}, {"R_um", &Iso230Target::repeat_um}};
+
+const NumberField<Iso230DriftSeries> kSeriesFields[] = {
+    {"position_mm", &Iso230DriftSeries::position_mm},       {"max_drift_um", &Iso230DriftSeries::maxDrift_um},
+    {"max_drift_time_s", &Iso230DriftSeries::maxDriftTime_s}, {"slope_um_per_K", &Iso230DriftSeries::slope_um_per_K},
+    {"offset_um", &Iso230DriftSeries::offset_um},           {"correlation", &Iso230DriftSeries::correlation}};
+
+const NumberField<Iso230DriftSummary> kDriftFields[] = {
+    {"temperature_range_K", &Iso230DriftSummary::temperatureRange_K},
+    {"max_drift_um", &Iso230DriftSummary::maxDrift_um},
+    {"max_drift_position_mm", &Iso230DriftSummary::maxDriftPosition_mm},
+    {"max_drift_time_s", &Iso230DriftSummary::maxDriftTime_s}};
+
+template <class T, std::size_t N>
+QJsonObject numbersJson(const T &value, const NumberField<T> (&fields)[N])
+{
+    QJsonObject o;
+    for (const NumberField<T> &f : fields)
+        o.insert(QLatin1String(f.key), num(value.*(f.member)));
+    return o;
+}
+
 QJsonObject axisJson(const Iso230Axis &a)
 {
-    return QJsonObject{{QStringLiteral("B_um"), num(a.reversal_um)},
-                       {QStringLiteral("B_mean_um"), num(a.meanReversal_um)},
-                       {QStringLiteral("R_up_um"), num(a.repeatUp_um)},
-                       {QStringLiteral("R_down_um"), num(a.repeatDown_um)},
-                       {QStringLiteral("R_um"), num(a.repeat_um)},
-                       {QStringLiteral("E_up_um"), num(a.systematicUp_um)},
-                       {QStringLiteral("E_down_um"), num(a.systematicDown_um)},
-                       {QStringLiteral("E_um"), num(a.systematic_um)},
-                       {QStringLiteral("M_um"), num(a.meanRange_um)},
-                       {QStringLiteral("A_up_um"), num(a.accuracyUp_um)},
-                       {QStringLiteral("A_down_um"), num(a.accuracyDown_um)},
-                       {QStringLiteral("A_um"), num(a.accuracy_um)}};
+    return numbersJson(a, kAxisFields);
 }
 
 QJsonObject targetJson(const Iso230Target &t)
 {
-    return QJsonObject{{QStringLiteral("position_mm"), t.position_mm},
-                       {QStringLiteral("n_up"), t.approachesUp},
-                       {QStringLiteral("n_down"), t.approachesDown},
-                       {QStringLiteral("mean_up_um"), num(t.meanUp_um)},
-                       {QStringLiteral("mean_down_um"), num(t.meanDown_um)},
-                       {QStringLiteral("mean_um"), num(t.mean_um)},
-                       {QStringLiteral("B_um"), num(t.reversal_um)},
-                       {QStringLiteral("s_up_um"), num(t.sUp_um)},
-                       {QStringLiteral("s_down_um"), num(t.sDown_um)},
-                       {QStringLiteral("R_up_um"), num(t.repeatUp_um)},
-                       {QStringLiteral("R_down_um"), num(t.repeatDown_um)},
-                       {QStringLiteral("R_um"), num(t.repeat_um)}};
+    QJsonObject o = numbersJson(t, kTargetFields);
+    o.insert(QStringLiteral("n_up"), t.approachesUp);
+    o.insert(QStringLiteral("n_down"), t.approachesDown);
+    return o;
 }
 
 QString um(double v)
@@ -96,33 +119,27 @@ public:
             bad(key, "is not an integer");
         return static_cast<int>(v);
     }
-    bool flag(const char *key) const
+    // The member `key`, refused unless (v.*is)().
+    QJsonValue typed(const char *key, bool (QJsonValue::*is)() const, const char *isNot) const
     {
         const QJsonValue v = value(key);
-        if (!v.isBool())
-            bad(key, "is not true or false");
-        return v.toBool();
+        if (!(v.*is)())
+            bad(key, isNot);
+        return v;
     }
-    QString text(const char *key) const
-    {
-        const QJsonValue v = value(key);
-        if (!v.isString())
-            bad(key, "is not a string");
-        return v.toString();
-    }
-    QJsonArray array(const char *key) const
-    {
-        const QJsonValue v = value(key);
-        if (!v.isArray())
-            bad(key, "is not an array");
-        return v.toArray();
-    }
+    bool flag(const char *key) const { return typed(key, &QJsonValue::isBool, "is not true or false").toBool(); }
+    QString text(const char *key) const { return typed(key, &QJsonValue::isString, "is not a string").toString(); }
+    QJsonArray array(const char *key) const { return typed(key, &QJsonValue::isArray, "is not an array").toArray(); }
     Reader object(const char *key) const
     {
-        const QJsonValue v = value(key);
-        if (!v.isObject())
-            bad(key, "is not an object");
-        return Reader(v.toObject(), field(key));
+        return Reader(typed(key, &QJsonValue::isObject, "is not an object").toObject(), field(key));
+    }
+    // Reads the numbers of `fields` into `value`.
+    template <class T, std::size_t N>
+    void numbers(T &value, const NumberField<T> (&fields)[N]) const
+    {
+        for (const NumberField<T> &f : fields)
+            value.*(f.member) = number(f.key);
     }
     Reader element(const char *key, const QJsonValue &v, int i) const
     {
@@ -153,39 +170,12 @@ private:
     QString m_path;
 };
 
-Iso230Axis readAxis(const Reader &r)
-{
-    Iso230Axis a;
-    a.reversal_um = r.number("B_um");
-    a.meanReversal_um = r.number("B_mean_um");
-    a.repeatUp_um = r.number("R_up_um");
-    a.repeatDown_um = r.number("R_down_um");
-    a.repeat_um = r.number("R_um");
-    a.systematicUp_um = r.number("E_up_um");
-    a.systematicDown_um = r.number("E_down_um");
-    a.systematic_um = r.number("E_um");
-    a.meanRange_um = r.number("M_um");
-    a.accuracyUp_um = r.number("A_up_um");
-    a.accuracyDown_um = r.number("A_down_um");
-    a.accuracy_um = r.number("A_um");
-    return a;
-}
-
 Iso230Target readTarget(const Reader &r)
 {
     Iso230Target t;
-    t.position_mm = r.number("position_mm");
+    r.numbers(t, kTargetFields);
     t.approachesUp = r.integer("n_up");
     t.approachesDown = r.integer("n_down");
-    t.meanUp_um = r.number("mean_up_um");
-    t.meanDown_um = r.number("mean_down_um");
-    t.mean_um = r.number("mean_um");
-    t.reversal_um = r.number("B_um");
-    t.sUp_um = r.number("s_up_um");
-    t.sDown_um = r.number("s_down_um");
-    t.repeatUp_um = r.number("R_up_um");
-    t.repeatDown_um = r.number("R_down_um");
-    t.repeat_um = r.number("R_um");
     return t;
 }
 
@@ -198,7 +188,7 @@ Iso230Test readTest(const Reader &r)
     t.directionRecorded = r.flag("direction_recorded");
     t.bidirectional = r.flag("bidirectional");
     t.minApproaches = r.integer("approaches_min");
-    t.axis = readAxis(r.object("axis"));
+    r.object("axis").numbers(t.axis, kAxisFields);
     const QJsonArray targets = r.array("targets");
     for (int i = 0; i < targets.size(); ++i)
         t.targets.push_back(readTarget(r.element("targets", targets[i], i)));
@@ -210,14 +200,9 @@ Iso230Test readTest(const Reader &r)
 Iso230DriftSeries readSeries(const Reader &r)
 {
     Iso230DriftSeries s;
-    s.position_mm = r.number("position_mm");
+    r.numbers(s, kSeriesFields);
     s.direction = r.direction("direction");
-    s.maxDrift_um = r.number("max_drift_um");
-    s.maxDriftTime_s = r.number("max_drift_time_s");
     s.maxDriftRun = r.integer("max_drift_run");
-    s.slope_um_per_K = r.number("slope_um_per_K");
-    s.offset_um = r.number("offset_um");
-    s.correlation = r.number("correlation");
     const QJsonArray points = r.array("points");
     for (int i = 0; i < points.size(); ++i) {
         const Reader p = r.element("points", points[i], i);
@@ -278,27 +263,20 @@ QJsonObject Iso230Report::toJson() const
                                       {QStringLiteral("time_s"), p.time_s},
                                       {QStringLiteral("drift_um"), p.drift_um},
                                       {QStringLiteral("delta_T_K"), num(p.temperatureChange_K)}});
-        series.append(QJsonObject{{QStringLiteral("position_mm"), s.position_mm},
-                                  {QStringLiteral("direction"), dirName(s.direction)},
-                                  {QStringLiteral("max_drift_um"), s.maxDrift_um},
-                                  {QStringLiteral("max_drift_time_s"), num(s.maxDriftTime_s)},
-                                  {QStringLiteral("max_drift_run"), s.maxDriftRun},
-                                  {QStringLiteral("slope_um_per_K"), num(s.slope_um_per_K)},
-                                  {QStringLiteral("offset_um"), num(s.offset_um)},
-                                  {QStringLiteral("correlation"), num(s.correlation)},
-                                  {QStringLiteral("points"), points}});
+        QJsonObject o = numbersJson(s, kSeriesFields);
+        o.insert(QStringLiteral("direction"), dirName(s.direction));
+        o.insert(QStringLiteral("max_drift_run"), s.maxDriftRun);
+        o.insert(QStringLiteral("points"), points);
+        series.append(o);
     }
     const Iso230DriftSummary &d = m_drift;
-    const QJsonObject drift{{QStringLiteral("reference_run"), d.referenceRun},
-                            {QStringLiteral("temperature_channel"),
-                             d.withTemperature ? QJsonValue(m_request.temperatureChannel) : QJsonValue(QJsonValue::Null)},
-                            {QStringLiteral("temperature_range_K"), num(d.temperatureRange_K)},
-                            {QStringLiteral("max_drift_um"), d.maxDrift_um},
-                            {QStringLiteral("max_drift_position_mm"), d.maxDriftPosition_mm},
-                            {QStringLiteral("max_drift_direction"), dirName(d.maxDriftDirection)},
-                            {QStringLiteral("max_drift_time_s"), num(d.maxDriftTime_s)},
-                            {QStringLiteral("max_drift_run"), d.maxDriftRun},
-                            {QStringLiteral("series"), series}};
+    QJsonObject drift = numbersJson(d, kDriftFields);
+    drift.insert(QStringLiteral("reference_run"), d.referenceRun);
+    drift.insert(QStringLiteral("temperature_channel"),
+                 d.withTemperature ? QJsonValue(m_request.temperatureChannel) : QJsonValue(QJsonValue::Null));
+    drift.insert(QStringLiteral("max_drift_direction"), dirName(d.maxDriftDirection));
+    drift.insert(QStringLiteral("max_drift_run"), d.maxDriftRun);
+    drift.insert(QStringLiteral("series"), series);
     return QJsonObject{{QStringLiteral("schema_version"), kSchemaVersion},
                        {QStringLiteral("session"), static_cast<double>(m_request.session)},
                        {QStringLiteral("name"), m_name},
@@ -336,11 +314,8 @@ Iso230Report Iso230Report::fromJson(const QJsonObject &json)
     drift.withTemperature = !channel.isNull();
     if (drift.withTemperature)
         request.temperatureChannel = d.text("temperature_channel");
-    drift.temperatureRange_K = d.number("temperature_range_K");
-    drift.maxDrift_um = d.number("max_drift_um");
-    drift.maxDriftPosition_mm = d.number("max_drift_position_mm");
+    d.numbers(drift, kDriftFields);
     drift.maxDriftDirection = d.direction("max_drift_direction");
-    drift.maxDriftTime_s = d.number("max_drift_time_s");
     drift.maxDriftRun = d.integer("max_drift_run");
     const QJsonArray series = d.array("series");
     for (int i = 0; i < series.size(); ++i)
