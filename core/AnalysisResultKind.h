@@ -15,6 +15,9 @@ public:
     static QString sensitivePoints() { return QStringLiteral("sensitive-points"); }
     // A compensation loop's before/after summary (`compensate --db`).
     static QString compensation() { return QStringLiteral("compensation"); }
+    // The ISO 230 evaluation of the session's interferometer runs (Iso230Report::toJson, written
+    // by SessionIso230::store from `iso230` and the ISO 230 view).
+    static QString iso230() { return QStringLiteral("iso230"); }
     // `analyse`: the seed-000 model run against the screw-end probe.
     static QString fdmElongationCheck() { return QStringLiteral("fdm-elongation-check"); }
 };

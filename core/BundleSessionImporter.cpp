@@ -1,4 +1,4 @@
-#include "BundleSessionImporter.h"
+#include "SessionImporters.h"
 
 #include "BundleTransfer.h"
 
@@ -6,17 +6,21 @@
 
 namespace driftlab {
 
-QString BundleSessionImporter::name() const
+namespace {
+
+using Options = SessionImporter::Options;
+
+QString name()
 {
     return QStringLiteral("bundle");
 }
 
-QString BundleSessionImporter::description() const
+QString description()
 {
     return QStringLiteral("recording bundle (NAME.bundle folder with manifest.json, or .zip)");
 }
 
-bool BundleSessionImporter::canImport(const QString &path) const
+bool canImport(const QString &path)
 {
     const QFileInfo info(path);
     if (info.isDir())
@@ -24,11 +28,18 @@ bool BundleSessionImporter::canImport(const QString &path) const
     return info.suffix().compare(QLatin1String("zip"), Qt::CaseInsensitive) == 0 || info.fileName() == QLatin1String("manifest.json");
 }
 
-QList<qint64> BundleSessionImporter::import(const QString &path, SessionStore &store, const Options &options) const
+QList<qint64> import(const QString &path, SessionStore &store, const Options &options)
 {
     const QFileInfo info(path);
     const QString bundle = info.fileName() == QLatin1String("manifest.json") ? info.absolutePath() : path;
     return {BundleTransfer::importBundle(store, bundle, options.allowDuplicate)};
+}
+
+} // namespace
+
+SessionImporter bundleSessionImporter()
+{
+    return SessionImporter(name(), description(), canImport, import);
 }
 
 } // namespace driftlab

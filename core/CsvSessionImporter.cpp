@@ -1,4 +1,4 @@
-#include "CsvSessionImporter.h"
+#include "SessionImporters.h"
 
 #include "CsvColumnMap.h"
 #include "CsvImporter.h"
@@ -9,24 +9,28 @@
 
 namespace driftlab {
 
-QString CsvSessionImporter::name() const
+namespace {
+
+using Options = SessionImporter::Options;
+
+QString name()
 {
     return QStringLiteral("csv");
 }
 
-QString CsvSessionImporter::description() const
+QString description()
 {
     return QStringLiteral("a CSV table (.csv, .tsv, .txt, .dat) read with a column map");
 }
 
-bool CsvSessionImporter::canImport(const QString &path) const
+bool canImport(const QString &path)
 {
     const QString suffix = QFileInfo(path).suffix().toLower();
     return suffix == QLatin1String("csv") || suffix == QLatin1String("tsv") || suffix == QLatin1String("txt") ||
            suffix == QLatin1String("dat");
 }
 
-QList<qint64> CsvSessionImporter::import(const QString &path, SessionStore &store, const Options &options) const
+QList<qint64> import(const QString &path, SessionStore &store, const Options &options)
 {
     if (options.columnMap.isEmpty())
         throw std::invalid_argument(
@@ -43,6 +47,13 @@ QList<qint64> CsvSessionImporter::import(const QString &path, SessionStore &stor
     for (const CsvImportedSession &s : r.sessions)
         ids.push_back(s.sessionId);
     return ids;
+}
+
+} // namespace
+
+SessionImporter csvSessionImporter()
+{
+    return SessionImporter(name(), description(), canImport, import, true);
 }
 
 } // namespace driftlab

@@ -40,19 +40,25 @@ public:
             fail(path.isEmpty() ? key : path + QLatin1Char('.') + key, QStringLiteral("missing"));
         return o.value(key);
     }
-    QString string(const QJsonObject &o, const QString &path, const QString &key) const
+    // The member `key`, refused unless (v.*is)(): "expected <what>".
+    QJsonValue typed(const QJsonObject &o, const QString &path, const QString &key, bool (QJsonValue::*is)() const,
+                     const char *what) const
     {
         const QJsonValue v = member(o, path, key);
-        if (!v.isString())
-            fail(join(path, key), QStringLiteral("expected a string"));
-        return v.toString();
+        if (!(v.*is)())
+            fail(join(path, key), QStringLiteral("expected %1").arg(QLatin1String(what)));
+        return v;
+    }
+    QString string(const QJsonObject &o, const QString &path, const QString &key) const
+    {
+        return typed(o, path, key, &QJsonValue::isString, "a string").toString();
     }
     double number(const QJsonObject &o, const QString &path, const QString &key) const
     {
-        const QJsonValue v = member(o, path, key);
-        if (!v.isDouble() || !std::isfinite(v.toDouble()))
+        const double v = typed(o, path, key, &QJsonValue::isDouble, "a number").toDouble();
+        if (!std::isfinite(v))
             fail(join(path, key), QStringLiteral("expected a number"));
-        return v.toDouble();
+        return v;
     }
     double optionalNumber(const QJsonObject &o, const QString &path, const QString &key, double fallback) const
     {
@@ -60,17 +66,11 @@ public:
     }
     QJsonObject object(const QJsonObject &o, const QString &path, const QString &key) const
     {
-        const QJsonValue v = member(o, path, key);
-        if (!v.isObject())
-            fail(join(path, key), QStringLiteral("expected an object"));
-        return v.toObject();
+        return typed(o, path, key, &QJsonValue::isObject, "an object").toObject();
     }
     QJsonArray array(const QJsonObject &o, const QString &path, const QString &key) const
     {
-        const QJsonValue v = member(o, path, key);
-        if (!v.isArray())
-            fail(join(path, key), QStringLiteral("expected an array"));
-        return v.toArray();
+        return typed(o, path, key, &QJsonValue::isArray, "an array").toArray();
     }
     std::vector<double> numberArray(const QJsonObject &o, const QString &path, const QString &key, bool allowNull) const
     {

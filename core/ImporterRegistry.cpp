@@ -1,18 +1,13 @@
 #include "ImporterRegistry.h"
 
-#include "BundleSessionImporter.h"
-#include "CsvSessionImporter.h"
-#include "RtlSessionImporter.h"
-#include "SqliteSessionImporter.h"
+#include "SessionImporters.h"
 
 namespace driftlab {
 
 ImporterRegistry::ImporterRegistry()
 {
-    m_importers.push_back(std::make_unique<BundleSessionImporter>());
-    m_importers.push_back(std::make_unique<SqliteSessionImporter>());
-    m_importers.push_back(std::make_unique<RtlSessionImporter>());
-    m_importers.push_back(std::make_unique<CsvSessionImporter>());
+    for (SessionImporter (*make)() : {bundleSessionImporter, sqliteSessionImporter, rtlSessionImporter, csvSessionImporter})
+        m_importers.push_back(std::make_unique<SessionImporter>(make()));
 }
 
 ImporterRegistry::~ImporterRegistry() = default;

@@ -1,4 +1,4 @@
-#include "RtlSessionImporter.h"
+#include "SessionImporters.h"
 
 #include "InterferometerImport.h"
 #include "RtlFile.h"
@@ -10,22 +10,26 @@
 
 namespace driftlab {
 
-QString RtlSessionImporter::name() const
+namespace {
+
+using Options = SessionImporter::Options;
+
+QString name()
 {
     return QStringLiteral("rtl");
 }
 
-QString RtlSessionImporter::description() const
+QString description()
 {
     return QStringLiteral("interferometer runs of a Renishaw .rtl file, added to a session");
 }
 
-bool RtlSessionImporter::canImport(const QString &path) const
+bool canImport(const QString &path)
 {
     return QFileInfo(path).suffix().compare(QLatin1String("rtl"), Qt::CaseInsensitive) == 0;
 }
 
-QList<qint64> RtlSessionImporter::import(const QString &path, SessionStore &store, const Options &options) const
+QList<qint64> import(const QString &path, SessionStore &store, const Options &options)
 {
     if (options.session <= 0)
         throw std::invalid_argument(
@@ -36,6 +40,13 @@ QList<qint64> RtlSessionImporter::import(const QString &path, SessionStore &stor
     const RtlFile rtl = RtlFile::parse(f.readAll(), path);
     InterferometerImport::import(store, options.session, rtl, InterferometerImport::Options{});
     return {options.session};
+}
+
+} // namespace
+
+SessionImporter rtlSessionImporter()
+{
+    return SessionImporter(name(), description(), canImport, import);
 }
 
 } // namespace driftlab

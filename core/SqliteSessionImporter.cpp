@@ -1,4 +1,4 @@
-#include "SqliteSessionImporter.h"
+#include "SessionImporters.h"
 
 #include "SessionCopier.h"
 #include "SessionStore.h"
@@ -9,24 +9,28 @@
 
 namespace driftlab {
 
-QString SqliteSessionImporter::name() const
+namespace {
+
+using Options = SessionImporter::Options;
+
+QString name()
 {
     return QStringLiteral("sqlite");
 }
 
-QString SqliteSessionImporter::description() const
+QString description()
 {
     return QStringLiteral("the complete sessions of another session database (.sqlite, .db)");
 }
 
-bool SqliteSessionImporter::canImport(const QString &path) const
+bool canImport(const QString &path)
 {
     const QFileInfo info(path);
     const QString suffix = info.suffix().toLower();
     return info.isFile() && (suffix == QLatin1String("sqlite") || suffix == QLatin1String("db"));
 }
 
-QList<qint64> SqliteSessionImporter::import(const QString &path, SessionStore &store, const Options &options) const
+QList<qint64> import(const QString &path, SessionStore &store, const Options &options)
 {
     if (QFileInfo(path).canonicalFilePath() == QFileInfo(store.path()).canonicalFilePath())
         throw std::invalid_argument(QStringLiteral("%1 is the database being imported into").arg(path).toStdString());
@@ -45,6 +49,13 @@ QList<qint64> SqliteSessionImporter::import(const QString &path, SessionStore &s
         ids.push_back(r.targetId);
     }
     return ids;
+}
+
+} // namespace
+
+SessionImporter sqliteSessionImporter()
+{
+    return SessionImporter(name(), description(), canImport, import);
 }
 
 } // namespace driftlab

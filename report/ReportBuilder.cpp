@@ -6,7 +6,7 @@
 #include "DataDrivenModelJson.h"
 #include "ExtrapolationWarning.h"
 #include "FdmModelJson.h"
-#include "Iso230Report.h"
+#include "SessionIso230.h"
 #include "Iso230View.h"
 #include "ReportTemplate.h"
 #include "ReviewWorkspace.h"
@@ -240,13 +240,32 @@ void ReportBuilder::figureSection(ReportDocument &doc) const
 void ReportBuilder::iso230Section(ReportDocument &doc) const
 {
     doc.heading(m_look.heading(QStringLiteral("iso230")));
-    std::unique_ptr<Iso230Report> iso;
+    // The result `iso230` or the ISO 230 view stored with the session; without one (or with
+    // one this version cannot read), evaluated here with the default request.
+    std::optional<Iso230Report> iso;
     try {
-        iso = std::make_unique<Iso230Report>(m_store, m_session);
+        iso = SessionIso230::stored(m_store, m_session);
     } catch (const std::invalid_argument &e) {
-        doc.leftOut(QString::fromUtf8(e.what()));
-        return;
+        doc.leftOut(QStringLiteral("the stored ISO 230 result was not used: %1").arg(QString::fromUtf8(e.what())));
     }
+    const bool stored = iso.has_value();
+    if (!stored) {
+        try {
+            Iso230Request request;
+            request.session = m_session;
+            iso = SessionIso230(m_store, request).run();
+        } catch (const std::invalid_argument &e) {
+            doc.leftOut(QString::fromUtf8(e.what()));
+            return;
+        }
+    }
+    const Iso230Request &request = iso->request();
+    doc.paragraph(QStringLiteral("%1: %2 run(s) per test, targets within %3 mm, drift %4.")
+                      .arg(stored ? QStringLiteral("The result stored with the session") : QStringLiteral("Evaluated for this report (none stored)"))
+                      .arg(request.runsPerTest)
+                      .arg(request.targetTolerance_mm)
+                      .arg(request.temperatureChannel.isEmpty() ? QStringLiteral("without a temperature channel")
+                                                                : QStringLiteral("against %1").arg(request.temperatureChannel)));
     QVector<QStringList> rows;
     QSet<QString> notes;
     for (const Iso230Test &t : iso->tests()) {
@@ -277,12 +296,7 @@ void ReportBuilder::iso230Section(ReportDocument &doc) const
 
     // The reference test per target and direction, and the plots of the ISO 230 view (the
     // same Iso230Report numbers the view and `iso230 --json` show).
-    int reference = 0;
-    for (std::size_t i = 0; i < iso->tests().size(); ++i) {
-        const std::vector<int> &runs = iso->tests()[i].runs;
-        if (std::find(runs.begin(), runs.end(), iso->referenceRun()) != runs.end())
-            reference = static_cast<int>(i);
-    }
+    const int reference = iso->referenceTest();
     if (!iso->tests().empty()) {
         const Iso230Test &ref = iso->tests()[static_cast<std::size_t>(reference)];
         QVector<QStringList> targets;
@@ -300,14 +314,13 @@ void ReportBuilder::iso230Section(ReportDocument &doc) const
                   targets);
         Iso230View view;
         view.resize(1100, 700);
-        if (view.setSession(&m_store, m_session)) {
-            view.showTest(reference);
-            doc.figure(QStringLiteral("ISO 230-2 positional deviation of the reference test (session %1)").arg(m_session),
-                       svg(*view.positioningPlot(), kFigure_mm), kFigure_mm);
-            if (iso->tests().size() >= 2)
-                doc.figure(QStringLiteral("ISO 230-3 drift against the reference run (session %1)").arg(m_session),
-                           svg(*view.driftPlot(), kFigure_mm), kFigure_mm);
-        }
+        view.showReport(*iso);
+        view.showTest(reference);
+        doc.figure(QStringLiteral("ISO 230-2 positional deviation of the reference test (session %1)").arg(m_session),
+                   svg(*view.positioningPlot(), kFigure_mm), kFigure_mm);
+        if (iso->tests().size() >= 2)
+            doc.figure(QStringLiteral("ISO 230-3 drift against the reference run (session %1)").arg(m_session),
+                       svg(*view.driftPlot(), kFigure_mm), kFigure_mm);
     }
     const Iso230DriftSummary &d = iso->drift();
     if (iso->tests().size() < 2) {

@@ -1,6 +1,7 @@
 #include "Iso230View.h"
 
 #include "Iso230Report.h"
+#include "SessionIso230.h"
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
 
@@ -9,6 +10,7 @@
 #include <QHeaderView>
 #include <QJsonArray>
 #include <QLabel>
+#include <QPushButton>
 #include <QScrollBar>
 #include <QSplitter>
 #include <QTabWidget>
@@ -68,7 +70,8 @@ Iso230View::Iso230View(QWidget *parent)
       m_targets(new QTableWidget(0, TargetColumns, this)),
       m_positioning(new TimeSeriesPlot(this)),
       m_drift(new TimeSeriesPlot(this)),
-      m_driftSummary(new QLabel(this))
+      m_driftSummary(new QLabel(this)),
+      m_storeButton(new QPushButton(tr("Store for the report"), this))
 {
     setObjectName(QStringLiteral("Iso230View"));
     m_heading->setWordWrap(true);
@@ -85,6 +88,9 @@ Iso230View::Iso230View(QWidget *parent)
     controls->addWidget(new QLabel(tr("Drift against"), this));
     controls->addWidget(m_temperature);
     controls->addStretch();
+    m_storeButton->setObjectName(QStringLiteral("Iso230Store"));
+    m_storeButton->setToolTip(tr("Store this evaluation with the session: the test report shows it (as `driftlab-cli iso230` stores it)"));
+    controls->addWidget(m_storeButton);
 
     // ISO 230-2: the axis values, the table per target and direction, and the plot.
     m_axis->setObjectName(QStringLiteral("Iso230Axis"));
@@ -145,10 +151,17 @@ Iso230View::Iso230View(QWidget *parent)
     });
     connect(m_temperature, QOverload<int>::of(&QComboBox::activated), this,
             [this](int i) { setTemperatureChannel(m_temperature->itemData(i).toString()); });
+    connect(m_storeButton, &QPushButton::clicked, this, [this] {
+        if (!storeResult())
+            m_heading->setText(m_heading->text() + QStringLiteral("<br>") + m_lastError.toHtmlEscaped());
+    });
     clear();
 }
 
-Iso230View::~Iso230View() = default;
+Iso230View::~Iso230View()
+{
+    m_job.cancel();
+}
 
 QString Iso230View::heading() const
 {
@@ -160,12 +173,14 @@ void Iso230View::clear()
     m_report.reset();
     m_store = nullptr;
     m_session = 0;
+    m_request = Iso230Request();
     m_updating = true;
     m_test->clear();
     m_temperature->clear();
     m_updating = false;
     m_test->setEnabled(false);
     m_temperature->setEnabled(false);
+    m_storeButton->setEnabled(false);
     m_heading->setText(tr("No session: ISO 230 evaluates the interferometer runs of the selected session."));
     m_targets->setRowCount(0);
     for (int r = 0; r < AxisRows; ++r)
@@ -198,49 +213,116 @@ bool Iso230View::setTemperatureChannel(const QString &key)
 {
     if (!m_store || m_session == 0)
         return false;
-    Iso230Options options;
-    options.temperatureChannel = key;
-    const SessionInfo info = m_store->session(m_session);
+    Iso230Request request;
+    request.session = m_session;
+    request.temperatureChannel = key;
+    std::optional<Iso230Report> report;
     try {
-        m_report = std::make_unique<Iso230Report>(*m_store, m_session, options);
+        report = SessionIso230(*m_store, request).run();
     } catch (const std::invalid_argument &e) {
-        m_report.reset();
-        m_heading->setText(tr("#%1  %2: %3").arg(m_session).arg(info.name, QString::fromUtf8(e.what())));
-        m_test->setEnabled(false);
-        m_temperature->setEnabled(false);
-        m_positioning->clearCurves();
-        m_drift->clearCurves();
+        showFailure(QString::fromUtf8(e.what()));
         return false;
     }
+    m_request = request;
     m_updating = true;
     m_temperature->setCurrentIndex(std::max(0, m_temperature->findData(key)));
     m_temperature->setEnabled(m_temperature->count() > 1);
+    m_updating = false;
+    display(*report);
+    m_storeButton->setEnabled(!m_job.running());
+    return true;
+}
+
+void Iso230View::showFailure(const QString &why)
+{
+    m_report.reset();
+    m_heading->setText(tr("#%1  %2: %3").arg(m_session).arg(m_store ? m_store->session(m_session).name : QString(), why));
+    m_test->setEnabled(false);
+    m_temperature->setEnabled(false);
+    m_storeButton->setEnabled(false);
+    m_positioning->clearCurves();
+    m_drift->clearCurves();
+}
+
+void Iso230View::showReport(const Iso230Report &report)
+{
+    clear();
+    display(report);
+}
+
+void Iso230View::display(const Iso230Report &report)
+{
+    m_report = std::make_unique<Iso230Report>(report);
+    m_updating = true;
     m_test->clear();
-    int reference = 0;
+    const int reference = m_report->referenceTest();
     const std::vector<Iso230Test> &tests = m_report->tests();
     for (std::size_t i = 0; i < tests.size(); ++i) {
         const Iso230Test &t = tests[i];
-        const bool isReference = std::find(t.runs.begin(), t.runs.end(), m_report->referenceRun()) != t.runs.end();
-        if (isReference)
-            reference = static_cast<int>(i);
         QString runs = QString::number(t.runs.front());
         if (t.runs.size() > 1)
             runs += QStringLiteral("–%1").arg(t.runs.back());
-        m_test->addItem(tr("run %1 at %2%3").arg(runs, hms(t.time_s), isReference ? tr(" (reference)") : QString()));
+        m_test->addItem(tr("run %1 at %2%3").arg(runs, hms(t.time_s), static_cast<int>(i) == reference ? tr(" (reference)") : QString()));
     }
     m_test->setEnabled(tests.size() > 1);
     m_test->setCurrentIndex(reference);
     m_updating = false;
-    const QJsonObject json = m_report->toJson();
     QString text = tr("<b>#%1  %2</b>: %n ISO 230-2 test(s) of the interferometer runs", nullptr, static_cast<int>(tests.size()))
-                       .arg(m_session)
-                       .arg(info.name.toHtmlEscaped());
-    for (const QJsonValue &n : json.value(QStringLiteral("left_out")).toArray())
-        text += QStringLiteral("<br>") + tr("left out: %1").arg(n.toString().toHtmlEscaped());
+                       .arg(m_report->request().session)
+                       .arg(m_report->sessionName().toHtmlEscaped());
+    for (const QString &n : m_report->leftOut())
+        text += QStringLiteral("<br>") + tr("left out: %1").arg(n.toHtmlEscaped());
     m_heading->setText(text);
     showTest(reference);
     fillDriftPlot();
+}
+
+bool Iso230View::storeResult()
+{
+    m_lastError.clear();
+    if (m_job.running())
+        m_lastError = tr("an ISO 230 evaluation is being stored");
+    else if (!m_store || !m_report || m_request.session == 0)
+        m_lastError = tr("no evaluated session to store");
+    else {
+        try {
+            SessionIso230::checkWritable(*m_store);
+        } catch (const std::invalid_argument &e) {
+            m_lastError = QString::fromUtf8(e.what());
+        }
+    }
+    if (!m_lastError.isEmpty())
+        return false;
+    m_storeButton->setEnabled(false);
+    m_job.start([this, request = m_request, path = m_store->path()] {
+        QString error;
+        try {
+            SessionStore store(path); // this thread's own connection
+            const std::optional<Iso230Report> report =
+                SessionIso230(store, request).run([this](double, const QString &) { return !m_job.cancelled(); });
+            if (report)
+                SessionIso230::store(store, *report);
+            else
+                error = tr("Cancelled: nothing was stored");
+        } catch (const std::exception &e) {
+            error = QString::fromStdString(e.what());
+        }
+        QMetaObject::invokeMethod(this, [this, error] { finishStore(error.isEmpty(), error); }, Qt::QueuedConnection);
+    });
     return true;
+}
+
+void Iso230View::cancel()
+{
+    m_job.cancel();
+}
+
+void Iso230View::finishStore(bool ok, const QString &error)
+{
+    m_job.finish();
+    m_lastError = error;
+    m_storeButton->setEnabled(m_report && m_request.session != 0);
+    emit finished(ok);
 }
 
 void Iso230View::showTest(int index)

@@ -49,8 +49,7 @@ int AnalyseCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("analyse: unexpected argument '%1'").arg(p.positionalArguments().first()));
     if (p.isSet(session))
         SessionArgument::checkForm(p.value(session), QStringLiteral("--session"), name());
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
     const QVector<SessionInfo> sessions = store.sessions();

@@ -305,8 +305,7 @@ int BatchCommand::run(const QStringList &args)
         OutputTarget(summaryPath, QStringLiteral("output")).check(p.isSet(force));
     else
         OutputTarget(job.output, QStringLiteral("output"), OutputTarget::Kind::Folder).check(p.isSet(force));
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     if (!QDir().mkpath(job.output))
         throw std::runtime_error(QStringLiteral("batch: cannot create the output folder %1").arg(job.output).toStdString());
     CliSupport::progress(QStringLiteral("batch: %1 recording(s) x %2 step(s), %3 at a time, into %4")

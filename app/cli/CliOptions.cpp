@@ -1,5 +1,7 @@
 #include "CliOptions.h"
 
+#include <QCommandLineParser>
+
 namespace driftlab {
 
 QCommandLineOption CliOptions::db()
@@ -25,6 +27,13 @@ QCommandLineOption CliOptions::force()
 QCommandLineOption CliOptions::out(const QString &what, const QString &valueName)
 {
     return QCommandLineOption(QStringLiteral("out"), what, valueName);
+}
+
+CliOptions::DbJsonForce CliOptions::dbJsonForce(QCommandLineParser &p)
+{
+    DbJsonForce options{db(), json(), force()};
+    p.addOptions({options.db, options.json, options.force});
+    return options;
 }
 
 } // namespace driftlab

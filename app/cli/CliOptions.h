@@ -5,6 +5,8 @@
 #include <QCommandLineOption>
 #include <QString>
 
+class QCommandLineParser;
+
 namespace driftlab {
 
 class CliOptions {
@@ -18,6 +20,14 @@ public:
     static QCommandLineOption force();
     // --out VALUE; `what` names what is written there ("Output file: .png, .svg or .pdf.").
     static QCommandLineOption out(const QString &what, const QString &valueName = QStringLiteral("file"));
+
+    // --db, --json and --force, the options of a command that reads a database and writes a
+    // JSON result, added to `p` first (so --help lists them first):
+    // `const auto [db, json, force] = CliOptions::dbJsonForce(p);`
+    struct DbJsonForce {
+        QCommandLineOption db, json, force;
+    };
+    static DbJsonForce dbJsonForce(QCommandLineParser &p);
 };
 
 } // namespace driftlab

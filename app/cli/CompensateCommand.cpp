@@ -119,8 +119,7 @@ int CompensateCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("compensate: --session ID is required (the session being recorded)"));
     SessionArgument::checkForm(p.value(session), QStringLiteral("--session"), name());
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     const qint64 sessionId = SessionArgument::one(SessionStore(path), p.value(session), QStringLiteral("--session"), name());
     const QString modelPath = p.positionalArguments().front();
     std::unique_ptr<SessionOffsetSource> source;

@@ -161,8 +161,7 @@ int DataDrivenFitCommand::run(const QStringList &args)
     q.drive = p.value(drive);
     q.reference = p.value(reference);
     OutputTarget(p.value(out), QStringLiteral("--out")).check(p.isSet(force));
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
     q.sessions = sessionArgs(store, p.positionalArguments(), QStringLiteral("SESSION"), cmd);

@@ -25,10 +25,7 @@ QString ExportCommand::summary() const
 int ExportCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db = CliOptions::db();
-    const QCommandLineOption json = CliOptions::json();
-    const QCommandLineOption force = CliOptions::force();
-    p.addOptions({db, json, force});
+    const auto [db, json, force] = CliOptions::dbJsonForce(p);
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id (see 'driftlab-cli list')."));
     p.addPositionalArgument(QStringLiteral("OUT"), QStringLiteral("Output NAME.bundle directory or NAME.zip."));
     if (!parse(p, args))
@@ -42,8 +39,7 @@ int ExportCommand::run(const QStringList &args)
     if (!QFileInfo(out).suffix().isEmpty())
         target.formats({QStringLiteral("zip"), QStringLiteral("bundle")});
     target.neverReplaced().check(false);
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
     const qint64 id = SessionArgument::one(store, p.positionalArguments().at(0), QStringLiteral("SESSION"), name());

@@ -108,8 +108,7 @@ int ExportModelCommand::run(const QStringList &args)
     if (!p.isSet(out))
         throw UsageError(QStringLiteral("export-model: --out DIR is required"));
     OutputTarget(p.value(out), QStringLiteral("--out"), OutputTarget::Kind::Folder).check(p.isSet(force));
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
 
     ExportOptions &options = request.options;
     options.axis = p.value(axis).toUpper().toStdString();

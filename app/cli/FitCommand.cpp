@@ -90,8 +90,7 @@ int FitCommand::run(const QStringList &args)
         SessionArgument::checkForm(a, QStringLiteral("SESSION"), name(), true);
     if (p.isSet(holdout))
         SessionArgument::checkForm(p.value(holdout), QStringLiteral("--holdout"), name());
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
     ScrewFitRequest request;

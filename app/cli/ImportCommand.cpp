@@ -59,13 +59,11 @@ int ImportCommand::importOther(const SessionImporter &importer, const QString &f
 int ImportCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db = CliOptions::db();
-    const QCommandLineOption json = CliOptions::json();
-    const QCommandLineOption force = CliOptions::force();
+    const auto [db, json, force] = CliOptions::dbJsonForce(p);
     const QCommandLineOption allowDuplicate(QStringLiteral("allow-duplicate"),
                                             QStringLiteral("Import even if the database already holds this recording "
                                                            "(same session UUID or content); the copy gets a new UUID."));
-    p.addOptions({db, json, force, allowDuplicate});
+    p.addOptions({allowDuplicate});
     p.addPositionalArgument(QStringLiteral("BUNDLE"), QStringLiteral("Bundle directory or .zip."));
     if (!parse(p, args))
         return 0;
@@ -74,8 +72,7 @@ int ImportCommand::run(const QStringList &args)
     const QString bundle = p.positionalArguments().first();
     if (!QFileInfo::exists(bundle)) // named once (the archive's own message named it three times)
         throw UsageError(QStringLiteral("import: %1: no such bundle directory or zip (nothing imported)").arg(bundle));
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     const QString path = CliSupport::databasePath(p.value(db), QString(), false);
     SessionStore store(path);
     CliSupport::progress(QStringLiteral("importing %1 into %2").arg(bundle, path));

@@ -63,8 +63,7 @@ int ImportCsvCommand::run(const QStringList &args)
     if (p.isSet(started) && !QDateTime::fromString(p.value(started), Qt::ISODateWithMs).isValid())
         throw UsageError(QStringLiteral("import-csv: --started '%1' is not an ISO 8601 date-time (e.g. 2025-03-01T08:00:00Z)")
                              .arg(p.value(started)));
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     CsvImportResult r;
     QString path;
     QElapsedTimer timer;

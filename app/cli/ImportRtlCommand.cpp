@@ -84,8 +84,7 @@ int ImportRtlCommand::run(const QStringList &args)
     else if (p.isSet(direction) && mode != QLatin1String("auto"))
         throw UsageError(QStringLiteral("import-rtl: --direction must be auto, uni or bi, got '%1'").arg(mode));
 
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     QFile f(file);
     if (!f.open(QIODevice::ReadOnly))
         throw UsageError(QStringLiteral("import-rtl: %1: cannot open: %2").arg(file, f.errorString()));

@@ -20,17 +20,13 @@ QString InfoCommand::summary() const
 int InfoCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db = CliOptions::db();
-    const QCommandLineOption json = CliOptions::json();
-    const QCommandLineOption force = CliOptions::force();
-    p.addOptions({db, json, force});
+    const auto [db, json, force] = CliOptions::dbJsonForce(p);
     p.addPositionalArgument(QStringLiteral("DB"), QStringLiteral("Session database."), QStringLiteral("[DB]"));
     if (!parse(p, args))
         return 0;
     if (p.positionalArguments().size() > 1)
         throw UsageError(QStringLiteral("info: takes at most one database, got %1 arguments").arg(p.positionalArguments().size()));
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     const QString path = CliSupport::databasePath(p.value(db), p.positionalArguments().value(0), true);
     SessionStore store(path);
 

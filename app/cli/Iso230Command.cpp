@@ -4,12 +4,13 @@
 #include "CliOptions.h"
 #include "OutputTarget.h"
 #include "SessionArgument.h"
-#include "Iso230Report.h"
+#include "SessionIso230.h"
 #include "SessionStore.h"
 
 #include <QCommandLineParser>
 #include <QTextStream>
 
+#include <optional>
 #include <stdexcept>
 
 namespace driftlab {
@@ -19,15 +20,14 @@ QString Iso230Command::summary() const
     return QStringLiteral("Evaluate a session's laser-interferometer runs per ISO 230-2 (mean deviations, reversal B,\n"
                           "repeatability R, systematic deviation E, mean deviation M, accuracy A; uni- and bidirectional)\n"
                           "and summarise the thermal drift ISO 230-3 style (largest drift per target and direction, drift\n"
-                          "against a temperature channel). Definitions: docs/iso230.md.");
+                          "against a temperature channel). Stores the result with the session for its test report\n"
+                          "(--db must be writable). Definitions: docs/iso230.md.");
 }
 
 int Iso230Command::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db = CliOptions::db();
-    const QCommandLineOption json = CliOptions::json();
-    const QCommandLineOption force = CliOptions::force();
+    const auto [db, json, force] = CliOptions::dbJsonForce(p);
     const QCommandLineOption temperature(QStringLiteral("temperature"),
                                          QStringLiteral("Channel id to regress the drift on (um/K), e.g. the nut or bearing PT100."),
                                          QStringLiteral("channel"));
@@ -38,7 +38,7 @@ int Iso230Command::run(const QStringList &args)
     const QCommandLineOption tolerance(QStringLiteral("target-tolerance"),
                                        QStringLiteral("Positions closer than this (mm) are one target (default 0.05)."),
                                        QStringLiteral("mm"), QStringLiteral("0.05"));
-    p.addOptions({db, json, force, temperature, perTest, tolerance});
+    p.addOptions({temperature, perTest, tolerance});
     p.addPositionalArgument(QStringLiteral("SESSION"), QStringLiteral("Session id."));
     if (!parse(p, args))
         return 0;
@@ -46,29 +46,37 @@ int Iso230Command::run(const QStringList &args)
         throw UsageError(QStringLiteral("iso230: give exactly one session id"));
     bool ok = false;
     SessionArgument::checkForm(p.positionalArguments().first(), QStringLiteral("SESSION"), name());
-    Iso230Options options;
-    options.temperatureChannel = p.value(temperature);
-    options.runsPerTest = p.value(perTest).toInt(&ok);
-    if (!ok || options.runsPerTest < 1)
+    Iso230Request request;
+    request.temperatureChannel = p.value(temperature);
+    request.runsPerTest = p.value(perTest).toInt(&ok);
+    if (!ok)
         throw UsageError(QStringLiteral("iso230: --runs-per-test must be a positive integer, got '%1'").arg(p.value(perTest)));
-    options.targetTolerance_mm = p.value(tolerance).toDouble(&ok);
-    if (!ok || !(options.targetTolerance_mm > 0))
+    request.targetTolerance_mm = p.value(tolerance).toDouble(&ok);
+    if (!ok)
         throw UsageError(QStringLiteral("iso230: --target-tolerance must be a positive number of mm, got '%1'").arg(p.value(tolerance)));
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
-    const QString path = CliSupport::databasePath(p.value(db), QString(), true);
-    const SessionStore store(path);
-    const qint64 session = SessionArgument::one(store, p.positionalArguments().first(), QStringLiteral("SESSION"), name());
-    CliSupport::progress(QStringLiteral("evaluating the interferometer runs of session %1").arg(session));
     try {
-        const Iso230Report report(store, session, options);
-        if (p.isSet(json))
-            CliSupport::writeJson(QJsonDocument(report.toJson()), p.value(json));
-        if (!p.isSet(json) || p.value(json) != QLatin1String("-"))
-            QTextStream(stdout) << report.text();
+        SessionIso230::check(request);
     } catch (const std::invalid_argument &e) {
         throw UsageError(QStringLiteral("iso230: %1").arg(QString::fromUtf8(e.what())));
     }
+    OutputTarget::checkJson(p, json, force);
+    const QString path = CliSupport::databasePath(p.value(db), QString(), true);
+    SessionStore store(path);
+    request.session = SessionArgument::one(store, p.positionalArguments().first(), QStringLiteral("SESSION"), name());
+    std::optional<Iso230Report> report;
+    try {
+        SessionIso230::checkWritable(store); // the result is kept with the session, for its test report
+        const SessionIso230 iso230(store, request);
+        CliSupport::progress(QStringLiteral("evaluating the interferometer runs of session %1").arg(request.session));
+        report = iso230.run();
+    } catch (const std::invalid_argument &e) {
+        throw UsageError(QStringLiteral("iso230: %1").arg(QString::fromUtf8(e.what())));
+    }
+    SessionIso230::store(store, *report);
+    if (p.isSet(json))
+        CliSupport::writeJson(QJsonDocument(report->toJson()), p.value(json));
+    if (!p.isSet(json) || p.value(json) != QLatin1String("-"))
+        QTextStream(stdout) << report->text();
     return 0;
 }
 

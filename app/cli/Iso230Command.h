@@ -4,7 +4,8 @@
 namespace driftlab {
 
 // driftlab-cli iso230 SESSION [--db DB] [--json FILE|-] [--temperature CHANNEL] [--runs-per-test N]:
-// ISO 230-2 positioning values and an ISO 230-3-style drift summary of the session's laser runs.
+// ISO 230-2 positioning values and an ISO 230-3-style drift summary of the session's laser runs
+// (core/SessionIso230), stored with the session like the GUI's ISO 230 view stores them.
 class Iso230Command : public CliCommand {
 public:
     QString name() const override { return QStringLiteral("iso230"); }

@@ -20,16 +20,12 @@ QString ListCommand::summary() const
 int ListCommand::run(const QStringList &args)
 {
     QCommandLineParser p;
-    const QCommandLineOption db = CliOptions::db();
-    const QCommandLineOption json = CliOptions::json();
-    const QCommandLineOption force = CliOptions::force();
-    p.addOptions({db, json, force});
+    const auto [db, json, force] = CliOptions::dbJsonForce(p);
     if (!parse(p, args))
         return 0;
     if (!p.positionalArguments().isEmpty())
         throw UsageError(QStringLiteral("list: unexpected argument '%1' (use --db DB)").arg(p.positionalArguments().first()));
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
     QJsonArray list;

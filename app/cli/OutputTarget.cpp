@@ -31,6 +31,12 @@ OutputTarget OutputTarget::json(const QString &path)
     return t;
 }
 
+void OutputTarget::checkJson(const QCommandLineParser &p, const QCommandLineOption &json, const QCommandLineOption &force)
+{
+    if (p.isSet(json))
+        OutputTarget::json(p.value(json)).check(p.isSet(force));
+}
+
 OutputTarget &OutputTarget::formats(const QStringList &extensions, const QStringList &named)
 {
     m_formats = extensions;

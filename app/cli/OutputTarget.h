@@ -12,6 +12,8 @@
 // Files are written through QSaveFile (writeFile, which announces them): never half-written.
 
 #include <QByteArray>
+#include <QCommandLineOption>
+#include <QCommandLineParser>
 #include <QString>
 #include <QStringList>
 
@@ -29,6 +31,8 @@ public:
     OutputTarget(const QString &path, const QString &option, Kind kind = Kind::File);
     // The --json FILE of a command: a file, or "-" for standard output.
     static OutputTarget json(const QString &path);
+    // When --json is given: checks its target (the rule of check(), with --force).
+    static void checkJson(const QCommandLineParser &p, const QCommandLineOption &json, const QCommandLineOption &force);
     // The extensions the command can write ("png", "tar.gz"), compared without case. Empty
     // (the default): any name. `named` lists them in messages (default: all of them).
     OutputTarget &formats(const QStringList &extensions, const QStringList &named = QStringList());

@@ -37,8 +37,7 @@ int PullCommand::run(const QStringList &args)
     if (!p.isSet(from) || !SessionStore::isCentral(p.value(from)))
         throw UsageError(QStringLiteral("pull: --from must be a central store, postgresql://[USER@]HOST[:PORT]/DATABASE"));
     const QString path = CliSupport::databasePath(p.value(db), QString(), false);
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     SessionStore central(p.value(from));
     SessionStore local(path);
     const QJsonArray results = SessionTransferRun::run(QStringLiteral("pull"), central, p.positionalArguments(), local);

@@ -40,8 +40,7 @@ int PushCommand::run(const QStringList &args)
     if (!p.isSet(to) || !SessionStore::isCentral(p.value(to)))
         throw UsageError(QStringLiteral("push: --to must be a central store, postgresql://[USER@]HOST[:PORT]/DATABASE"));
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     SessionStore local(path);
     SessionArgument::many(local, p.positionalArguments(), QStringLiteral("SESSION"), name()); // before connecting
     SessionStore central(p.value(to));

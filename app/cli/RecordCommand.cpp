@@ -163,8 +163,7 @@ int RecordCommand::run(const QStringList &args)
             target.formats({QStringLiteral("zip"), QStringLiteral("bundle")});
         target.neverReplaced().check(false);
     }
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     if (p.isSet(pushTo) && !SessionStore::isCentral(p.value(pushTo)))
         throw UsageError(QStringLiteral("record: --push-to must be a central store, postgresql://[USER@]HOST[:PORT]/DATABASE"));
 

@@ -54,8 +54,7 @@ int SelectPointsCommand::run(const QStringList &args)
         throw UsageError(QStringLiteral("%1: --target CHANNEL is required").arg(cmd));
     int kMin = 2, kMax = 8;
     DataDrivenFitCommand::parseKRange(p.value(kRange), kMin, kMax, cmd);
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     const QString path = CliSupport::databasePath(p.value(db), QString(), true);
     SessionStore store(path);
     PointSelectionRequest q;

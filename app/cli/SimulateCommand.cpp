@@ -54,8 +54,7 @@ int SimulateCommand::run(const QStringList &args)
     if (!ok || !(every > 0))
         throw UsageError(QStringLiteral("simulate: --interval must be > 0 s, got '%1'").arg(p.value(interval)));
     SessionArgument::checkForm(p.positionalArguments().front(), QStringLiteral("SESSION"), name());
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
 
     const QString modelPath = p.value(modelOpt);
     QFile file(modelPath);

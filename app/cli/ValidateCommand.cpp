@@ -44,8 +44,7 @@ int ValidateCommand::run(const QStringList &args)
         return 0;
     if (p.positionalArguments().size() < 2)
         throw UsageError(QStringLiteral("%1: give MODEL.json and at least one SESSION id").arg(cmd));
-    if (p.isSet(json))
-        OutputTarget::json(p.value(json)).check(p.isSet(force));
+    OutputTarget::checkJson(p, json, force);
     DataDrivenModel model;
     QJsonObject document;
     try {

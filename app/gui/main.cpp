@@ -88,50 +88,40 @@ int main(int argc, char **argv)
     p.setApplicationDescription(QStringLiteral("DriftLab: record, review and model machine-tool thermal errors."));
     const QCommandLineOption help = p.addHelpOption();
     const QCommandLineOption version = p.addVersionOption();
-    const QCommandLineOption db(QStringLiteral("db"),
-                                QStringLiteral("Session database to open (default: driftlab.sqlite in the user's data directory)."),
-                                QStringLiteral("file"));
-    const QCommandLineOption session(QStringLiteral("show-session"),
-                                   QStringLiteral("Session id to show (QApplication reserves --session for X11 session management)."),
-                                   QStringLiteral("id"));
-    const QCommandLineOption screenshot(QStringLiteral("screenshot"),
-                                        QStringLiteral("Render the main window (at the screen's size, the 3-D view included) to "
-                                                       "a PNG and exit; works headless with QT_QPA_PLATFORM=offscreen."),
-                                        QStringLiteral("png"));
-    const QCommandLineOption view(QStringLiteral("view"),
-                                  QStringLiteral("Review view to show: error-3d, %1.").arg(ReviewWorkspace::viewNames().join(QStringLiteral(", "))),
-                                  QStringLiteral("name"));
-    const QCommandLineOption compare(QStringLiteral("compare"), QStringLiteral("Show this session id beside the first."),
-                                     QStringLiteral("id"));
-    const QCommandLineOption fit(QStringLiteral("fit"),
-                                 QStringLiteral("Open the Models dock and fit the seed-000 model to these sessions: "
-                                                "IDS[:HELDOUT], e.g. 1,2,3:4."),
-                                 QStringLiteral("ids"));
-    const QCommandLineOption diagnose(QStringLiteral("diagnose"),
-                                      QStringLiteral("Open the Diagnosis dock and diagnose: TRAIN:VALIDATE session ids."),
-                                      QStringLiteral("ids"));
-    const QCommandLineOption dock(QStringLiteral("dock"),
-                                  QStringLiteral("Show a dock: sessions, acquisition, models, diagnosis, analysis or compensation (repeatable)."),
-                                  QStringLiteral("name"));
-    const QCommandLineOption analysis(QStringLiteral("analysis"),
-                                      QStringLiteral("Open the Analysis dock: select sensitive points of TARGET in session ID, "
-                                                     "then fit the data-driven models on hours 0..TRAIN_H and validate on the "
-                                                     "rest: ID:TARGET[:TRAIN_H[:select]] ('select': stop after the selection)."),
-                                      QStringLiteral("spec"));
-    const QCommandLineOption central(QStringLiteral("central-view"),
-                                     QStringLiteral("Central tab to show: session, iso230, model-fit, diagnosis, analysis."),
-                                     QStringLiteral("name"));
-    const QCommandLineOption overlay(QStringLiteral("overlay"),
-                                     QStringLiteral("Overlay these sessions (comma-separated ids) on the time plot of --show-session."),
-                                     QStringLiteral("ids"));
-    const QCommandLineOption record(QStringLiteral("record"),
-                                    QStringLiteral("Start recording this rig (a preset name or rig file) into --db at 600x "
-                                                   "simulation speed; with --screenshot, the picture is taken 3 s later."),
-                                    QStringLiteral("rig"));
-    const QCommandLineOption liveLimit(QStringLiteral("live-limit"),
-                                       QStringLiteral("With --record: a high limit on a channel of the live view (KEY:HIGH)."),
-                                       QStringLiteral("key:high"));
-    p.addOptions({db, session, screenshot, view, compare, fit, diagnose, dock, analysis, central, overlay, record, liveLimit});
+    // The options by name (QCommandLineParser finds them by name), then name, help and value of each.
+    const QString db = QStringLiteral("db"), session = QStringLiteral("show-session"), screenshot = QStringLiteral("screenshot"),
+                  view = QStringLiteral("view"), compare = QStringLiteral("compare"), fit = QStringLiteral("fit"),
+                  diagnose = QStringLiteral("diagnose"), dock = QStringLiteral("dock"), analysis = QStringLiteral("analysis"),
+                  central = QStringLiteral("central-view"), overlay = QStringLiteral("overlay"), record = QStringLiteral("record"),
+                  liveLimit = QStringLiteral("live-limit");
+    p.addOptions({
+        {db, QStringLiteral("Session database to open (default: driftlab.sqlite in the user's data directory)."), QStringLiteral("file")},
+        {session, QStringLiteral("Session id to show (QApplication reserves --session for X11 session management)."), QStringLiteral("id")},
+        {screenshot,
+         QStringLiteral("Render the main window (at the screen's size, the 3-D view included) to a PNG and exit; works headless "
+                        "with QT_QPA_PLATFORM=offscreen."),
+         QStringLiteral("png")},
+        {view, QStringLiteral("Review view to show: error-3d, %1.").arg(ReviewWorkspace::viewNames().join(QStringLiteral(", "))),
+         QStringLiteral("name")},
+        {compare, QStringLiteral("Show this session id beside the first."), QStringLiteral("id")},
+        {fit, QStringLiteral("Open the Models dock and fit the seed-000 model to these sessions: IDS[:HELDOUT], e.g. 1,2,3:4."),
+         QStringLiteral("ids")},
+        {diagnose, QStringLiteral("Open the Diagnosis dock and diagnose: TRAIN:VALIDATE session ids."), QStringLiteral("ids")},
+        {dock, QStringLiteral("Show a dock: sessions, acquisition, models, diagnosis, analysis or compensation (repeatable)."),
+         QStringLiteral("name")},
+        {analysis,
+         QStringLiteral("Open the Analysis dock: select sensitive points of TARGET in session ID, then fit the data-driven models "
+                        "on hours 0..TRAIN_H and validate on the rest: ID:TARGET[:TRAIN_H[:select]] ('select': stop after the "
+                        "selection)."),
+         QStringLiteral("spec")},
+        {central, QStringLiteral("Central tab to show: session, iso230, model-fit, diagnosis, analysis."), QStringLiteral("name")},
+        {overlay, QStringLiteral("Overlay these sessions (comma-separated ids) on the time plot of --show-session."), QStringLiteral("ids")},
+        {record,
+         QStringLiteral("Start recording this rig (a preset name or rig file) into --db at 600x simulation speed; with "
+                        "--screenshot, the picture is taken 3 s later."),
+         QStringLiteral("rig")},
+        {liveLimit, QStringLiteral("With --record: a high limit on a channel of the live view (KEY:HIGH)."), QStringLiteral("key:high")},
+    });
     if (!p.parse(QApplication::arguments()))
         return usageError(p.errorText());
     if (p.isSet(help))

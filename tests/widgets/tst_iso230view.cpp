@@ -4,10 +4,15 @@
 // in process, the CLI (a separate process) evaluates it, and every value in the view's
 // tables (the exact double behind each cell) and in its two plots is compared with the
 // JSON, value for value. The x̄ ± 2s band is checked against x̄ and s of the JSON.
+// Issue 34: the view's "Store for the report" and `iso230` store byte-identical records (one
+// use case, core/SessionIso230), and the test report shows the stored result, else evaluates.
 
 #include "Iso230Report.h"
 #include "Iso230View.h"
+#include "AnalysisResultKind.h"
 #include "MainWindow.h"
+#include "ReportBuilder.h"
+#include "ReportTemplate.h"
 #include "RigConfigLoader.h"
 #include "RigRecorder.h"
 #include "SessionStore.h"
@@ -26,6 +31,7 @@
 #include <QJsonObject>
 #include <QLabel>
 #include <QSettings>
+#include <QSignalSpy>
 #include <QTabWidget>
 #include <QTableWidget>
 #include <QTemporaryDir>
@@ -46,8 +52,14 @@ private slots:
     void driftAgainstTemperature();
     void sessionWithoutRunsSaysSo();
     void isACentralTabFollowingTheSession();
+    void viewAndCliStoreTheSameRecord();
+    void reportShowsTheStoredResult();
 
 private:
+    QString copyOfFresh(const QString &name) const;
+    // The report's text under the ISO 230 heading (left-out lines marked).
+    static QString reportText(const SessionStore &store, qint64 session);
+    static QVector<QByteArray> isoRecords(const SessionStore &store, qint64 session);
     QJsonObject cli(const QStringList &extra);
     static double cell(const QTableWidget *t, int row, int col)
     {
@@ -60,6 +72,7 @@ private:
     }
     QTemporaryDir m_dir;
     QString m_db;
+    QString m_fresh; // m_db before anything was stored
     qint64 m_session = 0;
     qint64 m_plain = 0;
     QJsonObject m_json;
@@ -98,6 +111,8 @@ void TestIso230View::initTestCase()
         m_plain = recorder.record(QStringLiteral("no laser"), 120.0);
     }
     QVERIFY(m_plain > 0);
+    m_fresh = m_dir.filePath(QStringLiteral("fresh.sqlite"));
+    QVERIFY(QFile::copy(m_db, m_fresh));
     m_json = cli({});
     QCOMPARE(m_json.value(QStringLiteral("tests")).toArray().size(), 3);
 }
@@ -268,6 +283,90 @@ void TestIso230View::isACentralTabFollowingTheSession()
     QCOMPARE(window.iso230()->targetTable()->rowCount(), 0);
     window.workbench()->setCurrentSession(m_session);
     QCOMPARE(window.iso230()->targetTable()->rowCount(), 36);
+}
+
+QString TestIso230View::copyOfFresh(const QString &name) const
+{
+    const QString path = m_dir.filePath(name);
+    return QFile::copy(m_fresh, path) ? path : QString();
+}
+
+QString TestIso230View::reportText(const SessionStore &store, qint64 session)
+{
+    const ReportTemplate look = ReportTemplate::load();
+    const ReportDocument doc = ReportBuilder(store, session, look).build();
+    QString text;
+    bool inside = false;
+    for (const ReportBlock &b : doc.blocks) {
+        if (b.kind == ReportBlock::Kind::Heading)
+            inside = b.text == look.heading(QStringLiteral("iso230"));
+        else if (inside)
+            text += (b.kind == ReportBlock::Kind::LeftOut ? QStringLiteral("LEFT OUT: ") : QString()) + b.text + QLatin1Char('\n');
+    }
+    return text;
+}
+
+QVector<QByteArray> TestIso230View::isoRecords(const SessionStore &store, qint64 session)
+{
+    QVector<QByteArray> out;
+    for (const AnalysisResult &r : store.analysisResults(session))
+        if (r.kind == AnalysisResultKind::iso230())
+            out << QJsonDocument(r.result).toJson(QJsonDocument::Compact);
+    return out;
+}
+
+void TestIso230View::viewAndCliStoreTheSameRecord()
+{
+    const QString db = copyOfFresh(QStringLiteral("faces.sqlite"));
+    QVERIFY(!db.isEmpty());
+    { // The GUI: the view evaluates against T4 and stores on its worker thread.
+        SessionStore store(db);
+        Iso230View view;
+        QVERIFY(!view.storeResult()); // nothing evaluated yet
+        QVERIFY(view.setSession(&store, m_session));
+        QVERIFY(view.setTemperatureChannel(QStringLiteral("T4")));
+        QSignalSpy done(&view, &Iso230View::finished);
+        QVERIFY2(view.storeResult(), qPrintable(view.lastError()));
+        QVERIFY(view.running());
+        QVERIFY(done.wait(30000));
+        QVERIFY2(done.last().at(0).toBool(), qPrintable(view.lastError()));
+        const QVector<QByteArray> stored = isoRecords(store, m_session);
+        QCOMPARE(stored.size(), 1);
+        QCOMPARE(stored.front(), QJsonDocument(view.report()->toJson()).toJson(QJsonDocument::Compact));
+    }
+    // The CLI on the same request: the same bytes.
+    const clirunner::Result r = clirunner::run({QStringLiteral("iso230"), QString::number(m_session), QStringLiteral("--db"), db,
+                                                QStringLiteral("--temperature"), QStringLiteral("T4")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const SessionStore store(db);
+    const QVector<QByteArray> stored = isoRecords(store, m_session);
+    QCOMPARE(stored.size(), 2);
+    QCOMPARE(stored.at(1), stored.at(0));
+    QVERIFY(stored.at(0).contains("\"temperature_channel\":\"T4\""));
+}
+
+void TestIso230View::reportShowsTheStoredResult()
+{
+    const QString db = copyOfFresh(QStringLiteral("report.sqlite"));
+    QVERIFY(!db.isEmpty());
+    { // Nothing stored: the report evaluates the three runs as three tests, as before.
+        const SessionStore store(db);
+        const QString text = reportText(store, m_session);
+        QVERIFY2(text.contains(QStringLiteral("Evaluated for this report (none stored): 1 run(s) per test")), qPrintable(text));
+        QVERIFY2(text.contains(QStringLiteral("ISO 230-3 drift against the reference run 0")), qPrintable(text));
+    }
+    // `iso230 --runs-per-test 3` stores one test of all three runs: the report shows that one,
+    // and so has no drift to show.
+    const clirunner::Result r = clirunner::run({QStringLiteral("iso230"), QString::number(m_session), QStringLiteral("--db"), db,
+                                                QStringLiteral("--runs-per-test"), QStringLiteral("3"), QStringLiteral("--temperature"),
+                                                QStringLiteral("T4")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const SessionStore store(db);
+    const QString text = reportText(store, m_session);
+    QVERIFY2(text.contains(QStringLiteral("The result stored with the session: 3 run(s) per test, targets within 0.05 mm, drift against T4.")),
+             qPrintable(text));
+    QVERIFY2(text.contains(QStringLiteral("LEFT OUT: ISO 230-3 drift: the session has a single positioning test")), qPrintable(text));
+    QVERIFY(!text.contains(QStringLiteral("Evaluated for this report")));
 }
 
 QTEST_MAIN(TestIso230View)
