@@ -39,12 +39,12 @@ QJsonValue hours(double h)
     return std::isfinite(h) ? QJsonValue(h) : QJsonValue();
 }
 
-QJsonObject rangeJson(const HourRange &r)
-{
-    return QJsonObject{{QStringLiteral("from_h"), hours(r.from_h)}, {QStringLiteral("to_h"), hours(r.to_h)}};
-}
-
 } // namespace
+
+QJsonObject HourRange::toJson() const
+{
+    return QJsonObject{{QStringLiteral("from_h"), hours(from_h)}, {QStringLiteral("to_h"), hours(to_h)}};
+}
 
 HourRange HourRange::parse(const QString &text, const QString &option)
 {
@@ -304,7 +304,7 @@ DataDrivenFitResult DataDrivenFit::fitFamily(const DataDrivenFitRequest &q, cons
     doc.insert(QStringLiteral("training"), QJsonObject{{QStringLiteral("session"), trainIds.front()},
                                                        {QStringLiteral("session_name"), s.info().name},
                                                        {QStringLiteral("sessions"), sessions},
-                                                       {QStringLiteral("range"), rangeJson(q.train)},
+                                                       {QStringLiteral("range"), q.train.toJson()},
                                                        {QStringLiteral("samples"), static_cast<double>(result.training.metrics.n)}});
     doc.insert(QStringLiteral("hyperparameters"), hyper);
     if (!uncertainty.isEmpty())

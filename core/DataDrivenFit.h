@@ -39,6 +39,8 @@ struct HourRange {
     bool all() const { return !std::isfinite(from_h) && !std::isfinite(to_h); }
     // Parses "H:H" (either side may be empty); throws std::invalid_argument naming `option`.
     static HourRange parse(const QString &text, const QString &option);
+    // {"from_h", "to_h"}, an open side as null: the range as fit and validate report it.
+    QJsonObject toJson() const;
 };
 
 struct DataDrivenFitRequest {

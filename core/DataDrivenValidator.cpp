@@ -21,16 +21,6 @@ namespace {
     throw std::invalid_argument(message.toStdString());
 }
 
-QJsonValue hours(double h)
-{
-    return std::isfinite(h) ? QJsonValue(h) : QJsonValue();
-}
-
-QJsonObject rangeJson(const HourRange &r)
-{
-    return QJsonObject{{QStringLiteral("from_h"), hours(r.from_h)}, {QStringLiteral("to_h"), hours(r.to_h)}};
-}
-
 } // namespace
 
 DataDrivenValidator::DataDrivenValidator(const SessionStore &store) : m_store(store) {}
@@ -79,7 +69,7 @@ QJsonObject DataDrivenValidator::validationJson(const ValidationSeries &s)
     QJsonObject o = metricsJson(s.metrics);
     insertSigma(o, s);
     o.insert(QStringLiteral("session"), s.session);
-    o.insert(QStringLiteral("range"), rangeJson(s.range));
+    o.insert(QStringLiteral("range"), s.range.toJson());
     return o;
 }
 
@@ -87,7 +77,7 @@ QJsonObject DataDrivenValidator::validationSetJson(const ValidationSet &set)
 {
     QJsonObject o = metricsJson(set.pooled.metrics);
     insertSigma(o, set.pooled);
-    o.insert(QStringLiteral("range"), rangeJson(set.pooled.range));
+    o.insert(QStringLiteral("range"), set.pooled.range.toJson());
     QJsonArray sessions, extrapolation;
     for (const ValidationSeries &s : set.sessions) {
         sessions.append(validationJson(s));

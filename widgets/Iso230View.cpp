@@ -88,9 +88,13 @@ Iso230View::Iso230View(QWidget *parent)
     controls->addWidget(new QLabel(tr("Drift against"), this));
     controls->addWidget(m_temperature);
     controls->addStretch();
+    // The button goes beside the (wrapping) heading, not after the two combo boxes: that row
+    // would then be wider than the central area beside the docks at 1366 x 768.
     m_storeButton->setObjectName(QStringLiteral("Iso230Store"));
     m_storeButton->setToolTip(tr("Store this evaluation with the session: the test report shows it (as `driftlab-cli iso230` stores it)"));
-    controls->addWidget(m_storeButton);
+    auto *headingRow = new QHBoxLayout;
+    headingRow->addWidget(m_heading, 1);
+    headingRow->addWidget(m_storeButton, 0, Qt::AlignTop);
 
     // ISO 230-2: the axis values, the table per target and direction, and the plot.
     m_axis->setObjectName(QStringLiteral("Iso230Axis"));
@@ -141,7 +145,7 @@ Iso230View::Iso230View(QWidget *parent)
     m_tabs->addTab(drift, tr("Drift (ISO 230-3)"));
     auto *layout = new QVBoxLayout(this);
     layout->setContentsMargins(4, 4, 4, 4);
-    layout->addWidget(m_heading);
+    layout->addLayout(headingRow);
     layout->addLayout(controls);
     layout->addWidget(m_tabs, 1);
 
@@ -387,14 +391,24 @@ void Iso230View::fillTables(int index)
 
 void Iso230View::fitTables()
 {
-    // The tables get the width their columns need (no sideways scrolling when the window has
-    // room), the plot the rest; the user can still move the splitter.
+    // The tables get the width their columns need and the plot the rest, side by side when
+    // both fit (the plot at least 260 px); otherwise the plot goes below the tables, so the
+    // tables never scroll sideways (a laptop screen with the docks open). The user can still
+    // move the splitter.
     int need = 2 * m_targets->frameWidth() + m_targets->verticalScrollBar()->sizeHint().width() + 6;
     for (int c = 0; c < TargetColumns; ++c)
         need += m_targets->columnWidth(c);
     const int total = m_split->width();
-    if (total > 0)
-        m_split->setSizes({std::min(need, total - 260), std::max(260, total - need)});
+    if (total <= 0)
+        return;
+    if (total >= need + 260) {
+        m_split->setOrientation(Qt::Horizontal);
+        m_split->setSizes({need, total - need});
+    } else {
+        m_split->setOrientation(Qt::Vertical);
+        const int height = m_split->height();
+        m_split->setSizes({height / 2, height - height / 2});
+    }
 }
 
 void Iso230View::resizeEvent(QResizeEvent *event)

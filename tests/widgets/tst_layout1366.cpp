@@ -92,10 +92,8 @@ QStringList problems(QWidget *top)
                            .arg(scroll->widget()->minimumSizeHint().width())
                            .arg(QLatin1String(scroll->widget()->metaObject()->className()));
         }
-        // Iso230View's tables are left out: they still scroll sideways beside the docks (the
-        // view belongs to the ISO 230 work of another branch this round; see docs/review.md).
         auto *table = qobject_cast<QTableView *>(w);
-        if (table && !w->objectName().startsWith(QLatin1String("Iso230"))) {
+        if (table) {
             // A table scrolls sideways when its columns are wider than its viewport (the
             // scroll bar may be switched off: the columns must fit all the same).
             const int columns = table->horizontalHeader()->length();
