@@ -20,14 +20,12 @@ DRIFTLAB_CLI="$src/build/app/driftlab-cli" MIN_FDM_IMPROVEMENT=80 "$src/scripts/
 # The sanitizer pass runs every test but the long diagnosis sweep subset (label
 # "diagnosis", also tst_facesagree, which runs one), whose engine is covered under the
 # sanitizers by tst_diagnosisengine,
-# tst_streamingcli (label "rss": it measures peak memory, which ASan inflates), and
-# tst_centralcli (label "pgload": it hung once in this pass, docs/reliability.md; the push
-# code runs under the sanitizers in tst_centralstore and tst_mainwindow).
+# and tst_streamingcli (label "rss": it measures peak memory, which ASan inflates).
 "$src/scripts/build.sh" "$src/build-asan" -DDRIFTLAB_SANITIZE=ON -DDRIFTLAB_WERROR=ON -DDRIFTLAB_BENCH=OFF
 ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" \
 LSAN_OPTIONS="suppressions=$src/scripts/lsan.supp:print_suppressions=0" \
 UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
-  ctest --test-dir "$src/build-asan" --output-on-failure -j"$jobs" -LE "diagnosis|pgload|rss"
+  ctest --test-dir "$src/build-asan" --output-on-failure -j"$jobs" -LE "diagnosis|rss"
 
 # libFuzzer on every parser of user files, under ASan + UBSan (clang; a separate build):
 # regression inputs first, then each harness for DRIFTLAB_FUZZ_SECONDS (docs/reliability.md).
