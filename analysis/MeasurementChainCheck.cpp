@@ -149,6 +149,35 @@ std::vector<double> stepStatistic(const TimeSeries &s, double window)
     return out;
 }
 
+// The same right-minus-left level at boundary i with quadratics instead of lines on either side:
+// a first-order response switching direction (a heater cycling on and off through a 20-min lag)
+// bends hard right after the kink, and lines over 300 s then disagree at the kink by 0.3 K
+// (the rig's hydraulic unit, 'none' seed 1) although nothing jumped; quadratics follow the
+// bend, a real jump stays.
+double quadraticStep(const TimeSeries &s, size_t i, double window)
+{
+    const double at = 0.5 * (s.t[i - 1] + s.t[i]);
+    auto level = [&](size_t a, size_t b) { // quadratic through samples [a, b), value at `at`
+        Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+        Eigen::Vector3d r = Eigen::Vector3d::Zero();
+        for (size_t k = a; k < b; ++k) {
+            const double u = (s.t[k] - at) / window;
+            const Eigen::Vector3d x(1.0, u, u * u);
+            A += x * x.transpose();
+            r += x * s.v[k];
+        }
+        return A.ldlt().solve(r)(0);
+    };
+    size_t a = i, c = i;
+    while (a > 0 && s.t[a - 1] >= at - window)
+        --a;
+    while (c < s.size() && s.t[c] <= at + window)
+        ++c;
+    if (i - a < 10 || c - i < 10)
+        return std::nan("");
+    return level(i, c) - level(a, i);
+}
+
 double robustSpread(const std::vector<double> &x)
 {
     std::vector<double> a;
@@ -308,6 +337,10 @@ std::vector<SensorFinding> MeasurementChainCheck::steps(const DiagnosisRecording
                 best = i;
             }
         if (big < o.minStep_K || big < o.stepNoiseFactor * st.spread)
+            continue;
+        // A kink that bends hard is not a jump: quadratics on either side must see it too.
+        const double bent = quadraticStep(*st.s, best, o.stepWindow_s);
+        if (!(bent * st.d[best] > 0) || std::fabs(bent) < 0.6 * big)
             continue;
         const double at = 0.5 * (st.s->t[best - 1] + st.s->t[best]);
         // No other channel steps at that moment (a common jump would be the logger's or real).

@@ -64,16 +64,24 @@ int DiagnoseCommand::run(const QStringList &args)
         QStringLiteral("fit-screw-temperatures"),
         QStringLiteral("Also fit the screw temperatures of A (infrared profile, surface PT100s; sigma 0.3 K). "
                        "Default: they are predicted and located, not fitted."));
+    const DiagnosisRequest defaults;
     const QCommandLineOption withPriors(
         QStringLiteral("priors"),
-        QStringLiteral("Anchor lambda and P_f by priors from steel (45 +- 15 W/(m K)) and the drawing (+- 5 mm)."));
+        QStringLiteral("Anchor lambda and P_f by priors from steel (45 +- 15 W/(m K)) and the drawing (+- 5 mm)%1.")
+            .arg(defaults.priors ? QStringLiteral(" (the default)") : QString()));
+    const QCommandLineOption noPriors(QStringLiteral("no-priors"), QStringLiteral("Fit lambda and P_f without priors%1.")
+                                                                     .arg(defaults.priors ? QString() : QStringLiteral(" (the default)")));
     const QCommandLineOption withChain(QStringLiteral("measurement-chain"),
-                                     QStringLiteral("Also check the sensors against each other first (PT100 steps, interferometer vs "
-                                                    "air, probe vs interferometer; issue 36, not yet measured on the rig sweep)."));
+                                     QStringLiteral("Check the sensors against each other first (PT100 steps, "
+                                                    "interferometer vs air, probe vs interferometer; issue 36)%1.")
+                                         .arg(defaults.checkMeasurementChain ? QStringLiteral(" (the default)") : QString()));
+    const QCommandLineOption noChain(QStringLiteral("no-measurement-chain"),
+                                     QStringLiteral("Do not check the sensors against each other%1.")
+                                         .arg(defaults.checkMeasurementChain ? QString() : QStringLiteral(" (the default)")));
     const QCommandLineOption withTriples(QStringLiteral("triples"),
                                          QStringLiteral("When no single effect and no pair passes, also try the best pair plus one "
                                                         "(issue 36; named wrong codes on the third simulator, see docs/diagnosis.md)."));
-    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures, withPriors, withChain, withTriples, force});
+    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures, withPriors, noPriors, withChain, noChain, withTriples, force});
     if (!parse(p, args))
         return 0;
     if (!p.isSet(train) || !p.isSet(validate))
@@ -90,8 +98,12 @@ int DiagnoseCommand::run(const QStringList &args)
     DiagnosisRequest request;
     request.fitScrewTemperatures = p.isSet(fitTemperatures);
     request.dt_s = step;
-    request.priors = p.isSet(withPriors);
-    request.checkMeasurementChain = p.isSet(withChain);
+    if (p.isSet(withPriors) && p.isSet(noPriors))
+        throw UsageError(QStringLiteral("diagnose: --priors and --no-priors exclude each other"));
+    if (p.isSet(withChain) && p.isSet(noChain))
+        throw UsageError(QStringLiteral("diagnose: --measurement-chain and --no-measurement-chain exclude each other"));
+    request.priors = p.isSet(withPriors) || (defaults.priors && !p.isSet(noPriors));
+    request.checkMeasurementChain = p.isSet(withChain) || (defaults.checkMeasurementChain && !p.isSet(noChain));
     request.tryTriples = p.isSet(withTriples);
     for (const QString &e : p.value(effects).split(QLatin1Char(','), Qt::SkipEmptyParts))
         request.effects.push_back(e.trimmed().toStdString());

@@ -85,6 +85,7 @@ class TestMeasurementChainCheck : public QObject {
 private slots:
     void namesAJumpingPt100AndUndoesIt();
     void heatIsNotAStepNorIsACommonJump();
+    void aCyclingHeaterIsNotAStep();
     void namesTheInterferometerFollowingTheAir();
     void airLawOnAnotherChannelIsTheMachine();
     void namesTheProbeFollowingTheBed();
@@ -130,6 +131,37 @@ void TestMeasurementChainCheck::heatIsNotAStepNorIsACommonJump()
             if (c.second.t[i] >= 7001.0)
                 c.second.v[i] += 0.5;
     QVERIFY(MeasurementChainCheck::steps(r, {}).empty());
+}
+
+// The rig's hydraulic unit ('none' seed 1, issue 36): a heater on for half of an 8573 s period,
+// 7.9 K above the air through a 1200 s first-order lag, a 1 Hz PT100 with 0.02 K noise. Where it
+// switches, the temperature bends hard (6.6 mK/s of slope reversing over minutes); lines over
+// 300 s on either side then disagree at the kink by ~0.3 K, 15-17 x the channel's spread: it
+// was named a -0.31 K step in both recordings. Nothing jumps, nothing may be named; a real
+// 0.4 K jump on the same channel, half-way through an off phase, still is.
+void TestMeasurementChainCheck::aCyclingHeaterIsNotAStep()
+{
+    DiagnosisRecording r = recording(false);
+    TimeSeries &h = r.channelsByRole["hydraulic_unit"];
+    std::mt19937 rng(7);
+    std::normal_distribution<double> n(0.0, 0.02);
+    const double period = 8573.466609863466, phase = 2661.1073996495256, tau = 1200.0, rise = 7.904053980913378;
+    double lag = 0.0;
+    for (double t = 0.0; t <= kHours * 3600.0; t += 1.0) {
+        const bool on = std::fmod(t + phase, period) < 0.5 * period;
+        lag += (1.0 - std::exp(-1.0 / tau)) * ((on ? rise : 0.0) - lag);
+        h.t.push_back(t);
+        h.v.push_back(20.0 + lag + n(rng));
+    }
+    QVERIFY(MeasurementChainCheck::steps(r, {}).empty());
+    // An off phase runs from t = 0.5 period - phase = 1626 s to 5913 s: a jump at 4000 s.
+    for (size_t i = 0; i < h.size(); ++i)
+        if (h.t[i] >= 4000.0)
+            h.v[i] += 0.4;
+    const std::vector<SensorFinding> f = MeasurementChainCheck::steps(r, {});
+    QCOMPARE(f.size(), size_t(1));
+    QCOMPARE(f[0].role, std::string("hydraulic_unit"));
+    QVERIFY2(std::fabs(f[0].coefficient - 0.4) < 0.05, std::to_string(f[0].coefficient).c_str());
 }
 
 void TestMeasurementChainCheck::namesTheInterferometerFollowingTheAir()

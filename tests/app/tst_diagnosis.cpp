@@ -243,6 +243,14 @@ void TestDiagnosis::badInput()
     r = run({QStringLiteral("diagnose"), QStringLiteral("--help")});
     QCOMPARE(r.code, 0);
     QVERIFY(r.out.contains("--predictions"));
+    QVERIFY(r.out.contains("--no-priors") && r.out.contains("--no-measurement-chain"));
+    // An option and its negation together: exit 2 naming both, before any work.
+    for (const QString &o : {QStringLiteral("priors"), QStringLiteral("measurement-chain")}) {
+        r = run({QStringLiteral("diagnose"), QStringLiteral("--train"), QStringLiteral("1"), QStringLiteral("--validate"),
+                 QStringLiteral("2"), QStringLiteral("--json"), json, QStringLiteral("--") + o, QStringLiteral("--no-") + o});
+        QCOMPARE(r.code, 2);
+        QVERIFY2(r.err.contains(("--" + o + " and --no-" + o).toUtf8()), r.err.constData());
+    }
 }
 
 void TestDiagnosis::concealedEffects_data()
@@ -345,7 +353,8 @@ void TestDiagnosis::concealedEffects()
         // interferometer run it cannot finish (issue 35 item 5), the clean rig of seed 1 has one
         // run fewer and is answered "unexplained" (held-out 0.732 -> 0.498 um, the empirical
         // term). Kept visible here and in docs/diagnosis.md until the third level fixes it; an
-        // unexpected pass fails this test so the mark is removed.
+        // unexpected pass fails this test so the mark is removed. (`--priors` answers it right,
+        // but the priors stay opt-in: docs/diagnosis.md.)
         if (seed == 1)
             QEXPECT_FAIL("", "clean rig seed 1 answered 'unexplained' since runs end with the recording (issue 36)", Continue);
         QCOMPARE(o.answer, effect);
