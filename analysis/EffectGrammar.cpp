@@ -28,16 +28,89 @@ std::vector<EffectGrammar::Member> EffectGrammar::members()
     using T = TimeLaw;
     using S = Structure;
     // code, location, time law, structure, exponent, driver, reference, lag parameters
-    return {
-        {"motor_heat_fixed_end", L::MotorCoupling, T::TemperatureDifference, S::None, 1.0, "motor", "ambient", ""},
-        {"free_end_bearing_heat", L::FreeEnd, T::Feed, S::None, 1.0, "", "", ""},
-        {"nonlinear_feed_heat", L::FixedEndAndNut, T::FeedPower, S::None, 2.0, "", "", ""},
-        {"heat_path_lag", L::FixedEndAndNut, T::LaggedFeed, S::None, 1.0, "", "", "tau_"},
-        {"holding_heat", L::FixedEnd, T::Standstill, S::None, 1.0, "", "", ""},
-        {"structure_offset", L::None, T::Temperature, S::Offset, 1.0, "structure", "", ""},
-        {"structure_linear", L::None, T::Temperature, S::LinearInPosition, 1.0, "structure", "", ""},
-        {"screw_coolant", L::Distributed, T::TemperatureDifference, S::None, 1.0, "coolant", "ambient", ""},
+    std::vector<Member> all = {
+        {"motor_heat_fixed_end", L::MotorCoupling, T::TemperatureDifference, S::None, 1.0, "motor", "ambient", "", true},
+        {"free_end_bearing_heat", L::FreeEnd, T::Feed, S::None, 1.0, "", "", "", true},
+        {"nonlinear_feed_heat", L::FixedEndAndNut, T::FeedPower, S::None, 2.0, "", "", "", true},
+        {"heat_path_lag", L::FixedEndAndNut, T::LaggedFeed, S::None, 1.0, "", "", "tau_", true},
+        {"holding_heat", L::FixedEnd, T::Standstill, S::None, 1.0, "", "", "", true},
+        {"structure_offset", L::None, T::Temperature, S::Offset, 1.0, "structure", "", "", true},
+        {"structure_linear", L::None, T::Temperature, S::LinearInPosition, 1.0, "structure", "", "", true},
+        {"screw_coolant", L::Distributed, T::TemperatureDifference, S::None, 1.0, "coolant", "ambient", "", true},
     };
+    for (const Member &m : generated())
+        all.push_back(m);
+    return all;
+}
+
+std::vector<EffectGrammar::Member> EffectGrammar::generated()
+{
+    // A bounded set: the free-end bearing (the one heat location the seed model lacks that the
+    // library names with a single law) with the other time laws the seed model's end cell can
+    // carry. The fixed-end bearing and the nut already carry k v in the baseline and the
+    // library's nonlinear / lagged / standstill laws; the fixed end's lagged feed is
+    // motor_heat_fixed_end's form without a motor channel.
+    using L = Location;
+    using T = TimeLaw;
+    using S = Structure;
+    std::vector<Member> out = {
+        {"", L::FreeEnd, T::LaggedFeed, S::None, 1.0, "", "", "free_end_lag", false},
+        {"", L::FreeEnd, T::FeedPower, S::None, 0.0, "", "", "", false},
+        {"", L::FreeEnd, T::TemperatureDifference, S::None, 1.0, "free_bearing", "ambient", "", false},
+    };
+    for (Member &m : out)
+        m.code = generatedCode(m);
+    return out;
+}
+
+std::string EffectGrammar::generatedCode(const Member &m)
+{
+    std::string law;
+    switch (m.law) {
+    case TimeLaw::Feed:
+        law = "feed";
+        break;
+    case TimeLaw::FeedPower:
+        law = m.exponent > 0 ? "feed_power_" + fixedText(m.exponent, 1) : "feed_power";
+        break;
+    case TimeLaw::Constant:
+        law = "constant";
+        break;
+    case TimeLaw::Standstill:
+        law = "standstill";
+        break;
+    case TimeLaw::Temperature:
+    case TimeLaw::TemperatureDifference:
+        law = m.driver + "_temperature";
+        break;
+    case TimeLaw::LaggedFeed:
+        law = "feed_lagged";
+        break;
+    }
+    if (!m.heatInput())
+        return std::string("structure:") + (m.structure == Structure::Offset ? "offset" : "linear") + ":" + law;
+    return "heat:" + locationKey(m.location) + ":" + law;
+}
+
+std::string EffectGrammar::locationKey(Location l)
+{
+    switch (l) {
+    case Location::FixedEnd:
+        return "fixed_end";
+    case Location::FreeEnd:
+        return "free_end";
+    case Location::Nut:
+        return "nut";
+    case Location::FixedEndAndNut:
+        return "fixed_end_and_nut";
+    case Location::MotorCoupling:
+        return "motor_coupling";
+    case Location::Distributed:
+        return "distributed";
+    case Location::None:
+        break;
+    }
+    return "none";
 }
 
 bool EffectGrammar::member(const std::string &code, Member &out)
@@ -89,9 +162,17 @@ std::string EffectGrammar::describe(const Member &m, const std::vector<Parameter
         law = "in proportion to the feed";
         break;
     case TimeLaw::FeedPower:
-        law = std::fabs(m.exponent - 2.0) < 1e-9 ? "growing with the square of the feed"
-                                                 : "growing with the feed to the power " + fixedText(m.exponent, 1);
+    {
+        // A fitted exponent (parameter "..._exponent") is named with its value.
+        double n = m.exponent;
+        for (const ParameterValue &p : parameters)
+            if (n <= 0 && p.name.size() > 9 && p.name.compare(p.name.size() - 9, 9, "_exponent") == 0)
+                n = p.value;
+        law = n <= 0 ? "growing with a power of the feed"
+              : std::fabs(n - 2.0) < 1e-9 ? "growing with the square of the feed"
+                                          : "growing with the feed to the power " + fixedText(n, 1);
         break;
+    }
     case TimeLaw::Constant:
         law = "at a constant rate";
         break;
