@@ -27,7 +27,13 @@ std::vector<EffectGrammar::Member> EffectGrammar::members()
     using L = Location;
     using T = TimeLaw;
     using S = Structure;
-    // code, location, time law, structure, exponent, driver, reference, lag parameters
+    // code, location, time law, structure, exponent, driver, reference, lag parameters, library.
+    // After the library's eight, a bounded set of generated members (code ""): the free-end
+    // bearing (the one heat location the seed model lacks that the library names with a single
+    // law) with the other time laws the seed model's end cell can carry. The fixed-end bearing
+    // and the nut already carry k v in the baseline and the library's nonlinear / lagged /
+    // standstill laws; the fixed end's lagged feed is motor_heat_fixed_end's form without a
+    // motor channel.
     std::vector<Member> all = {
         {"motor_heat_fixed_end", L::MotorCoupling, T::TemperatureDifference, S::None, 1.0, "motor", "ambient", "", true},
         {"free_end_bearing_heat", L::FreeEnd, T::Feed, S::None, 1.0, "", "", "", true},
@@ -37,56 +43,34 @@ std::vector<EffectGrammar::Member> EffectGrammar::members()
         {"structure_offset", L::None, T::Temperature, S::Offset, 1.0, "structure", "", "", true},
         {"structure_linear", L::None, T::Temperature, S::LinearInPosition, 1.0, "structure", "", "", true},
         {"screw_coolant", L::Distributed, T::TemperatureDifference, S::None, 1.0, "coolant", "ambient", "", true},
+        {"", L::FreeEnd, T::LaggedFeed, S::None, 1.0, "", "", "free_end_lag", false},
+        {"", L::FreeEnd, T::FeedPower, S::None, 0.0, "", "", "", false},
+        {"", L::FreeEnd, T::TemperatureDifference, S::None, 1.0, "free_bearing", "ambient", "", false},
     };
-    for (const Member &m : generated())
-        all.push_back(m);
+    for (Member &m : all)
+        if (m.code.empty())
+            m.code = generatedCode(m);
     return all;
 }
 
 std::vector<EffectGrammar::Member> EffectGrammar::generated()
 {
-    // A bounded set: the free-end bearing (the one heat location the seed model lacks that the
-    // library names with a single law) with the other time laws the seed model's end cell can
-    // carry. The fixed-end bearing and the nut already carry k v in the baseline and the
-    // library's nonlinear / lagged / standstill laws; the fixed end's lagged feed is
-    // motor_heat_fixed_end's form without a motor channel.
-    using L = Location;
-    using T = TimeLaw;
-    using S = Structure;
-    std::vector<Member> out = {
-        {"", L::FreeEnd, T::LaggedFeed, S::None, 1.0, "", "", "free_end_lag", false},
-        {"", L::FreeEnd, T::FeedPower, S::None, 0.0, "", "", "", false},
-        {"", L::FreeEnd, T::TemperatureDifference, S::None, 1.0, "free_bearing", "ambient", "", false},
-    };
-    for (Member &m : out)
-        m.code = generatedCode(m);
+    std::vector<Member> out;
+    for (const Member &m : members())
+        if (!m.library)
+            out.push_back(m);
     return out;
 }
 
 std::string EffectGrammar::generatedCode(const Member &m)
 {
-    std::string law;
-    switch (m.law) {
-    case TimeLaw::Feed:
-        law = "feed";
-        break;
-    case TimeLaw::FeedPower:
-        law = m.exponent > 0 ? "feed_power_" + fixedText(m.exponent, 1) : "feed_power";
-        break;
-    case TimeLaw::Constant:
-        law = "constant";
-        break;
-    case TimeLaw::Standstill:
-        law = "standstill";
-        break;
-    case TimeLaw::Temperature:
-    case TimeLaw::TemperatureDifference:
-        law = m.driver + "_temperature";
-        break;
-    case TimeLaw::LaggedFeed:
-        law = "feed_lagged";
-        break;
-    }
+    // In the order of the enum; a temperature law is keyed by its driver, a fixed exponent by its value.
+    static const char *const keys[] = {"feed", "feed_power", "constant", "standstill", "temperature", "temperature", "feed_lagged"};
+    std::string law = keys[static_cast<int>(m.law)];
+    if (m.law == TimeLaw::Temperature || m.law == TimeLaw::TemperatureDifference)
+        law = m.driver + "_" + law;
+    else if (m.law == TimeLaw::FeedPower && m.exponent > 0)
+        law += "_" + fixedText(m.exponent, 1);
     if (!m.heatInput())
         return std::string("structure:") + (m.structure == Structure::Offset ? "offset" : "linear") + ":" + law;
     return "heat:" + locationKey(m.location) + ":" + law;
@@ -94,23 +78,9 @@ std::string EffectGrammar::generatedCode(const Member &m)
 
 std::string EffectGrammar::locationKey(Location l)
 {
-    switch (l) {
-    case Location::FixedEnd:
-        return "fixed_end";
-    case Location::FreeEnd:
-        return "free_end";
-    case Location::Nut:
-        return "nut";
-    case Location::FixedEndAndNut:
-        return "fixed_end_and_nut";
-    case Location::MotorCoupling:
-        return "motor_coupling";
-    case Location::Distributed:
-        return "distributed";
-    case Location::None:
-        break;
-    }
-    return "none";
+    // In the order of the enum.
+    static const char *const keys[] = {"none", "fixed_end", "free_end", "nut", "fixed_end_and_nut", "motor_coupling", "distributed"};
+    return keys[static_cast<int>(l)];
 }
 
 bool EffectGrammar::member(const std::string &code, Member &out)

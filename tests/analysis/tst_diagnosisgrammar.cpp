@@ -7,6 +7,7 @@
 
 #include "CandidateEffect.h"
 #include "DiagnosisEngine.h"
+#include "DiagnosisTestRecording.h"
 #include "EffectGrammar.h"
 #include "EndHeatSource.h"
 #include "HeldoutPredictionTest.h"
@@ -152,20 +153,10 @@ DiagnosisRecording TestDiagnosisGrammar::make(bool validation, double kFree, dou
 {
     // Seed 000 (explicit model, fine grid, lambda 45) plus heat k v at the free-end cell through a
     // first-order lag tau, added as its response computed by the implicit model on a 2 s grid.
-    SyntheticTestSpec spec;
-    spec.name = validation ? "validation" : "training";
-    const double still = standstill ? 0.0 : 3000.0;
-    spec.phases = validation ? std::vector<SyntheticPhase>{{2400, 4500}, {1800, still}, {1800, 7500}}
-                             : std::vector<SyntheticPhase>{{3000, 6000}, {1800, still}, {2400, 9000}, {1200, still}};
-    spec.seed = validation ? 2 : 1;
-    spec.interferometerInterval_s = 900.0;
-    spec.targets_mm = {20, 100, 180, 260, 340, 420, 500};
-    ScrewGeometry g;
-    FdmParameters truth;
-    truth.conductivity_W_mK = 45.0;
-    DiagnosisRecording r;
-    r.screw = SyntheticScrewTest::generate(spec, g, truth, FdmSettings{0.01, 0.2});
-    r.drawingFixedEnd_mm = truth.fixedEndPosition_mm;
+    const SyntheticTestSpec spec = diagnosisTestSpec(validation, standstill ? 0.0 : 3000.0);
+    DiagnosisRecording r = diagnosisTestRecording(spec);
+    const FdmParameters truth = diagnosisTestTruth();
+    const ScrewGeometry g;
     if (kFree > 0.0) {
         IdentificationOptions o;
         o.simulator.grid = FdmSettings{0.01, 2.0};
