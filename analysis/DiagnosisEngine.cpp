@@ -394,8 +394,9 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
     report.candidatesSearched = static_cast<int>(
         std::count_if(chosen.firstRound.begin(), chosen.firstRound.end(), [](const CandidateOutcome &o) { return o.applicable; }));
     report.explanation += " Searched: " + std::to_string(report.candidatesSearched) + " of the grammar's " +
-                          std::to_string(report.grammarMembers) + " members (the others not applicable to these recordings); "
-                          "the false-discovery rate counts the " + std::to_string(report.candidatesSearched) + ".";
+                          std::to_string(report.grammarMembers) + " members" +
+                          (report.candidatesSearched < report.grammarMembers ? " (the others not applicable to these recordings)" : "") +
+                          "; the false-discovery rate counts the " + std::to_string(report.candidatesSearched) + ".";
     if (m_options.adviseTests) {
         if (!tick(0.97, "which test would decide"))
             return report;

@@ -45,7 +45,9 @@ std::vector<EffectGrammar::Member> EffectGrammar::members()
         {"screw_coolant", L::Distributed, T::TemperatureDifference, S::None, 1.0, "coolant", "ambient", "", true},
         {"", L::FreeEnd, T::LaggedFeed, S::None, 1.0, "", "", "free_end_lag", false},
         {"", L::FreeEnd, T::FeedPower, S::None, 0.0, "", "", "", false},
-        {"", L::FreeEnd, T::TemperatureDifference, S::None, 1.0, "free_bearing", "ambient", "", false},
+        // Not searched: heat at the free end following the free_bearing housing temperature
+        // ("heat:free_end:free_bearing_temperature"). In the blind first run it formed a pair
+        // with structure_linear on a clean othersim machine (two false names; docs/diagnosis.md).
     };
     for (Member &m : all)
         if (m.code.empty())
