@@ -74,9 +74,13 @@ double CandidateAcceptance::plausibilityDistance(const FdmParameters &p, double 
 }
 
 CandidateOutcome CandidateAcceptance::judge(const CandidateEffect &effect, const CandidateFit &ev, const CandidateFit &reference,
-                                            double effectiveN, double drawing, double discoveryThreshold, bool laterStep) const
+                                            double effectiveN, double drawing, double discoveryThreshold, bool laterStep,
+                                            size_t hypotheses) const
 {
     CandidateOutcome out;
+    out.hypotheses = static_cast<int>(hypotheses);
+    const std::string over = hypotheses > 1 ? " over the round's " + std::to_string(hypotheses) + " candidates"
+                                            : std::string(" (one test)");
     out.effect = effect.code;
     out.explanation = effect.explanation;
     out.evaluation = ev.eval;
@@ -136,12 +140,12 @@ CandidateOutcome CandidateAcceptance::judge(const CandidateEffect &effect, const
                                              : std::string("the validation recording's")) +
             "): one-sided p = " + fixedText(test.p, 4) + ", t = " + fixedText(test.t, 2) + " at " + std::to_string(std::max(test.runs - 1, 0)) +
             " degrees of freedom; " +
-            (discovered ? "a discovery at a false-discovery rate of " + fixedText(100.0 * m_options.heldoutFdr, 0) + " % over the round's candidates"
+            (discovered ? "a discovery at a false-discovery rate of " + fixedText(100.0 * m_options.heldoutFdr, 0) + " %" + over
              : corroborated
                  ? "not a discovery at " + fixedText(100.0 * m_options.heldoutFdr, 0) + " % false discoveries; corroborated: held-out " +
                        fixedText(100.0 * out.heldoutImprovement, 0) + " % better and the predicted screw temperatures " +
                        fixedText(100.0 * (1.0 - tCand / tRef), 0) + " % better"
-                 : "not a discovery at " + fixedText(100.0 * m_options.heldoutFdr, 0) + " % false discoveries over the round's candidates"));
+                 : "not a discovery at " + fixedText(100.0 * m_options.heldoutFdr, 0) + " % false discoveries" + over));
     if (restores)
         out.reasons.push_back("restores a plausible convection: k2 " + fixedText(reference.fit.parameters.k2, 1) + " -> " +
                               fixedText(ev.fit.parameters.k2, 1) + " W/(m^2 K) (reference below " +

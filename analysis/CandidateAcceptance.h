@@ -28,9 +28,11 @@ public:
     // discoveryThreshold: the round's Benjamini-Hochberg threshold (discoveryThreshold()); the
     // candidate's prediction test must reach it. laterStep: the reference already holds an
     // accepted effect (then a large held-out gain corroborated by the predicted screw
-    // temperatures may stand in for the test).
+    // temperatures may stand in for the test). hypotheses: how many candidates the threshold
+    // was taken over (stated in the evidence and CandidateOutcome::hypotheses; 0: one test).
     CandidateOutcome judge(const CandidateEffect &effect, const CandidateFit &candidate, const CandidateFit &reference,
-                           double effectiveN, double drawingFixedEnd_mm, double discoveryThreshold, bool laterStep) const;
+                           double effectiveN, double drawingFixedEnd_mm, double discoveryThreshold, bool laterStep,
+                           size_t hypotheses = 0) const;
 
     // Does `candidate` predict what no fit saw better than `reference`? HeldoutPredictionTest
     // over the validation recording's runs, pooled with the training runs as the time-blocked

@@ -68,6 +68,19 @@ CandidateModel structureTerms(bool linear)
     return m;
 }
 
+// Time (s) the recorded feed is below 1 mm/min.
+double standstill_s(const DiagnosisRecording &r)
+{
+    const TimeSeries &f = r.screw.drive.feed_mm_min;
+    double still = 0.0;
+    for (size_t k = 1; k < f.size(); ++k)
+        if (f.v[k - 1] < 1.0)
+            still += f.t[k] - f.t[k - 1];
+    return still;
+}
+
+const double kMinStandstill_s = 600.0;
+
 } // namespace
 
 bool CandidateEffect::isEmpirical() const
@@ -83,6 +96,12 @@ std::string CandidateEffect::notApplicable(const DiagnosisRecording &train, cons
         if (!validate.hasRole(role))
             return "validation recording has no temperature channel with role '" + role + "'";
     }
+    if (needsStandstill)
+        for (const DiagnosisRecording *r : {&train, &validate})
+            if (standstill_s(*r) < kMinStandstill_s)
+                return std::string(r == &train ? "training" : "validation") + " recording stands still for " +
+                       fixedText(standstill_s(*r) / 60.0, 0) + " min (a standstill law needs " +
+                       fixedText(kMinStandstill_s / 60.0, 0) + " min)";
     return {};
 }
 
@@ -273,6 +292,85 @@ std::string CandidateEffectLibrary::empiricalHypothesis(const std::string &role,
            fixedText(q(1.0), 2) + " W/m per K at the fixed end / middle / free end; " + fixedText(total, 2) +
            " W per K in all). Something near the '" + role + "' sensor exchanges heat with the screw that no library effect "
            "describes (radiation, warm air, a contact): look there.";
+}
+
+CandidateEffect CandidateEffectLibrary::member(const EffectGrammar::Member &m)
+{
+    using L = EffectGrammar::Location;
+    using T = EffectGrammar::TimeLaw;
+    if (m.location != L::FreeEnd && m.location != L::FixedEnd)
+        throw std::invalid_argument("grammar member " + m.code + ": only end-cell heat inputs are generated");
+    const EndHeatSource::End end = m.location == L::FreeEnd ? EndHeatSource::End::Free : EndHeatSource::End::Fixed;
+    const std::string words = EffectGrammar::describe(m);
+    const std::string where = m.location == L::FreeEnd ? "free-end" : "fixed-end";
+    std::string model, driver = "feed";
+    std::vector<std::string> roles;
+    std::function<CandidateModel(const DiagnosisRecording &, int)> create;
+    int starts = 1;
+    switch (m.law) {
+    case T::LaggedFeed:
+        model = "Q = k v through a first-order lag tau into the " + where + " cell, k in W/(mm/min), tau fitted (started at 30 and 100 min)";
+        create = [end](const DiagnosisRecording &, int start) {
+            CandidateModel c;
+            c.sources.push_back(std::make_shared<EndHeatSource>(end, 1.0, false, start == 0 ? 1800.0 : 6000.0));
+            return c;
+        };
+        starts = 2;
+        break;
+    case T::FeedPower:
+        model = "Q = k v^n into the " + where + " cell, n fitted in [0.2, 3]";
+        create = [end, m](const DiagnosisRecording &, int) {
+            CandidateModel c;
+            c.sources.push_back(std::make_shared<EndHeatSource>(end, m.exponent > 0 ? m.exponent : 1.0, m.exponent <= 0));
+            return c;
+        };
+        break;
+    case T::Temperature:
+    case T::TemperatureDifference: {
+        const std::string role = m.driver;
+        model = "Q = G (T_" + role + " - T_ambient) into the " + where + " cell relative to the start, G in W/K";
+        driver = "role:" + role;
+        roles = {role};
+        create = [end, role](const DiagnosisRecording &, int) {
+            return channelHeat(role, {"G_" + role + "_end", "W/K", 0.5, 0.0, 50.0, 0.1},
+                               end == EndHeatSource::End::Free ? ChannelHeatSource::Location::FreeEnd
+                                                               : ChannelHeatSource::Location::FixedEnd,
+                               true);
+        };
+        break;
+    }
+    default:
+        throw std::invalid_argument("grammar member " + m.code + ": time law not generated");
+    }
+    // The library's member at the same place with the plain feed law is the special case it
+    // contains (parsimony: the library code is named unless this one is clearly better).
+    std::vector<std::string> nests;
+    for (const EffectGrammar::Member &lib : EffectGrammar::members())
+        if (lib.library && lib.location == m.location && lib.law == T::Feed)
+            nests.push_back(lib.code);
+    CandidateEffect e(m.code, "Grammar member: " + words + ". Modelled as " + model + ".", driver, roles, create, starts, nests);
+    e.needsStandstill = m.law == T::Standstill;
+    return e;
+}
+
+std::vector<CandidateEffect> CandidateEffectLibrary::grammar()
+{
+    std::vector<CandidateEffect> out = standard();
+    for (CandidateEffect &e : out) {
+        EffectGrammar::Member m;
+        e.needsStandstill = EffectGrammar::member(e.code, m) && m.law == EffectGrammar::TimeLaw::Standstill;
+    }
+    for (const EffectGrammar::Member &m : EffectGrammar::generated())
+        out.push_back(member(m));
+    return out;
+}
+
+std::vector<std::string> CandidateEffectLibrary::grammarCodes()
+{
+    std::vector<std::string> c;
+    for (const EffectGrammar::Member &m : EffectGrammar::members())
+        c.push_back(m.code);
+    return c;
 }
 
 std::vector<std::string> CandidateEffectLibrary::codes()

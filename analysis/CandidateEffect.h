@@ -6,6 +6,7 @@
 // drivers at one recording's channels and must be called before each fit()/predict().
 
 #include "DiagnosisTypes.h"
+#include "EffectGrammar.h"
 #include "ErrorTermComponent.h"
 #include "HeatSourceComponent.h"
 
@@ -51,6 +52,8 @@ struct CandidateEffect {
     // effect to be named: when the refit reports any of them and none reaches its minimum, the
     // candidate is not accepted. Empty: no such rule.
     std::vector<std::pair<std::string, double>> minimumSize;
+    // A standstill law: not applicable unless both recordings stand still for a while.
+    bool needsStandstill = false;
 
     // One of CandidateEffectLibrary::empirical()'s terms (code "empirical:<role>").
     bool isEmpirical() const;
@@ -65,6 +68,14 @@ public:
     // holding_heat, structure_offset, structure_linear, screw_coolant.
     static std::vector<CandidateEffect> standard();
     static std::vector<std::string> codes();
+    // The search of the diagnosis (issue 36 item 2): one candidate per EffectGrammar member,
+    // the library's eight first (their definitions above), then the generated members built
+    // from their location x time law (member()); a standstill law needs standstill phases.
+    static std::vector<CandidateEffect> grammar();
+    static std::vector<std::string> grammarCodes();
+    // A generated member's candidate: heat into the member's end cell with its time law.
+    // Throws std::invalid_argument for a combination the seed model's components cannot carry.
+    static CandidateEffect member(const EffectGrammar::Member &m);
     // The empirical terms the diagnosis tries once no library effect passes (issue 18, item
     // 3): per temperature channel (by role; not the screw's own surface, not ambient) of both
     // recordings, a heat input q'(x, t) = (a0 P0 + a1 P1 + a2 P2)(xi) (T_role - T_ambient)

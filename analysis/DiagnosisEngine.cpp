@@ -333,7 +333,7 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
         throw std::invalid_argument("validation recording '" + validate.screw.name +
                                     "': no interferometer thermal errors (runs after the reference run)");
     std::vector<CandidateEffect> library;
-    for (const CandidateEffect &e : CandidateEffectLibrary::standard())
+    for (const CandidateEffect &e : CandidateEffectLibrary::grammar())
         if (m_options.effects.empty() ||
             std::find(m_options.effects.begin(), m_options.effects.end(), e.code) != m_options.effects.end())
             library.push_back(e);
@@ -388,6 +388,15 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
     }
     report.location.implausibleRefits = chosen.implausibleRefits;
     DiagnosisReportAssembler(m_geometry.length_m, m_options).assemble(report, chosen, base, train, validate);
+    // The grammar searched (issue 36 item 2): how many members, how many refitted against the
+    // baseline (the count the first round's false-discovery threshold takes).
+    report.grammarMembers = static_cast<int>(library.size());
+    report.candidatesSearched = static_cast<int>(
+        std::count_if(chosen.firstRound.begin(), chosen.firstRound.end(), [](const CandidateOutcome &o) { return o.applicable; }));
+    report.explanation += " Searched: " + std::to_string(report.candidatesSearched) + " of the grammar's " +
+                          std::to_string(report.grammarMembers) + " members" +
+                          (report.candidatesSearched < report.grammarMembers ? " (the others not applicable to these recordings)" : "") +
+                          "; the false-discovery rate counts the " + std::to_string(report.candidatesSearched) + ".";
     if (m_options.adviseTests) {
         if (!tick(0.97, "which test would decide"))
             return report;

@@ -126,6 +126,9 @@ struct CandidateOutcome {
     // runs as the cross-validation predicted them when both models were cross-validated.
     double predictionP = 1.0;
     int predictionRuns = 0;
+    // How many candidates the test's false-discovery threshold counted (Benjamini-Hochberg over
+    // the round's candidates actually refitted; 0: a single test).
+    int hypotheses = 0;
     bool othersPass = false;          // every rule but the held-out gain / test holds
     bool accepted = false;
     std::vector<std::string> reasons; // why accepted / rejected
@@ -241,6 +244,11 @@ struct DiagnosisReport {
     // The added measurement that would separate the two closest explanations (when the answer
     // is `none` with a located residual, or the best two are close).
     DecisiveTestAdvice advice;
+    // The grammar of effects searched (EffectGrammar, issue 36 item 2): members offered to this
+    // diagnosis (after --effects) and how many were refitted against the baseline (applicable:
+    // their inputs exist), the count the first round's false-discovery threshold takes.
+    int grammarMembers = 0;
+    int candidatesSearched = 0;
     double wallTime_s = 0.0;
     bool cancelled = false;
 };

@@ -27,17 +27,62 @@ std::vector<EffectGrammar::Member> EffectGrammar::members()
     using L = Location;
     using T = TimeLaw;
     using S = Structure;
-    // code, location, time law, structure, exponent, driver, reference, lag parameters
-    return {
-        {"motor_heat_fixed_end", L::MotorCoupling, T::TemperatureDifference, S::None, 1.0, "motor", "ambient", ""},
-        {"free_end_bearing_heat", L::FreeEnd, T::Feed, S::None, 1.0, "", "", ""},
-        {"nonlinear_feed_heat", L::FixedEndAndNut, T::FeedPower, S::None, 2.0, "", "", ""},
-        {"heat_path_lag", L::FixedEndAndNut, T::LaggedFeed, S::None, 1.0, "", "", "tau_"},
-        {"holding_heat", L::FixedEnd, T::Standstill, S::None, 1.0, "", "", ""},
-        {"structure_offset", L::None, T::Temperature, S::Offset, 1.0, "structure", "", ""},
-        {"structure_linear", L::None, T::Temperature, S::LinearInPosition, 1.0, "structure", "", ""},
-        {"screw_coolant", L::Distributed, T::TemperatureDifference, S::None, 1.0, "coolant", "ambient", ""},
+    // code, location, time law, structure, exponent, driver, reference, lag parameters, library.
+    // After the library's eight, a bounded set of generated members (code ""): the free-end
+    // bearing (the one heat location the seed model lacks that the library names with a single
+    // law) with the other time laws the seed model's end cell can carry. The fixed-end bearing
+    // and the nut already carry k v in the baseline and the library's nonlinear / lagged /
+    // standstill laws; the fixed end's lagged feed is motor_heat_fixed_end's form without a
+    // motor channel.
+    std::vector<Member> all = {
+        {"motor_heat_fixed_end", L::MotorCoupling, T::TemperatureDifference, S::None, 1.0, "motor", "ambient", "", true},
+        {"free_end_bearing_heat", L::FreeEnd, T::Feed, S::None, 1.0, "", "", "", true},
+        {"nonlinear_feed_heat", L::FixedEndAndNut, T::FeedPower, S::None, 2.0, "", "", "", true},
+        {"heat_path_lag", L::FixedEndAndNut, T::LaggedFeed, S::None, 1.0, "", "", "tau_", true},
+        {"holding_heat", L::FixedEnd, T::Standstill, S::None, 1.0, "", "", "", true},
+        {"structure_offset", L::None, T::Temperature, S::Offset, 1.0, "structure", "", "", true},
+        {"structure_linear", L::None, T::Temperature, S::LinearInPosition, 1.0, "structure", "", "", true},
+        {"screw_coolant", L::Distributed, T::TemperatureDifference, S::None, 1.0, "coolant", "ambient", "", true},
+        {"", L::FreeEnd, T::LaggedFeed, S::None, 1.0, "", "", "free_end_lag", false},
+        {"", L::FreeEnd, T::FeedPower, S::None, 0.0, "", "", "", false},
+        // Not searched: heat at the free end following the free_bearing housing temperature
+        // ("heat:free_end:free_bearing_temperature"). In the blind first run it formed a pair
+        // with structure_linear on a clean othersim machine (two false names; docs/diagnosis.md).
     };
+    for (Member &m : all)
+        if (m.code.empty())
+            m.code = generatedCode(m);
+    return all;
+}
+
+std::vector<EffectGrammar::Member> EffectGrammar::generated()
+{
+    std::vector<Member> out;
+    for (const Member &m : members())
+        if (!m.library)
+            out.push_back(m);
+    return out;
+}
+
+std::string EffectGrammar::generatedCode(const Member &m)
+{
+    // In the order of the enum; a temperature law is keyed by its driver, a fixed exponent by its value.
+    static const char *const keys[] = {"feed", "feed_power", "constant", "standstill", "temperature", "temperature", "feed_lagged"};
+    std::string law = keys[static_cast<int>(m.law)];
+    if (m.law == TimeLaw::Temperature || m.law == TimeLaw::TemperatureDifference)
+        law = m.driver + "_" + law;
+    else if (m.law == TimeLaw::FeedPower && m.exponent > 0)
+        law += "_" + fixedText(m.exponent, 1);
+    if (!m.heatInput())
+        return std::string("structure:") + (m.structure == Structure::Offset ? "offset" : "linear") + ":" + law;
+    return "heat:" + locationKey(m.location) + ":" + law;
+}
+
+std::string EffectGrammar::locationKey(Location l)
+{
+    // In the order of the enum.
+    static const char *const keys[] = {"none", "fixed_end", "free_end", "nut", "fixed_end_and_nut", "motor_coupling", "distributed"};
+    return keys[static_cast<int>(l)];
 }
 
 bool EffectGrammar::member(const std::string &code, Member &out)
@@ -89,9 +134,17 @@ std::string EffectGrammar::describe(const Member &m, const std::vector<Parameter
         law = "in proportion to the feed";
         break;
     case TimeLaw::FeedPower:
-        law = std::fabs(m.exponent - 2.0) < 1e-9 ? "growing with the square of the feed"
-                                                 : "growing with the feed to the power " + fixedText(m.exponent, 1);
+    {
+        // A fitted exponent (parameter "..._exponent") is named with its value.
+        double n = m.exponent;
+        for (const ParameterValue &p : parameters)
+            if (n <= 0 && p.name.size() > 9 && p.name.compare(p.name.size() - 9, 9, "_exponent") == 0)
+                n = p.value;
+        law = n <= 0 ? "growing with a power of the feed"
+              : std::fabs(n - 2.0) < 1e-9 ? "growing with the square of the feed"
+                                          : "growing with the feed to the power " + fixedText(n, 1);
         break;
+    }
     case TimeLaw::Constant:
         law = "at a constant rate";
         break;

@@ -46,6 +46,7 @@ void EmpiricalSearch::run(ForwardSelection::Result &result, const CandidateFit &
     for (size_t k = 0; k < library->size(); ++k)
         fitted.push_back(failure[k].empty() ? &fits[k] : nullptr);
     const double threshold = m_acceptance.discoveryThreshold(fitted, reference);
+    const size_t tested = static_cast<size_t>(std::count_if(fitted.begin(), fitted.end(), [](const CandidateFit *f) { return f != nullptr; }));
     int best = -1;
     for (size_t k = 0; k < library->size(); ++k) {
         CandidateOutcome out;
@@ -56,7 +57,7 @@ void EmpiricalSearch::run(ForwardSelection::Result &result, const CandidateFit &
             out.notApplicableReason = failure[k];
             out.reasons.push_back("refit failed: " + failure[k]);
         } else {
-            out = m_acceptance.judge((*library)[k], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, threshold, true);
+            out = m_acceptance.judge((*library)[k], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, threshold, true, tested);
         }
         if (out.accepted && (best < 0 || out.score > result.empiricalRound[static_cast<size_t>(best)].score))
             best = static_cast<int>(k);

@@ -126,12 +126,13 @@ bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, c
     for (size_t k = 0; k < pairs.size(); ++k)
         fitted.push_back(ok[k] ? &fits[k] : nullptr);
     const double threshold = m_acceptance.discoveryThreshold(fitted, reference);
+    const size_t pairsFitted = static_cast<size_t>(std::count(ok.begin(), ok.end(), true));
     for (size_t k = 0; k < pairs.size(); ++k) {
         if (!ok[k])
             continue;
         const auto [a, b] = pairs[k];
-        CandidateOutcome joint =
-            m_acceptance.judge(m_library[b], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, threshold, !accepted.empty());
+        CandidateOutcome joint = m_acceptance.judge(m_library[b], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, threshold,
+                                                    !accepted.empty(), pairsFitted);
         double zA = 0.0;
         for (const IdentifiedParameter &p : fits[k].fit.all)
             if (std::find(round.fits[a].amplitudeNames.begin(), round.fits[a].amplitudeNames.end(), p.name) !=
@@ -258,7 +259,7 @@ bool ForwardSelection::tryTriples(Result &result, std::vector<Choice> &accepted,
             continue;
         const size_t c = thirds[k];
         CandidateOutcome joint =
-            m_acceptance.judge(m_library[c], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, threshold, !accepted.empty());
+            m_acceptance.judge(m_library[c], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, threshold, !accepted.empty(), hypotheses);
         const CandidateFit *withoutA = pairFit(b, c), *withoutB = pairFit(a, c);
         const bool eachAdds = adds(fits[k], pair) && (!withoutA || adds(fits[k], *withoutA)) && (!withoutB || adds(fits[k], *withoutB));
         const bool significant = amplitudeZ(fits[k], round.fits[a].amplitudeNames) >= m_options.minAmplitudeZ &&
@@ -384,7 +385,8 @@ ForwardSelection::Result ForwardSelection::run(const CandidateFit &baseline, con
                 out.notApplicableReason = inapplicable[c].empty() ? round.failure[c] : inapplicable[c];
                 out.reasons.push_back((inapplicable[c].empty() ? "refit failed: " : "not applicable: ") + out.notApplicableReason);
             } else {
-                out = m_acceptance.judge(m_library[c], round.fits[c], *reference, effectiveN, train.drawingFixedEnd_mm, threshold, r > 0);
+                out = m_acceptance.judge(m_library[c], round.fits[c], *reference, effectiveN, train.drawingFixedEnd_mm, threshold, r > 0,
+                                         fitted.size());
                 if (r == 0 && out.plausibilityDistance > m_acceptance.plausibilityDistance(baseline.fit.parameters, train.drawingFixedEnd_mm) +
                                                               m_options.maxPlausibilityLoss)
                     ++result.implausibleRefits;

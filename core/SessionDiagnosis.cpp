@@ -42,7 +42,7 @@ void SessionDiagnosis::check(const DiagnosisRequest &request)
 {
     if (!(request.dt_s > 0) || request.dt_s > 600)
         bad(QStringLiteral("--dt must be a time step in (0, 600] s, got %1").arg(request.dt_s));
-    const std::vector<std::string> known = CandidateEffectLibrary::codes();
+    const std::vector<std::string> known = CandidateEffectLibrary::grammarCodes();
     for (const std::string &e : request.effects)
         if (std::find(known.begin(), known.end(), e) == known.end())
             bad(QStringLiteral("--effects: unknown effect '%1'").arg(QString::fromStdString(e)));

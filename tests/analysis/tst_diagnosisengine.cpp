@@ -6,6 +6,7 @@
 #include "CandidateEffect.h"
 #include "ChannelHeatSource.h"
 #include "DiagnosisEngine.h"
+#include "DiagnosisTestRecording.h"
 #include "ResidualLocator.h"
 #include "SyntheticScrewTest.h"
 
@@ -37,19 +38,8 @@ private:
 
 DiagnosisRecording TestDiagnosisEngine::make(bool validation, double drift_um_K)
 {
-    SyntheticTestSpec spec;
-    spec.name = validation ? "validation" : "training";
-    spec.phases = validation ? std::vector<SyntheticPhase>{{2400, 4500}, {1800, 0}, {1800, 7500}}
-                             : std::vector<SyntheticPhase>{{3000, 6000}, {1800, 0}, {2400, 9000}, {1200, 0}};
-    spec.seed = validation ? 2 : 1;
-    spec.interferometerInterval_s = 900.0;
-    spec.targets_mm = {20, 100, 180, 260, 340, 420, 500};
-    ScrewGeometry g;
-    FdmParameters truth;
-    truth.conductivity_W_mK = 45.0;
-    DiagnosisRecording r;
-    r.screw = SyntheticScrewTest::generate(spec, g, truth, FdmSettings{0.01, 0.2});
-    r.drawingFixedEnd_mm = truth.fixedEndPosition_mm;
+    const SyntheticTestSpec spec = diagnosisTestSpec(validation);
+    DiagnosisRecording r = diagnosisTestRecording(spec);
     TimeSeries structure, motor;
     for (double t = 0.0; t <= spec.duration_s() + 1.0; t += 10.0) {
         structure.t.push_back(t);
