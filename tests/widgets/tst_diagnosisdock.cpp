@@ -80,12 +80,7 @@ void TestDiagnosisDock::diagnoseKeepsProgressAndCancelInView()
     QVERIFY(QTest::qWaitForWindowExposed(&window));
     window.activateWindow();
     QVERIFY(QTest::qWaitForWindowActive(&window));
-    QDockWidget *dock = window.dock(QStringLiteral("DiagnosisDock"));
-    QVERIFY(dock);
-    dock->show();
-    dock->raise();
-    QTest::qWait(50);
-    auto *scroll = qobject_cast<QScrollArea *>(dock->widget());
+    QScrollArea *scroll = widgettest::raiseDock(window.dock(QStringLiteral("DiagnosisDock")));
     QVERIFY(scroll);
     DiagnosisPanel *panel = window.diagnosis();
     QPushButton *run = button(panel, QStringLiteral("Diagnose"));

@@ -12,6 +12,7 @@
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
 #include "Workbench.h"
+#include "../support/WidgetTestSetup.h"
 
 #include <QDockWidget>
 #include <QMessageBox>
@@ -268,12 +269,7 @@ void TestLiveRecording::recordWatchAlarmStop()
     QVERIFY2(limitSet_t <= alarm_t, qPrintable(QStringLiteral("limits at %1 s, alarm at %2 s").arg(limitSet_t).arg(alarm_t)));
 
     // The Acquisition dock: a compact status that needs no vertical scrolling at 768.
-    QDockWidget *dock = window.dock(QStringLiteral("AcquisitionDock"));
-    QVERIFY(dock);
-    dock->show();
-    dock->raise();
-    QTest::qWait(50);
-    auto *scroll = qobject_cast<QScrollArea *>(dock->widget());
+    QScrollArea *scroll = widgettest::raiseDock(window.dock(QStringLiteral("AcquisitionDock")));
     QVERIFY(scroll);
     QCOMPARE(scroll->verticalScrollBar()->maximum(), 0);
     // "Show live view" brings the view back.
