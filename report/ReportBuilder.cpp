@@ -133,7 +133,7 @@ void ReportBuilder::sessionSection(ReportDocument &doc) const
     const SessionInfo info = m_store.session(m_session);
     const QVector<ChannelInfo> channels = m_store.channels(m_session);
     double t0 = INFINITY, t1 = -INFINITY;
-    QVector<QStringList> rows;
+    QVector<QStringList> rows, places; // per channel: what it measured; where it sits
     for (const ChannelInfo &c : channels) {
         const qint64 n = m_store.sampleCount(c.id);
         QString range = QStringLiteral("-");
@@ -146,8 +146,8 @@ void ReportBuilder::sessionSection(ReportDocument &doc) const
                                                        num(*std::max_element(d.max.begin(), d.max.end()), 4));
             }
         }
-        rows.push_back({c.key, c.kind, c.sensor, c.unit, c.location, c.role,
-                        c.screwPosition_m ? num(*c.screwPosition_m * 1000.0, 5) : QStringLiteral("-"), QString::number(n), range});
+        rows.push_back({c.key, c.kind, c.sensor, c.unit, QString::number(n), range});
+        places.push_back({c.key, c.location, c.role, c.screwPosition_m ? num(*c.screwPosition_m * 1000.0, 5) : QStringLiteral("-")});
     }
     const QVector<InterferometerPoint> points = m_store.interferometerPoints(m_session);
     QSet<int> runs;
@@ -178,10 +178,14 @@ void ReportBuilder::sessionSection(ReportDocument &doc) const
     if (channels.isEmpty())
         doc.leftOut(QStringLiteral("the session has no channels"));
     else
+    {
+        // Two tables: nine columns on one A4 width broke words in the PDF ("temperat|ure").
         doc.table({QStringLiteral("Channel"), QStringLiteral("Kind"), QStringLiteral("Sensor"), QStringLiteral("Unit"),
-                   QStringLiteral("Location"), QStringLiteral("Role"), QStringLiteral("Screw position (mm)"),
                    QStringLiteral("Samples"), QStringLiteral("Range")},
                   rows);
+        doc.table({QStringLiteral("Channel"), QStringLiteral("Location"), QStringLiteral("Role"), QStringLiteral("Screw position (mm)")},
+                  places);
+    }
 
     const QVector<EventRecord> events = m_store.events(m_session);
     if (!events.isEmpty()) {

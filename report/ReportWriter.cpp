@@ -38,7 +38,31 @@ QString blockHtml(const ReportBlock &b, const ReportTemplate &look)
     return QString();
 }
 
+QPageLayout pdfPage()
+{
+    return QPageLayout(QPageSize(QPageSize::A4), QPageLayout::Portrait, QMarginsF(18, 15, 18, 15), QPageLayout::Millimeter);
+}
+
 } // namespace
+
+double ReportWriter::pdfTextWidth()
+{
+    return pdfPage().paintRect(QPageLayout::Millimeter).width() / 25.4 * 96.0;
+}
+
+double ReportWriter::layOut(const QString &fragment, QTextDocument &d, double width)
+{
+    d.setDefaultStyleSheet(styleSheet());
+    d.setDocumentMargin(0);
+    d.setTextWidth(width);
+    d.setHtml(fragment);
+    return d.size().height();
+}
+
+double ReportWriter::layOutBlock(int index, QTextDocument &d) const
+{
+    return layOut(blockHtml(m_doc.blocks.at(index), m_look), d, pdfTextWidth());
+}
 
 QString ReportWriter::styleSheet()
 {
@@ -91,8 +115,7 @@ void ReportWriter::writePdf(QIODevice *device) const
 {
     QPdfWriter writer(device);
     writer.setResolution(300);
-    writer.setPageLayout(QPageLayout(QPageSize(QPageSize::A4), QPageLayout::Portrait, QMarginsF(18, 15, 18, 15),
-                                     QPageLayout::Millimeter));
+    writer.setPageLayout(pdfPage());
     writer.setTitle(QStringLiteral("%1: %2").arg(m_look.title(), m_doc.sessionName));
     writer.setCreator(QStringLiteral("DriftLab"));
     QPainter painter(&writer);
@@ -107,7 +130,6 @@ void ReportWriter::writePdf(QIODevice *device) const
     const double gap = 6.0;
     int page = 1;
     double y = 0.0;
-    const QString css = styleSheet();
     auto drawFooter = [&] {
         painter.save();
         QFont f = painter.font();
@@ -126,13 +148,7 @@ void ReportWriter::writePdf(QIODevice *device) const
         ++page;
         y = 0.0;
     };
-    auto textDocument = [&](const QString &fragment, QTextDocument &d) {
-        d.setDefaultStyleSheet(css);
-        d.setDocumentMargin(0);
-        d.setTextWidth(width);
-        d.setHtml(fragment);
-        return d.size().height();
-    };
+    auto textDocument = [&](const QString &fragment, QTextDocument &d) { return layOut(fragment, d, width); };
     auto drawText = [&](const QString &fragment, double keepWithNext) {
         QTextDocument d;
         if (fragment.contains(QLatin1String("src=\"logo\"")))

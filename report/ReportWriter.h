@@ -28,10 +28,17 @@ public:
     void write(const QString &path) const;
     static bool supportedSuffix(const QString &path);
 
+    // The PDF's text width in its layout units (96-dpi pixels): A4 less the margins.
+    static double pdfTextWidth();
+    // Text block `index` of the document (not a figure's drawing: its caption) laid out in
+    // `d` as the PDF lays it out, at pdfTextWidth(); returns its height.
+    double layOutBlock(int index, QTextDocument &d) const;
+
 private:
     QString headerHtml(bool forPdf) const;
     void addLogo(QTextDocument &doc) const;
     static QString styleSheet();
+    static double layOut(const QString &fragment, QTextDocument &d, double width);
 
     const ReportDocument &m_doc;
     const ReportTemplate &m_look;

@@ -160,6 +160,8 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     connect(m_live, &LiveRecordingView::stopRequested, this, &AcquisitionPanel::stopRecording);
     // An alarm (a limit crossed, a silent sensor) is an event of the session.
     connect(m_live, &LiveRecordingView::alarmRaised, this, &AcquisitionPanel::addMarker);
+    // So are the limits in force (at the start and on every change): the session says which applied.
+    connect(m_live, &LiveRecordingView::limitsApplied, this, &AcquisitionPanel::addMarker);
     connect(m_showLive, &QPushButton::clicked, this, &AcquisitionPanel::liveViewRequested);
     connect(m_pause, &QPushButton::toggled, this, &AcquisitionPanel::setPaused);
     connect(m_marker, &QPushButton::clicked, this, [this] {

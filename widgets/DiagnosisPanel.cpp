@@ -8,6 +8,7 @@
 #include "Workbench.h"
 
 #include <QComboBox>
+#include <QFormLayout>
 #include <QGridLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -36,16 +37,18 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
       m_before(new ErrorSurfacePlot(this)),
       m_after(new ErrorSurfacePlot(this))
 {
+    // The controls take three rows: the dock is about 190 px high at 1366 x 768, and the
+    // progress bar once lay below its fold (tst_diagnosisdock).
     auto *left = new QVBoxLayout();
-    left->addWidget(new QLabel(tr("Training session"), this));
-    left->addWidget(m_train);
-    left->addWidget(new QLabel(tr("Validation session"), this));
-    left->addWidget(m_validate);
+    auto *sessions = new QFormLayout();
+    sessions->addRow(tr("Training session"), m_train);
+    sessions->addRow(tr("Validation session"), m_validate);
+    left->addLayout(sessions);
     auto *buttons = new QHBoxLayout();
     buttons->addWidget(m_run);
     buttons->addWidget(m_cancel);
+    buttons->addWidget(m_progress, 1);
     left->addLayout(buttons);
-    left->addWidget(m_progress);
     left->addWidget(m_stage);
     m_answer->setObjectName(QStringLiteral("diagnosisAnswer"));
     m_answer->setWordWrap(true);

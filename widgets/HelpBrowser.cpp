@@ -2,6 +2,7 @@
 
 #include "ScreenFit.h"
 
+#include <QDesktopServices>
 #include <QDialogButtonBox>
 #include <QDir>
 #include <QFileInfo>
@@ -22,7 +23,10 @@ HelpBrowser::HelpBrowser(const QString &root, QWidget *parent)
     if (m_documents.removeAll(QStringLiteral("README.md")) > 0)
         m_documents.prepend(QStringLiteral("README.md"));
     m_list->addItems(m_documents);
-    m_browser->setOpenExternalLinks(true);
+    // Links are resolved here, not against the resource folder: README.md's "docs/x.md"
+    // named a folder of the source tree that the shipped documentation does not have.
+    m_browser->setOpenLinks(false);
+    connect(m_browser, &QTextBrowser::anchorClicked, this, &HelpBrowser::followLink);
     m_browser->setSearchPaths({root});
     auto *split = new QSplitter(this);
     split->addWidget(m_list);
@@ -58,6 +62,30 @@ bool HelpBrowser::showDocument(const QString &name)
     const QString path = m_root + QLatin1Char('/') + name;
     m_browser->setSource(path.startsWith(QLatin1Char(':')) ? QUrl(QStringLiteral("qrc") + path) : QUrl::fromLocalFile(path),
                          QTextDocument::MarkdownResource);
+    return true;
+}
+
+bool HelpBrowser::followLink(const QUrl &link)
+{
+    const QString scheme = link.scheme();
+    if (scheme == QLatin1String("http") || scheme == QLatin1String("https") || scheme == QLatin1String("mailto"))
+        return QDesktopServices::openUrl(link);
+    if (!link.isRelative() && scheme != QLatin1String("qrc") && scheme != QLatin1String("file"))
+        return false;
+    const QString path = link.path();
+    if (path.isEmpty() && link.hasFragment()) { // an anchor of the document shown
+        m_browser->scrollToAnchor(link.fragment());
+        return true;
+    }
+    // Only "x.md" or "docs/x.md" of the shipped set; not "../resources/..." or "src/x.md".
+    const QString folder = QFileInfo(path).path();
+    if (link.isRelative() && folder != QLatin1String(".") && folder != QLatin1String("docs"))
+        return false;
+    const QString name = QFileInfo(path).fileName();
+    if (!showDocument(name))
+        return false;
+    if (link.hasFragment())
+        m_browser->scrollToAnchor(link.fragment());
     return true;
 }
 

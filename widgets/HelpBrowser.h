@@ -7,6 +7,7 @@
 
 class QListWidget;
 class QTextBrowser;
+class QUrl;
 
 namespace driftlab {
 
@@ -21,6 +22,10 @@ public:
     // Shows a document by file name; false if it is not there.
     bool showDocument(const QString &name);
     QString currentDocument() const;
+    // What a click on a link does: another shipped document (README's "docs/x.md" as well as
+    // "x.md", with its #anchor) is shown here; http(s) and mailto open outside; anything else
+    // (a source file of the checkout, "../resources/...") is not shipped: false, nothing opens.
+    bool followLink(const QUrl &link);
     QTextBrowser *browser() const { return m_browser; }
 
 private:

@@ -119,7 +119,7 @@ Iso230View::Iso230View(QWidget *parent)
     tablesLayout->addWidget(m_targets, 1);
     m_positioning->setTimeAxis(false);
     m_positioning->setAxisTitle(QwtPlot::xBottom, tr("target position (mm)"));
-    m_positioning->setAxisTitles(tr("positioning deviation (µm)"), QString());
+    m_positioning->setAxisTitles(tr("positional deviation (µm)"), QString());
     m_positioning->enableAxis(QwtPlot::yRight, false);
     m_positioning->setTitle(tr("ISO 230-2: x̄ and x̄ ± 2s"));
     auto *positioning = m_split = new QSplitter(Qt::Horizontal, this);

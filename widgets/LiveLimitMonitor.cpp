@@ -51,6 +51,33 @@ void LiveLimitMonitor::reset()
     m_order.clear();
 }
 
+QString LiveLimitMonitor::describe() const
+{
+    QStringList parts;
+    double silent = 0.0;
+    for (auto it = m_limits.cbegin(); it != m_limits.cend(); ++it) {
+        const Limit &l = it.value();
+        silent = std::max(silent, l.silent_s);
+        const QString unit = m_state.value(it.key()).unit;
+        const QString suffix = unit.isEmpty() ? QString() : QStringLiteral(" ") + unit;
+        QStringList bounds;
+        if (!std::isnan(l.low))
+            bounds << QStringLiteral("< %1").arg(number(l.low));
+        if (!std::isnan(l.high))
+            bounds << QStringLiteral("> %1").arg(number(l.high));
+        if (!bounds.isEmpty())
+            parts << QStringLiteral("%1 %2%3").arg(it.key(), bounds.join(QStringLiteral(" or ")), suffix);
+        else
+            parts << QStringLiteral("%1 silent only").arg(it.key());
+    }
+    if (parts.isEmpty())
+        return QStringLiteral("limits: none");
+    QString text = QStringLiteral("limits: ") + parts.join(QStringLiteral("; "));
+    if (silent > 0.0)
+        text += QStringLiteral("; silent after %1 s").arg(number(silent));
+    return text;
+}
+
 QString LiveLimitMonitor::kindName(Kind kind)
 {
     switch (kind) {

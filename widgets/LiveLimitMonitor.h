@@ -52,6 +52,10 @@ public:
     // The alarms active now, as their labels (oldest first).
     QStringList activeAlarms() const;
     static QString kindName(Kind kind);
+    // The limits in force, as stored with the session when a recording starts and whenever
+    // they change during it: "limits: T1 > 30.5 °C; S1 < -2 or > 5 µm; silent after 15 s"
+    // (channels in name order; "limits: none" when no channel has one).
+    QString describe() const;
 
     QJsonObject toJson() const;
     void fromJson(const QJsonObject &json); // replaces the limits; ignores malformed entries

@@ -160,6 +160,7 @@ LiveRecordingView::LiveRecordingView(QWidget *parent) : QWidget(parent)
             }
         } else if (item->column() == ColLow || item->column() == ColHigh) {
             readLimitsFromTable(item->row());
+            stateLimits();
         }
     });
     connect(m_silent, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, [this](double) {
@@ -167,6 +168,7 @@ LiveRecordingView::LiveRecordingView(QWidget *parent) : QWidget(parent)
             return;
         for (int r = 0; r < m_table->rowCount(); ++r)
             readLimitsFromTable(r);
+        stateLimits();
     });
 }
 
@@ -189,6 +191,7 @@ void LiveRecordingView::begin(const QString &title, const QString &rig, double e
     m_table->setRowCount(0);
     m_filling = false;
     m_monitor.reset();
+    m_statedLimits.clear();
     m_monitor.fromJson(QJsonDocument::fromJson(QSettings().value(settingsKey(rig)).toByteArray()).object());
     double silent = 0.0;
     for (const QString &key : m_monitor.limitedChannels())
@@ -299,12 +302,24 @@ void LiveRecordingView::setLimit(const QString &key, const LiveLimitMonitor::Lim
     }
     m_filling = false;
     saveLimits();
+    stateLimits();
 }
 
 void LiveRecordingView::saveLimits()
 {
     if (!m_rig.isEmpty())
         QSettings().setValue(settingsKey(m_rig), QJsonDocument(m_monitor.toJson()).toJson(QJsonDocument::Compact));
+}
+
+void LiveRecordingView::stateLimits()
+{
+    if (!m_active || m_channels.isEmpty())
+        return;
+    const QString text = m_monitor.describe();
+    if (text == m_statedLimits)
+        return;
+    m_statedLimits = text;
+    emit limitsApplied(text);
 }
 
 void LiveRecordingView::setChannelShown(const QString &key, bool shown)
@@ -340,6 +355,7 @@ void LiveRecordingView::update(const SessionStore &reader, qint64 sessionId, dou
         if (channels.isEmpty())
             return;
         rebuildTable(channels);
+        stateLimits(); // the limits this recording starts with, stored with it
     }
     QVector<LiveLimitMonitor::Alarm> alarms;
     bool changed = false;

@@ -71,11 +71,16 @@ public:
 signals:
     void stopRequested();
     void alarmRaised(const QString &label);
+    // The limits in force (LiveLimitMonitor::describe), once the recording's channels are
+    // known and again whenever they change during it: stored as an event of the session, so
+    // that a reviewer sees which limits applied.
+    void limitsApplied(const QString &text);
 
 private:
     void rebuildTable(const QVector<ChannelInfo> &channels);
     void readLimitsFromTable(int row);
     void saveLimits();
+    void stateLimits();
     void showAlarms();
 
     QLabel *m_title;
@@ -92,6 +97,7 @@ private:
     double m_end_s = 0.0;
     bool m_active = false;
     bool m_filling = false;
+    QString m_statedLimits; // the limits last stated to the session
     int m_refreshes = 0;
     struct Tracked {
         qint64 id = 0;

@@ -10,7 +10,10 @@
 #include "SessionStore.h"
 #include "SimulatedRig.h"
 
+#include <QDockWidget>
+#include <QScrollArea>
 #include <QSettings>
+#include <QTest>
 #include <QString>
 #include <QTemporaryDir>
 
@@ -50,6 +53,18 @@ inline qint64 record(driftlab::SessionStore &store, const driftlab::RigConfig &c
     driftlab::SimulatedRig rig(config);
     driftlab::RigRecorder recorder(store, rig);
     return recorder.record(name, seconds);
+}
+
+// Shows dock `d` in front (a tab of its area raised) and returns the scroll area its panel
+// lies in (MainWindow::addPanelDock), or nullptr.
+inline QScrollArea *raiseDock(QDockWidget *d)
+{
+    if (!d)
+        return nullptr;
+    d->show();
+    d->raise();
+    QTest::qWait(50);
+    return qobject_cast<QScrollArea *>(d->widget());
 }
 
 } // namespace widgettest

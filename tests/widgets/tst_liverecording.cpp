@@ -12,6 +12,7 @@
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
 #include "Workbench.h"
+#include "../support/WidgetTestSetup.h"
 
 #include <QDockWidget>
 #include <QMessageBox>
@@ -141,6 +142,17 @@ void TestLiveRecording::limitsRoundTripAsJson()
     QVERIFY(std::isnan(n.limit(QStringLiteral("T1")).low));
     QCOMPARE(n.limit(QStringLiteral("S1")).low, -2.0);
     QCOMPARE(n.limit(QStringLiteral("S1")).silent_s, 15.0);
+    // As stated with the session: each bound with its unit, the silent time once.
+    n.setChannel(QStringLiteral("T1"), QStringLiteral("°C"), true);
+    n.setChannel(QStringLiteral("S1"), QStringLiteral("µm"), false);
+    QCOMPARE(n.describe(), QStringLiteral("limits: S1 < -2 µm; T1 > 30.5 °C; silent after 15 s"));
+    LiveLimitMonitor both;
+    LiveLimitMonitor::Limit band;
+    band.low = 10.0;
+    band.high = 40.0;
+    both.setLimit(QStringLiteral("T2"), band);
+    QCOMPARE(both.describe(), QStringLiteral("limits: T2 < 10 or > 40"));
+    QCOMPARE(LiveLimitMonitor().describe(), QStringLiteral("limits: none"));
 }
 
 namespace {
@@ -239,17 +251,25 @@ void TestLiveRecording::recordWatchAlarmStop()
     SessionStore store(db);
     QVERIFY(store.session(id).complete);
     int overTemperature = 0;
-    for (const EventRecord &e : store.events(id))
-        overTemperature += e.label.contains(QStringLiteral("over-temperature")) ? 1 : 0;
+    QStringList limits; // the limits in force, stated with the session (issue 33 item 2)
+    double limitSet_t = -1.0, alarm_t = -1.0;
+    for (const EventRecord &e : store.events(id)) {
+        if (e.label.contains(QStringLiteral("over-temperature"))) {
+            ++overTemperature;
+            alarm_t = e.t;
+        }
+        if (e.label.startsWith(QStringLiteral("limits: "))) {
+            limits << e.label;
+            limitSet_t = e.t;
+        }
+    }
     QCOMPARE(overTemperature, 1);
+    // None at the start (no limits remembered for the rig yet), then the one set, before its alarm.
+    QCOMPARE(limits, QStringList({QStringLiteral("limits: none"), QStringLiteral("limits: %1 > -100 °C").arg(temperature)}));
+    QVERIFY2(limitSet_t <= alarm_t, qPrintable(QStringLiteral("limits at %1 s, alarm at %2 s").arg(limitSet_t).arg(alarm_t)));
 
     // The Acquisition dock: a compact status that needs no vertical scrolling at 768.
-    QDockWidget *dock = window.dock(QStringLiteral("AcquisitionDock"));
-    QVERIFY(dock);
-    dock->show();
-    dock->raise();
-    QTest::qWait(50);
-    auto *scroll = qobject_cast<QScrollArea *>(dock->widget());
+    QScrollArea *scroll = widgettest::raiseDock(window.dock(QStringLiteral("AcquisitionDock")));
     QVERIFY(scroll);
     QCOMPARE(scroll->verticalScrollBar()->maximum(), 0);
     // "Show live view" brings the view back.

@@ -4,12 +4,16 @@
 // rig file and load it back through the same loader the recorder uses.
 #include "RigConfigLoader.h"
 #include "RigSetupDialog.h"
+#include "ScreenFit.h"
 
 #include "../support/TestPeers.h"
 
 #include <QAbstractButton>
 #include <QApplication>
 #include <QJsonArray>
+#include <QLabel>
+#include <QScreen>
+#include <QTcpServer>
 #include <QMessageBox>
 #include <QTemporaryDir>
 #include <QtTest>
@@ -21,6 +25,7 @@ class TestRigSetupDialog : public QObject {
 private slots:
     void setUpTestAndSave();
     void escapeAsksBeforeDiscarding();
+    void failedConnectionMessageIsWhole();
 };
 
 void TestRigSetupDialog::setUpTestAndSave()
@@ -141,6 +146,55 @@ void TestRigSetupDialog::escapeAsksBeforeDiscarding()
     QTest::keyClick(&dialog, Qt::Key_Escape);
     QCOMPARE(asked.size(), 2);
     QVERIFY(!dialog.isVisible());
+}
+
+// Issue 33: "the Test-connection error is cut off". At 1366 x 768, a module on a closed port
+// of this machine: the state label shows the whole error: it wraps, its height is what its
+// text needs at its width, no word is wider than it, and it lies inside the dialog, which
+// lies inside the screen.
+void TestRigSetupDialog::failedConnectionMessageIsWhole()
+{
+    const QRect screen(0, 0, 1366, 768);
+    ScreenFit::simulateScreen(screen.size());
+    int closedPort = 0;
+    {
+        QTcpServer probe; // a free port, closed again: nothing listens there
+        QVERIFY(probe.listen(QHostAddress::LocalHost, 0));
+        closedPort = probe.serverPort();
+    }
+    RigSetupDialog dialog;
+    dialog.addDevice(QStringLiteral("modbus-tcp"), QStringLiteral("adam-6015"));
+    dialog.setConnection(QStringLiteral("127.0.0.1"), closedPort);
+    dialog.show();
+    dialog.move(0, 0);
+    QVERIFY(QTest::qWaitForWindowExposed(&dialog));
+    dialog.testConnection();
+    QTRY_VERIFY_WITH_TIMEOUT(dialog.testState().startsWith(QLatin1String("no answer")), 10000);
+    QTest::qWait(100); // the layout has settled
+    const QString text = dialog.testState();
+    qInfo("state: %s", qPrintable(text));
+    QVERIFY2(text.contains(QString::number(closedPort)) || text.contains(QLatin1String("refused")), qPrintable(text));
+    QLabel *state = nullptr;
+    for (QLabel *l : dialog.findChildren<QLabel *>())
+        if (l->text() == text)
+            state = l;
+    QVERIFY(state);
+    dialog.stopTest();
+    const QString where = QStringLiteral("label %1 x %2 at %3,%4 in dialog %5 x %6: '%7'")
+                              .arg(state->width()).arg(state->height())
+                              .arg(state->mapTo(&dialog, QPoint(0, 0)).x()).arg(state->mapTo(&dialog, QPoint(0, 0)).y())
+                              .arg(dialog.width()).arg(dialog.height()).arg(text);
+    const QRect c = state->contentsRect();
+    QVERIFY2(state->heightForWidth(state->width()) <= state->height(), qPrintable(where + QStringLiteral(" needs %1 px height").arg(state->heightForWidth(state->width()))));
+    for (const QString &word : text.split(QRegularExpression(QStringLiteral("\\s+")), Qt::SkipEmptyParts))
+        QVERIFY2(state->fontMetrics().horizontalAdvance(word) <= c.width(), qPrintable(where + QStringLiteral(": '%1' is wider").arg(word)));
+    const QRect inDialog(state->mapTo(&dialog, QPoint(0, 0)), state->size());
+    QVERIFY2(dialog.rect().contains(inDialog), qPrintable(where));
+    QVERIFY2(screen.contains(QRect(dialog.pos(), dialog.frameGeometry().size())), qPrintable(where));
+    QVERIFY2(state->wordWrap(), qPrintable(where));
+    // The whole text is in view: what the label draws at its size is the text, uncut.
+    QVERIFY2(state->visibleRegion().boundingRect() == state->rect(), qPrintable(where + QStringLiteral(" partly hidden")));
+    ScreenFit::simulateScreen(QSize());
 }
 
 QTEST_MAIN(TestRigSetupDialog)
