@@ -1,5 +1,6 @@
 #include "TimeSeriesPlot.h"
 
+#include "AxisTicks.h"
 #include "ElapsedTimeAxis.h"
 #include "PlotCursors.h"
 #include "PlotInteraction.h"
@@ -144,12 +145,7 @@ void TimeSeriesPlot::envelopePoints(const DecimatedSeries &d, QVector<double> &x
 void TimeSeriesPlot::resizeEvent(QResizeEvent *event)
 {
     QwtPlot::resizeEvent(event);
-    const int ticks = std::max(2, std::min(10, width() / 90));
-    if (axisMaxMajor(QwtPlot::xBottom) != ticks) {
-        setAxisMaxMajor(QwtPlot::xBottom, ticks);
-        updateAxes(); // the new steps now, not at the next data change
-        updateLayout();
-    }
+    AxisTicks::fitToWidth(this, QwtPlot::xBottom, 90, 10); // "0:00:00" labels need about 90 px each
 }
 
 int TimeSeriesPlot::decimationBuckets() const
