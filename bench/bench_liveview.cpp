@@ -12,7 +12,10 @@
 // Usage: bench_liveview [SECONDS] [HOURS] [LONG_DB] [OPENS] (default 20, 10, a temporary
 // file, 1; SECONDS 0 skips part 1; LONG_DB keeps the long session's database there and
 // reuses it when it exists, the 10 h one takes 1-3 min to write; OPENS repeats the review
-// open, each time printed on stderr, the worst in the table). Prints markdown rows.
+// open, each time printed on stderr, the worst in the table). Prints markdown rows. With
+// BENCH_QUICK set, part 2 skips the read breakdown and the plain read (for perf runs). Each
+// review open also prints the GUI thread's CPU time, its page faults and the CPU of the
+// 150 ms of event loop after it (the first paint and any refetch run there).
 
 #include "LiveRecordingView.h"
 #include "ReviewWorkspace.h"
@@ -21,6 +24,7 @@
 
 #include <QApplication>
 #include <QElapsedTimer>
+#include <QEventLoop>
 #include <QFileInfo>
 #include <QTemporaryDir>
 #include <QTextStream>
@@ -32,6 +36,7 @@
 #include <atomic>
 #include <cmath>
 #include <ctime>
+#include <sys/resource.h>
 #include <thread>
 
 using namespace driftlab;
@@ -234,7 +239,8 @@ int main(int argc, char **argv)
         w.setComplete(longSession, true);
     }
     SessionStore longReader(longPath);
-    {
+    const bool quick = qEnvironmentVariableIsSet("BENCH_QUICK");
+    if (!quick) {
         // Where an open's time goes (stderr): the store's decimation and the tail read per channel.
         QElapsedTimer a;
         QVector<double> tail(longLayout.slow.size() + longLayout.fast.size());
@@ -261,8 +267,10 @@ int main(int argc, char **argv)
     open.begin(QStringLiteral("long"), QString(), 0.0);
     QElapsedTimer t1;
     t1.start();
+    const double liveCpu0 = threadCpu_s();
     open.update(longReader, longSession, hours * 3600.0);
     const double liveOpen = t1.nsecsElapsed() / 1e6;
+    err << "  live view first refresh " << liveOpen << " ms (GUI thread CPU " << (threadCpu_s() - liveCpu0) * 1e3 << " ms)\n";
     // The review open, `opens` times (argument 4, default 1), each in a new workspace: the
     // range over repeated opens says more than one figure on a loaded machine.
     const int opens = argc > 4 ? std::max(1, std::atoi(argv[4])) : 1;
@@ -274,18 +282,37 @@ int main(int argc, char **argv)
         QCoreApplication::processEvents();
         QElapsedTimer t2;
         t2.start();
+        const double cpu0 = threadCpu_s();
+        rusage ru0{};
+        getrusage(RUSAGE_THREAD, &ru0);
         review.setSession(&longReader, longSession); // shows the temperatures and displacements: all 65
         review.timeSeriesPlot()->replot();
         const double setSessionMs = t2.nsecsElapsed() / 1e6;
+        const double setSessionCpuMs = (threadCpu_s() - cpu0) * 1e3;
+        rusage ru1{};
+        getrusage(RUSAGE_THREAD, &ru1);
+        err << "  faults " << ru1.ru_minflt - ru0.ru_minflt << " major " << ru1.ru_majflt - ru0.ru_majflt << "\n";
+        {
+            // What the GUI does next: its event loop runs the refetch the new x scale asked for.
+            const double c0 = threadCpu_s();
+            QEventLoop loop;
+            QTimer::singleShot(150, &loop, &QEventLoop::quit);
+            loop.exec();
+            err << "  then the event loop (first paint, refetch if any): GUI thread CPU " << (threadCpu_s() - c0) * 1e3
+                << " ms in 150 ms\n";
+        }
+        const double before = t2.nsecsElapsed() / 1e6 - setSessionMs; // the 150 ms above
         review.showChannels(longLayout.slow + longLayout.fast);
         review.timeSeriesPlot()->replot();
-        const double openMs = t2.nsecsElapsed() / 1e6;
-        err << "  review open " << o + 1 << ": setSession + replot " << setSessionMs << " ms, + showChannels(65) + replot "
-            << openMs << " ms\n";
+        const double openMs = t2.nsecsElapsed() / 1e6 - before;
+        err << "  review open " << o + 1 << ": setSession + replot " << setSessionMs << " ms (GUI thread CPU " << setSessionCpuMs
+            << " ms), + showChannels(65) + replot " << openMs << " ms\n";
         err.flush();
         reviewSetSession = std::max(reviewSetSession, setSessionMs); // the worst of the runs
         reviewOpen = std::max(reviewOpen, openMs);
     }
+    if (quick)
+        return 0;
     QElapsedTimer t3;
     t3.start();
     qint64 total = 0;

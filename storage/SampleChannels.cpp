@@ -203,25 +203,49 @@ void SampleChannels::forEachBlock(qint64 channelId,
     }
 }
 
-QVector<SampleMipmap::Entry> SampleChannels::levelEntries(qint64 channelId, int level, double t0, double t1) const
+QVector<SampleMipmap::Entry> SampleChannels::levelEntries(qint64 channelId, int level, double t0, double t1,
+                                                          qint64 atMost) const
 {
+    // Ordered by t_last alone, which the index (channel_id, level, t_last) gives: a second
+    // key (seq) made SQLite copy every row's blob through a sorter. Rows of one level follow
+    // each other in time, so only rows with equal end times (a row of identical timestamps)
+    // can come out of seq order; they are put back in order below.
     QSqlQuery q = SqlSupport::prepared(m_db, m_path,
-                           QStringLiteral("SELECT t_first, data FROM sample_levels WHERE channel_id = ? AND level = ? AND "
-                                          "t_last >= ? ORDER BY t_last, seq"));
+                           QStringLiteral("SELECT t_first, t_last, seq, data FROM sample_levels WHERE channel_id = ? AND "
+                                          "level = ? AND t_last >= ? ORDER BY t_last"));
     q.setForwardOnly(true);
     q.addBindValue(channelId);
     q.addBindValue(level);
     q.addBindValue(t0);
     SqlSupport::run(q, m_path, QStringLiteral("cannot read mipmap level %1 of channel %2").arg(level).arg(channelId));
-    QVector<SampleMipmap::Entry> out;
+    struct StoredRow {
+        double tLast;
+        qint64 seq;
+        QByteArray data; // shares the driver's copy
+    };
+    QVector<StoredRow> rows;
+    bool past = false; // a row starting after t1 was seen: stop after the rows ending with it
+    double pastLast = 0.0;
     while (q.next()) {
-        if (q.value(0).toDouble() > t1)
+        const double tLast = q.value(1).toDouble();
+        if (past && tLast > pastLast)
             break;
-        for (const SampleMipmap::Entry &e : SampleMipmap::decodeEntries(q.value(1).toByteArray())) {
-            if (e.tLast >= t0 && e.tFirst <= t1)
-                out.push_back(e);
+        if (q.value(0).toDouble() > t1) {
+            past = true;
+            pastLast = tLast;
+            continue;
         }
+        rows.push_back({tLast, q.value(2).toLongLong(), q.value(3).toByteArray()});
     }
+    auto bySeq = [](const StoredRow &a, const StoredRow &b) { return a.tLast < b.tLast || (a.tLast == b.tLast && a.seq < b.seq); };
+    if (!std::is_sorted(rows.begin(), rows.end(), bySeq))
+        std::sort(rows.begin(), rows.end(), bySeq);
+    QVector<SampleMipmap::Entry> out;
+    // One allocation, not a doubling series: on a first open each new page costs a fault.
+    constexpr qint64 kMaxReserve = 1 << 16;
+    out.reserve(static_cast<int>(std::min(atMost, kMaxReserve)));
+    for (const StoredRow &r : rows)
+        SampleMipmap::appendEntries(r.data, t0, t1, out);
     return out;
 }
 
@@ -231,13 +255,23 @@ DecimatedSeries SampleChannels::decimated(qint64 channelId, double t0, double t1
         throw StorageError(QStringLiteral("%1: decimated(): maxPoints must be >= 1, got %2").arg(m_path).arg(maxPoints)
                                .toStdString());
     // Coarsest level with at least maxPoints entries in the range; raw samples if even level 1
-    // has fewer (then the range holds fewer than 16 * maxPoints samples).
+    // has fewer (then the range holds fewer than 16 * maxPoints samples). Entry k of level L
+    // summarises raw samples [k * 16^L, (k + 1) * 16^L), so each level-(L-1) entry in the range
+    // lies inside a level-L entry in the range: a level holds at most 16 times the entries of
+    // the level above it. A level that bound puts under maxPoints cannot be the answer and is
+    // not read (a 10 h, 10 Hz channel drawn 1,200 px wide reads levels 5 and 2, not 5, 4, 3, 2).
     QVector<SampleMipmap::Entry> entries;
     int level = SampleMipmap::kLevels;
+    qint64 atMost = std::numeric_limits<qint64>::max(); // entries this level can hold in the range
     for (; level >= 1; --level) {
-        entries = levelEntries(channelId, level, t0, t1);
+        if (atMost < maxPoints) {
+            atMost *= SampleMipmap::kFactor;
+            continue;
+        }
+        entries = levelEntries(channelId, level, t0, t1, atMost == std::numeric_limits<qint64>::max() ? 0 : atMost);
         if (entries.size() >= maxPoints)
             break;
+        atMost = static_cast<qint64>(entries.size()) * SampleMipmap::kFactor;
     }
     if (level < 1) {
         level = 0;
@@ -251,6 +285,11 @@ DecimatedSeries SampleChannels::decimated(qint64 channelId, double t0, double t1
     out.level = level;
     if (entries.isEmpty())
         return out;
+    const int n = std::min(entries.size(), maxPoints);
+    out.tFirst.reserve(n);
+    out.tLast.reserve(n);
+    out.min.reserve(n);
+    out.max.reserve(n);
     if (entries.size() <= maxPoints) {
         for (const SampleMipmap::Entry &e : entries) {
             out.tFirst.push_back(e.tFirst);

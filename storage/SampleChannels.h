@@ -49,7 +49,8 @@ private:
     void writeSamples(qint64 channelId, const double *t, const double *v, int n);
     void writeBlock(qint64 channelId, ChannelState &state, int n);
     void flushLevelRow(qint64 channelId, int level, SampleMipmap::Row &row);
-    QVector<SampleMipmap::Entry> levelEntries(qint64 channelId, int level, double t0, double t1) const;
+    // Entries of one level overlapping [t0, t1]; atMost (0: unknown) bounds their number.
+    QVector<SampleMipmap::Entry> levelEntries(qint64 channelId, int level, double t0, double t1, qint64 atMost) const;
 
     QSqlDatabase m_db;
     QString m_path;

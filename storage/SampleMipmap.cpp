@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 
 namespace driftlab {
 
@@ -42,12 +43,23 @@ QByteArray SampleMipmap::encodeEntries(const QVector<Entry> &entries)
 
 QVector<SampleMipmap::Entry> SampleMipmap::decodeEntries(const QByteArray &blob)
 {
+    QVector<Entry> out;
+    appendEntries(blob, -std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), out);
+    return out;
+}
+
+void SampleMipmap::appendEntries(const QByteArray &blob, double t0, double t1, QVector<Entry> &out)
+{
     if (blob.size() % static_cast<int>(sizeof(Entry)) != 0)
         throw StorageError("sample_levels: malformed mipmap blob of " + std::to_string(blob.size()) + " bytes");
-    QVector<Entry> out(blob.size() / static_cast<int>(sizeof(Entry)));
-    if (!out.isEmpty())
-        std::memcpy(out.data(), blob.constData(), static_cast<size_t>(blob.size()));
-    return out;
+    const int n = blob.size() / static_cast<int>(sizeof(Entry));
+    const char *p = blob.constData();
+    for (int i = 0; i < n; ++i, p += sizeof(Entry)) {
+        Entry e;
+        std::memcpy(&e, p, sizeof(Entry));
+        if (e.tLast >= t0 && e.tFirst <= t1)
+            out.push_back(e);
+    }
 }
 
 QByteArray SampleMipmap::encodeSamples(const double *t, const double *v, int n)

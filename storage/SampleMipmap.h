@@ -40,9 +40,15 @@ public:
     static QByteArray encodeEntries(const QVector<Entry> &entries);
     // Throws StorageError if the blob is malformed.
     static QVector<Entry> decodeEntries(const QByteArray &blob);
+    // Appends the blob's entries that overlap [t0, t1] (tLast >= t0 and tFirst <= t1) to out,
+    // copied straight from the blob. Throws StorageError if the blob is malformed.
+    static void appendEntries(const QByteArray &blob, double t0, double t1, QVector<Entry> &out);
     static QByteArray encodeSamples(const double *t, const double *v, int n);
     // Appends the n samples of a raw block to t and v. Throws StorageError if malformed.
     static void decodeSamples(const QByteArray &blob, int n, QVector<double> &t, QVector<double> &v);
 };
 
 } // namespace driftlab
+
+// Four doubles: QVector may grow it with memcpy/realloc instead of element by element.
+Q_DECLARE_TYPEINFO(driftlab::SampleMipmap::Entry, Q_PRIMITIVE_TYPE);

@@ -1,5 +1,6 @@
 #include "ErrorSurfacePlot.h"
 
+#include "AxisTicks.h"
 #include "ElapsedTimeAxis.h"
 #include "PlotInteraction.h"
 
@@ -158,12 +159,7 @@ void ErrorSurfacePlot::resizeEvent(QResizeEvent *event)
 {
     QwtPlot::resizeEvent(event);
     // About one label per 70 px of plot width ("500" plus a gap, in the bold-free tick font).
-    const int ticks = std::max(2, std::min(8, width() / 70));
-    if (axisMaxMajor(QwtPlot::xBottom) != ticks) {
-        setAxisMaxMajor(QwtPlot::xBottom, ticks);
-        updateAxes(); // the new steps now, not at the next data change
-        updateLayout();
-    }
+    AxisTicks::fitToWidth(this, QwtPlot::xBottom, 70, 8);
 }
 
 } // namespace driftlab

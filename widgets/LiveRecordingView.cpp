@@ -395,14 +395,10 @@ void LiveRecordingView::update(const SessionStore &reader, qint64 sessionId, dou
             if (curve) {
                 curve->setSamples(x, y);
             } else if (!x.isEmpty()) {
-                curve = m_plot->addCurve(c.key, x, y, !ch.temperature);
-                curve->setRenderHint(QwtPlotItem::RenderAntialiased, false);
-                QPen pen = curve->pen();
-                pen.setWidth(0); // cosmetic 1-px pen: the fast raster path
-                curve->setPen(pen);
+                curve = m_plot->addCurve(c.key, x, y, !ch.temperature, TimeSeriesPlot::CurveStyle::Envelope);
                 curve->setVisible(name->checkState() == Qt::Checked);
                 m_filling = true;
-                name->setForeground(pen.color());
+                name->setForeground(curve->pen().color());
                 m_filling = false;
             }
         }

@@ -108,6 +108,7 @@ void ReviewWorkspace::clear()
 void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
 {
     auto data = std::make_shared<SessionReviewData>(*store, sessionId);
+    const TimeSeriesPlot::Batch batch(m_timeSeries); // events and curves, then one replot
     m_store = store;
     m_sessionId = sessionId;
     m_data = data;
@@ -196,33 +197,47 @@ QVector<qint64> ReviewWorkspace::defaultChannels() const
     return shown;
 }
 
-QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, bool right, bool keep)
+QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, bool right, bool keep, Qt::PenStyle style)
 {
     // One query decides and draws (a 10-hour open spent most of its time in three per
     // channel: count, span, envelope): the whole channel's envelope at one bucket per pixel
     // column. Channels over kRawCurveLimit samples are drawn decimated; shorter ones raw (the
-    // level-0 answer is the samples themselves when no more than one falls in a bucket). A finished session's envelopes are kept for the
-    // next showChannels() or overlay.
+    // level-0 answer is the samples themselves when no more than one falls in a bucket). A
+    // finished session's curves are kept for the next showChannels() or overlay.
     const SessionStore *store = m_store;
     const int buckets = m_timeSeries->decimationBuckets();
+    auto fetch = [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); };
     auto cached = m_envelopes.constFind(id);
-    const DecimatedSeries whole = cached != m_envelopes.cend() && cached->tFirst.size() <= buckets
-                                      ? *cached
-                                      : store->decimated(id, -1e300, 1e300, buckets);
-    if (keep && m_envelopesComplete)
-        m_envelopes.insert(id, whole);
+    if (cached != m_envelopes.cend() && cached->envelope.buckets <= buckets)
+        return cached->decimated ? m_timeSeries->addDecimatedCurve(title, fetch, cached->envelope, right, style)
+                                 : m_timeSeries->addCurve(title, cached->envelope.x, cached->envelope.y, right,
+                                                          TimeSeriesPlot::CurveStyle::Lines, style);
+    const DecimatedSeries whole = store->decimated(id, -1e300, 1e300, buckets);
+    KeptCurve kept;
     // Level 2 or coarser holds >= 200 entries of 256 samples: far over kRawCurveLimit. At
     // level 1 the count decides (one more query, only for such mid-length channels).
-    if (whole.level >= 2 || (whole.level == 1 && store->sampleCount(id) > kRawCurveLimit))
-        return m_timeSeries->addDecimatedCurve(
-            title, [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); }, whole, right);
-    bool raw = true;
-    for (int i = 0; i < whole.tFirst.size() && raw; ++i)
-        raw = whole.tFirst[i] == whole.tLast[i];
-    if (raw)
-        return m_timeSeries->addCurve(title, whole.tFirst, whole.min, right);
-    const SampleBlock block = m_store->samples(id);
-    return m_timeSeries->addCurve(title, block.t, block.v, right);
+    kept.decimated = whole.level >= 2 || (whole.level == 1 && store->sampleCount(id) > kRawCurveLimit);
+    if (kept.decimated) {
+        kept.envelope = TimeSeriesPlot::envelope(whole, buckets);
+    } else {
+        bool raw = true;
+        for (int i = 0; i < whole.tFirst.size() && raw; ++i)
+            raw = whole.tFirst[i] == whole.tLast[i];
+        kept.envelope.buckets = whole.tFirst.size();
+        if (raw) {
+            kept.envelope.x = whole.tFirst;
+            kept.envelope.y = whole.min;
+        } else {
+            const SampleBlock block = m_store->samples(id);
+            kept.envelope.x = block.t;
+            kept.envelope.y = block.v;
+        }
+    }
+    if (keep && m_envelopesComplete)
+        m_envelopes.insert(id, kept);
+    return kept.decimated ? m_timeSeries->addDecimatedCurve(title, fetch, kept.envelope, right, style)
+                          : m_timeSeries->addCurve(title, kept.envelope.x, kept.envelope.y, right,
+                                                   TimeSeriesPlot::CurveStyle::Lines, style);
 }
 
 void ReviewWorkspace::setOverlay(const QVector<qint64> &sessionIds)
@@ -280,6 +295,7 @@ void ReviewWorkspace::updateProfiles()
 void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
 {
     m_shown = channelIds;
+    const TimeSeriesPlot::Batch batch(m_timeSeries);
     m_timeSeries->clearCurves();
     m_leftOut.clear();
     if (!m_store || !m_data)
@@ -319,12 +335,8 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
             if (id == 0)
                 continue;
             const QString name = m_overlay.isEmpty() ? c.key : QStringLiteral("#%1 %2").arg(session).arg(c.key);
-            QwtPlotCurve *curve = addChannelCurve(id, name, right, k == 0); // keeps this session's envelopes
-            if (k > 0) {
-                QPen pen = curve->pen();
-                pen.setStyle(k % 3 == 1 ? Qt::DashLine : k % 3 == 2 ? Qt::DotLine : Qt::DashDotLine);
-                curve->setPen(pen);
-            }
+            const Qt::PenStyle style = k == 0 ? Qt::SolidLine : k % 3 == 1 ? Qt::DashLine : k % 3 == 2 ? Qt::DotLine : Qt::DashDotLine;
+            addChannelCurve(id, name, right, k == 0, style); // keeps this session's curves
         }
         QStringList &names = right ? rightNames : leftNames;
         if (!names.contains(UnitLabels::quantity(c.kind)))

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "StorageTypes.h"
+#include "TimeSeriesPlot.h"
 
 class QComboBox;
 class QLabel;
@@ -25,7 +26,6 @@ class ErrorSurfacePlot;
 class InfraredPanel;
 class SessionReviewData;
 class SessionStore;
-class TimeSeriesPlot;
 
 class ReviewWorkspace : public QWidget {
     Q_OBJECT
@@ -72,7 +72,7 @@ public:
     QString heading() const;
 
 private:
-    QwtPlotCurve *addChannelCurve(qint64 channelId, const QString &title, bool rightAxis, bool keep);
+    QwtPlotCurve *addChannelCurve(qint64 channelId, const QString &title, bool rightAxis, bool keep, Qt::PenStyle style);
     void updateTemperatureView();
     void updateProfiles();
     void ensure3D();
@@ -97,8 +97,13 @@ private:
     QString m_leftOut;
     QVector<qint64> m_shown;
     QVector<qint64> m_overlay;
-    // Whole-channel envelopes already read (finished sessions only: a recording grows).
-    QHash<qint64, DecimatedSeries> m_envelopes;
+    // Whole-channel curves already read (finished sessions only: a recording grows): the
+    // envelope (decimated) or the samples, sharing their vectors with the curves drawn.
+    struct KeptCurve {
+        TimeSeriesPlot::Envelope envelope; // x, y: the samples themselves when not decimated
+        bool decimated = false;
+    };
+    QHash<qint64, KeptCurve> m_envelopes;
     bool m_envelopesComplete = false;
 };
 

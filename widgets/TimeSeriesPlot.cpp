@@ -1,5 +1,6 @@
 #include "TimeSeriesPlot.h"
 
+#include "AxisTicks.h"
 #include "ElapsedTimeAxis.h"
 #include "PlotCursors.h"
 #include "PlotInteraction.h"
@@ -70,6 +71,30 @@ TimeSeriesPlot::TimeSeriesPlot(QWidget *parent) : QwtPlot(parent), m_refresh(new
     PlotCursors::install(this);               // Shift+click: cursors A, B and their delta
 }
 
+TimeSeriesPlot::Batch::Batch(TimeSeriesPlot *plot) : m_plot(plot)
+{
+    ++m_plot->m_batches;
+}
+
+TimeSeriesPlot::Batch::~Batch()
+{
+    if (--m_plot->m_batches == 0 && m_plot->m_replotPending) {
+        m_plot->m_replotPending = false;
+        // The legend and axes as they now are, before painting: else the canvas is drawn at
+        // its old size and drawn again when the posted layout request resizes it.
+        m_plot->updateLayout();
+        m_plot->replot();
+    }
+}
+
+void TimeSeriesPlot::requestReplot()
+{
+    if (m_batches > 0)
+        m_replotPending = true;
+    else
+        replot();
+}
+
 void TimeSeriesPlot::clearCurves()
 {
     for (QwtPlotCurve *c : m_curves) {
@@ -78,17 +103,21 @@ void TimeSeriesPlot::clearCurves()
     }
     m_curves.clear();
     m_decimated.clear();
-    replot();
+    requestReplot();
 }
 
 QwtPlotCurve *TimeSeriesPlot::addCurve(const QString &title, const QVector<double> &t, const QVector<double> &v,
-                                       bool rightAxis)
+                                       bool rightAxis, CurveStyle style, Qt::PenStyle penStyle)
 {
+    // Everything set before attach(): each later setPen() or setLegendAttribute() would
+    // rebuild the curve's legend entry (the largest part of adding a curve after the data).
     auto *c = new QwtPlotCurve(title);
-    c->setPen(curveColours().at(m_curves.size() % curveColours().size()), 1.5);
+    const bool envelope = style == CurveStyle::Envelope;
+    // Envelope: a cosmetic (0-width) 1-px pen, the fast raster path for thousands of segments.
+    c->setPen(curveColours().at(m_curves.size() % curveColours().size()), envelope ? 0.0 : 1.5, penStyle);
     c->setLegendAttribute(QwtPlotCurve::LegendShowLine, true);
     c->setLegendAttribute(QwtPlotCurve::LegendShowSymbol, true); // the legend shows the points' marker too
-    c->setRenderHint(QwtPlotItem::RenderAntialiased, true);
+    c->setRenderHint(QwtPlotItem::RenderAntialiased, !envelope);
     c->setSamples(t, v);
     c->setYAxis(rightAxis ? QwtPlot::yRight : QwtPlot::yLeft);
     c->attach(this);
@@ -116,12 +145,7 @@ void TimeSeriesPlot::envelopePoints(const DecimatedSeries &d, QVector<double> &x
 void TimeSeriesPlot::resizeEvent(QResizeEvent *event)
 {
     QwtPlot::resizeEvent(event);
-    const int ticks = std::max(2, std::min(10, width() / 90));
-    if (axisMaxMajor(QwtPlot::xBottom) != ticks) {
-        setAxisMaxMajor(QwtPlot::xBottom, ticks);
-        updateAxes(); // the new steps now, not at the next data change
-        updateLayout();
-    }
+    AxisTicks::fitToWidth(this, QwtPlot::xBottom, 90, 10); // "0:00:00" labels need about 90 px each
 }
 
 int TimeSeriesPlot::decimationBuckets() const
@@ -132,43 +156,55 @@ int TimeSeriesPlot::decimationBuckets() const
 QwtPlotCurve *TimeSeriesPlot::addDecimatedCurve(const QString &title, RangeFetcher fetch, double tFirst, double tLast,
                                                 bool rightAxis)
 {
-    DecimatedSeries first = fetch(tFirst, tLast, decimationBuckets());
-    QwtPlotCurve *c = addDecimatedCurve(title, std::move(fetch), first, rightAxis);
-    m_decimated.back().tFirst = tFirst;
-    m_decimated.back().tLast = tLast;
+    const int buckets = decimationBuckets();
+    QVector<double> x, y;
+    envelopePoints(fetch(tFirst, tLast, buckets), x, y);
+    QwtPlotCurve *c = addCurve(title, x, y, rightAxis, CurveStyle::Envelope);
+    m_decimated.push_back({c, std::move(fetch), tFirst, tLast, tFirst, tLast, buckets});
     return c;
 }
 
-QwtPlotCurve *TimeSeriesPlot::addDecimatedCurve(const QString &title, RangeFetcher fetch, const DecimatedSeries &whole,
-                                                bool rightAxis)
+TimeSeriesPlot::Envelope TimeSeriesPlot::envelope(const DecimatedSeries &whole, int requested)
 {
-    QwtPlotCurve *c = addCurve(title, {}, {}, rightAxis);
-    c->setRenderHint(QwtPlotItem::RenderAntialiased, false);
-    QPen pen = c->pen();
-    pen.setWidth(0); // cosmetic 1-px pen: the fast raster path for thousands of segments
-    c->setPen(pen);
-    const double tFirst = whole.tFirst.isEmpty() ? 0.0 : whole.tFirst.front();
-    const double tLast = whole.tLast.isEmpty() ? 0.0 : whole.tLast.back();
-    m_decimated.push_back({c, std::move(fetch), tFirst, tLast});
-    QVector<double> x, y;
-    envelopePoints(whole, x, y);
-    c->setSamples(x, y);
+    Envelope e;
+    envelopePoints(whole, e.x, e.y);
+    e.tFirst = whole.tFirst.isEmpty() ? 0.0 : whole.tFirst.front();
+    e.tLast = whole.tLast.isEmpty() ? 0.0 : whole.tLast.back();
+    e.requested = requested;
+    e.buckets = whole.tFirst.size();
+    return e;
+}
+
+QwtPlotCurve *TimeSeriesPlot::addDecimatedCurve(const QString &title, RangeFetcher fetch, const Envelope &whole,
+                                                bool rightAxis, Qt::PenStyle penStyle)
+{
+    QwtPlotCurve *c = addCurve(title, whole.x, whole.y, rightAxis, CurveStyle::Envelope, penStyle);
+    // Read over (-inf, inf) or over [tFirst, tLast]: the same entries, the same buckets.
+    m_decimated.push_back({c, std::move(fetch), whole.tFirst, whole.tLast, whole.tFirst, whole.tLast, whole.requested});
     return c;
 }
 
 void TimeSeriesPlot::refreshDecimated()
 {
     const QwtScaleDiv &div = axisScaleDiv(QwtPlot::xBottom);
-    const int buckets = std::max(200, canvas()->width());
-    for (const DecimatedCurve &d : m_decimated) {
+    const int buckets = decimationBuckets();
+    bool changed = false;
+    for (DecimatedCurve &d : m_decimated) {
         const double t0 = std::max(d.tFirst, div.lowerBound());
         const double t1 = std::min(d.tLast, div.upperBound());
+        if (t0 == d.shownT0 && t1 == d.shownT1 && buckets == d.shownBuckets)
+            continue; // what it shows was read for this very range and width
         QVector<double> x, y;
         if (t1 > t0)
             envelopePoints(d.fetch(t0, t1, buckets), x, y);
         d.curve->setSamples(x, y);
+        d.shownT0 = t0;
+        d.shownT1 = t1;
+        d.shownBuckets = buckets;
+        changed = true;
     }
-    replot();
+    if (changed)
+        replot();
 }
 
 QwtPlotCurve *TimeSeriesPlot::curve(const QString &title) const
@@ -206,7 +242,7 @@ void TimeSeriesPlot::setEvents(const QVector<EventRecord> &events)
         m->attach(this);
         m_events.push_back(m);
     }
-    replot();
+    requestReplot();
 }
 
 void TimeSeriesPlot::setTimeAxis(bool time)
@@ -224,10 +260,11 @@ void TimeSeriesPlot::zoomToData()
     setAxisAutoScale(QwtPlot::xBottom);
     setAxisAutoScale(QwtPlot::yLeft);
     setAxisAutoScale(QwtPlot::yRight);
-    replot();
-    m_zoomer->setZoomBase(true);
+    updateAxes();                  // the zoom base is the scales as they are now...
+    m_zoomer->setZoomBase(false);  // ...without the zoomer's own second replot
     if (PlotInteraction *i = PlotInteraction::of(this))
         i->clearZoomHistory(); // new data: nothing to go back to
+    requestReplot();
 }
 
 } // namespace driftlab

@@ -161,6 +161,55 @@ private slots:
         }
     }
 
+    // decimated() reads only the levels that can answer: a level holds at most 16 times the
+    // entries of the level above it, so with 200,000 samples (level 5: 1 entry) and 500 points
+    // asked, levels 4 and 3 (at most 16 and 256 entries) cannot and are not read: made
+    // unreadable here, the answer is still the one the intact store gave (the old probe of
+    // every level from the top failed on them).
+    void decimatedSkipsLevelsThatCannotAnswer()
+    {
+        const QString path = db(QStringLiteral("skip.sqlite"));
+        qint64 ch = 0;
+        DecimatedSeries before, window;
+        {
+            SessionStore s(path);
+            makeSession(s, &ch);
+            QVector<double> t, v;
+            for (int i = 0; i < 200000; ++i) {
+                t.push_back(i * 0.1);
+                v.push_back(std::sin(i * 1e-3) + (i % 97) * 1e-3);
+            }
+            s.appendSamples(ch, t, v);
+            before = s.decimated(ch, -1e300, 1e300, 500);
+            window = s.decimated(ch, 1000.0, 9000.0, 300);
+            QCOMPARE(before.level, 2);
+            QCOMPARE(window.level, 2);
+        }
+        {
+            QSqlDatabase d = QSqlDatabase::addDatabase(QStringLiteral("QSQLITE"), QStringLiteral("skip"));
+            d.setDatabaseName(path);
+            QVERIFY(d.open());
+            QSqlQuery q(d);
+            QVERIFY(q.exec(QStringLiteral("UPDATE sample_levels SET data = x'00' WHERE level IN (3, 4)")));
+            QVERIFY(q.numRowsAffected() >= 2);
+            q.finish();
+            d.close();
+        }
+        QSqlDatabase::removeDatabase(QStringLiteral("skip"));
+        SessionStore s(path);
+        QVERIFY_EXCEPTION_THROWN(s.decimated(ch, -1e300, 1e300, 20), StorageError); // level 4 answers 20: malformed
+        const DecimatedSeries after = s.decimated(ch, -1e300, 1e300, 500);
+        QCOMPARE(after.level, 2);
+        QCOMPARE(after.tFirst, before.tFirst);
+        QCOMPARE(after.tLast, before.tLast);
+        QCOMPARE(after.min, before.min);
+        QCOMPARE(after.max, before.max);
+        const DecimatedSeries w = s.decimated(ch, 1000.0, 9000.0, 300);
+        QCOMPARE(w.tFirst, window.tFirst);
+        QCOMPARE(w.min, window.min);
+        QCOMPARE(w.max, window.max);
+    }
+
     void mipmapSurvivesReopening()
     {
         // Appending after reopening continues the open mipmap rows.

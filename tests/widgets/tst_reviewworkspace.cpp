@@ -57,6 +57,7 @@ private slots:
     void viewsWithoutDataAreUnavailable();
     void infraredProfileMatchesRigTruth();
     void longChannelsDrawTheirStoredEnvelopes();
+    void openingBuildsEachLegendEntryOnce();
 
 private:
     QTemporaryDir m_dir;
@@ -311,6 +312,36 @@ void TestReviewWorkspace::longChannelsDrawTheirStoredEnvelopes()
         QCOMPARE(columns(x, y), columns(ex, ey));
         QCOMPARE(*std::min_element(y.cbegin(), y.cend()), *std::min_element(ey.cbegin(), ey.cend()));
     }
+}
+
+void TestReviewWorkspace::openingBuildsEachLegendEntryOnce()
+{
+    // Speed guard of issue 33 (a count, not a time): Qwt rebuilds a curve's legend entry at
+    // attach() and at every later setPen(); that work was the largest part of adding a curve.
+    // Opening a session of four long (decimated) channels and one short (raw) one must build
+    // each entry once: 5 legend updates, not 9 (the decimated curves got their cosmetic pen
+    // after attach).
+    SessionStore store(m_dir.filePath(QStringLiteral("legend.sqlite")));
+    const qint64 session = teststore::emptySession(store, QStringLiteral("legend"), QStringLiteral("2026-11-27T00:00:00Z"));
+    for (int k = 0; k < 5; ++k) {
+        const qint64 id = store.addChannel(session, teststore::channelInfo(QStringLiteral("T%1").arg(k), QStringLiteral("temperature"),
+                                                                            QStringLiteral("degC"), QStringLiteral("ambient")));
+        QVector<double> t, v;
+        for (int i = 0; i < (k < 4 ? 70000 : 500); ++i) {
+            t.push_back(i * 0.1);
+            v.push_back(20.0 + k + std::sin(i * 1e-3));
+        }
+        store.appendSamples(id, t, v);
+    }
+    ReviewWorkspace review;
+    review.resize(1366, 700);
+    review.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&review));
+    int updates = 0;
+    connect(review.timeSeriesPlot(), &QwtPlot::legendDataChanged, this, [&updates] { ++updates; });
+    review.setSession(&store, session);
+    QCOMPARE(review.timeSeriesPlot()->curves().size(), 5);
+    QCOMPARE(updates, 5);
 }
 
 QTEST_MAIN(TestReviewWorkspace)
