@@ -127,12 +127,9 @@ QStringList problems(QWidget *top)
             const QwtScaleMap map = plot->canvasMap(QwtPlot::xBottom);
             const QList<double> ticks = plot->axisScaleDiv(QwtPlot::xBottom).ticks(QwtScaleDiv::MajorTick);
             const QFont font = plot->axisWidget(QwtPlot::xBottom)->font();
-            // Not the live plot: its growing time axis sets its own steps as data arrive, and its
-            // labels touched in some runs (52.8 of 56 px): known, left open (docs/review.md).
-            bool live = false;
-            for (const QWidget *p = plot; p && !live; p = p->parentWidget())
-                live = p->objectName() == QLatin1String("LiveRecordingView");
-            for (int i = 1; i < ticks.size() && plot->axisEnabled(QwtPlot::xBottom) && !live; ++i) {
+            // The live plot too: its labels touched (52.8 of 56 px) while ticks were counted
+            // from the plot's width, not its canvas's (AxisTicks).
+            for (int i = 1; i < ticks.size() && plot->axisEnabled(QwtPlot::xBottom); ++i) {
                 const double gap = std::fabs(map.transform(ticks[i]) - map.transform(ticks[i - 1]));
                 const double need = (draw->labelSize(font, ticks[i]).width() + draw->labelSize(font, ticks[i - 1]).width()) / 2.0;
                 if (gap < need + 2.0) {
