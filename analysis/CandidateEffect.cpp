@@ -99,9 +99,12 @@ std::string CandidateEffect::notApplicable(const DiagnosisRecording &train, cons
     // A standstill law is fitted on the training recording, so that one must stand still; the
     // validation recording need not (the rig preset holding-heat: 42 min of standstill in
     // training, 6 min in validation, named right; asking both for 10 min answered `none`).
-    if (needsStandstill && standstill_s(train) < kMinStandstill_s)
-        return "training recording stands still for " + fixedText(standstill_s(train) / 60.0, 0) +
-               " min (a standstill law needs " + fixedText(kMinStandstill_s / 60.0, 0) + " min)";
+    if (needsStandstill) {
+        const double still = standstill_s(train);
+        if (still < kMinStandstill_s)
+            return "training recording stands still for " + fixedText(still / 60.0, 0) + " min (a standstill law needs " +
+                   fixedText(kMinStandstill_s / 60.0, 0) + " min)";
+    }
     return {};
 }
 
@@ -348,9 +351,8 @@ CandidateEffect CandidateEffectLibrary::member(const EffectGrammar::Member &m)
     for (const EffectGrammar::Member &lib : EffectGrammar::members())
         if (lib.library && lib.location == m.location && lib.law == T::Feed)
             nests.push_back(lib.code);
-    CandidateEffect e(m.code, "Grammar member: " + words + ". Modelled as " + model + ".", driver, roles, create, starts, nests);
-    e.needsStandstill = m.law == T::Standstill;
-    return e;
+    // (No standstill law is generated: the switch above refuses it, so needsStandstill stays false.)
+    return CandidateEffect(m.code, "Grammar member: " + words + ". Modelled as " + model + ".", driver, roles, create, starts, nests);
 }
 
 std::vector<CandidateEffect> CandidateEffectLibrary::grammar()

@@ -207,11 +207,13 @@ QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, 
     const SessionStore *store = m_store;
     const int buckets = m_timeSeries->decimationBuckets();
     auto fetch = [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); };
+    auto draw = [&](const KeptCurve &k) {
+        return k.decimated ? m_timeSeries->addDecimatedCurve(title, fetch, k.envelope, right, style)
+                           : m_timeSeries->addCurve(title, k.envelope.x, k.envelope.y, right, TimeSeriesPlot::CurveStyle::Lines, style);
+    };
     auto cached = m_envelopes.constFind(id);
     if (cached != m_envelopes.cend() && cached->envelope.buckets <= buckets)
-        return cached->decimated ? m_timeSeries->addDecimatedCurve(title, fetch, cached->envelope, right, style)
-                                 : m_timeSeries->addCurve(title, cached->envelope.x, cached->envelope.y, right,
-                                                          TimeSeriesPlot::CurveStyle::Lines, style);
+        return draw(*cached);
     const DecimatedSeries whole = store->decimated(id, -1e300, 1e300, buckets);
     KeptCurve kept;
     // Level 2 or coarser holds >= 200 entries of 256 samples: far over kRawCurveLimit. At
@@ -235,9 +237,7 @@ QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, 
     }
     if (keep && m_envelopesComplete)
         m_envelopes.insert(id, kept);
-    return kept.decimated ? m_timeSeries->addDecimatedCurve(title, fetch, kept.envelope, right, style)
-                          : m_timeSeries->addCurve(title, kept.envelope.x, kept.envelope.y, right,
-                                                   TimeSeriesPlot::CurveStyle::Lines, style);
+    return draw(kept);
 }
 
 void ReviewWorkspace::setOverlay(const QVector<qint64> &sessionIds)
