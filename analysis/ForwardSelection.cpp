@@ -343,6 +343,16 @@ ForwardSelection::Result ForwardSelection::run(const CandidateFit &baseline, con
     std::vector<std::string> inapplicable(m_library.size());
     for (size_t c = 0; c < m_library.size(); ++c)
         inapplicable[c] = m_library[c].notApplicable(train, validate);
+    // A candidate not judged: not applicable to these recordings, or its refit failed.
+    auto leftOut = [this](size_t c, const std::string &inapplicableReason, const std::string &failure) {
+        CandidateOutcome out;
+        out.effect = m_library[c].code;
+        out.explanation = m_library[c].explanation;
+        out.applicable = false;
+        out.notApplicableReason = inapplicableReason.empty() ? failure : inapplicableReason;
+        out.reasons.push_back((inapplicableReason.empty() ? "refit failed: " : "not applicable: ") + out.notApplicableReason);
+        return out;
+    };
     std::vector<Choice> accepted;
     const CandidateFit *reference = &baseline;
     const int maxSteps = std::max(1, m_options.maxEffects);
@@ -356,8 +366,14 @@ ForwardSelection::Result ForwardSelection::run(const CandidateFit &baseline, con
             if (inapplicable[c].empty() && !excluded(c, accepted) &&
                 (r == 0 || (result.firstRound.size() == m_library.size() && result.firstRound[c].applicable)))
                 which.push_back(c);
-        if (which.empty())
+        if (which.empty()) {
+            // Nothing to refit in the first round: still say why each candidate was left out
+            // (the rig preset holding-heat once answered `none` with no candidate listed).
+            if (r == 0)
+                for (size_t c = 0; c < m_library.size(); ++c)
+                    result.firstRound.push_back(leftOut(c, inapplicable[c], {}));
             break;
+        }
         const std::string prefix = r == 0 ? std::string() : "step " + std::to_string(r + 1) + ": ";
         Round round = refitAll(which, accepted, *reference, refit, [&](double f, const std::string &stage) {
             return tick(share(r) + (share(r + 1) - share(r)) * f, prefix + stage);
@@ -379,11 +395,7 @@ ForwardSelection::Result ForwardSelection::run(const CandidateFit &baseline, con
                 continue;
             CandidateOutcome out;
             if (!inapplicable[c].empty() || !round.failure[c].empty()) {
-                out.effect = m_library[c].code;
-                out.explanation = m_library[c].explanation;
-                out.applicable = false;
-                out.notApplicableReason = inapplicable[c].empty() ? round.failure[c] : inapplicable[c];
-                out.reasons.push_back((inapplicable[c].empty() ? "refit failed: " : "not applicable: ") + out.notApplicableReason);
+                out = leftOut(c, inapplicable[c], round.failure[c]);
             } else {
                 out = m_acceptance.judge(m_library[c], round.fits[c], *reference, effectiveN, train.drawingFixedEnd_mm, threshold, r > 0,
                                          fitted.size());

@@ -32,6 +32,7 @@ private slots:
     void triedOnlyWithTheirInputs();
     void thresholdTightensAsTheGrammarGrows();
     void findsLaggedFreeEndHeat();
+    void saysWhyNothingWasSearched();
 
 private:
     static DiagnosisRecording make(bool validation, double kFree, double tau_s, bool standstill = true);
@@ -249,6 +250,27 @@ void TestDiagnosisGrammar::thresholdTightensAsTheGrammarGrows()
         QCOMPARE(threshold({0.05 / static_cast<double>(m)}, m), 0.05 / static_cast<double>(m));
         QCOMPARE(threshold({0.05 / static_cast<double>(m - 1)}, m), -1.0);
     }
+}
+
+void TestDiagnosisGrammar::saysWhyNothingWasSearched()
+{
+    // Only a standstill law asked for, and the training recording never stands still: nothing
+    // is refitted, and the answer still lists the candidate with the reason (it listed none).
+    const DiagnosisRecording a = make(false, 0.0, 1.0, false), b = make(true, 0.0, 1.0, false);
+    DiagnosisOptions o;
+    o.identification.simulator.grid.dt_s = 20.0;
+    o.identification.simulator.driveSample_s = 1.0;
+    o.identification.maxIterations = 60;
+    o.adviseTests = false;
+    o.effects = {"holding_heat"};
+    const DiagnosisReport r = DiagnosisEngine(ScrewGeometry{}, o).run(a, b);
+    QCOMPARE(r.effect, std::string("none"));
+    QCOMPARE(r.candidatesSearched, 0);
+    QCOMPARE(r.candidates.size(), size_t(1));
+    QCOMPARE(r.candidates[0].effect, std::string("holding_heat"));
+    QVERIFY(!r.candidates[0].applicable);
+    QVERIFY2(r.candidates[0].notApplicableReason.find("training recording stands still for 0 min") != std::string::npos,
+             r.candidates[0].notApplicableReason.c_str());
 }
 
 void TestDiagnosisGrammar::findsLaggedFreeEndHeat()
