@@ -101,7 +101,7 @@ QString FdmModelJson::metricLabel(const QString &key)
     }
     for (const auto &l : kLabels)
         if (name == QLatin1String(l.first))
-            return prefix + QLatin1String(l.second);
+            return prefix + QString::fromUtf8(l.second); // the labels write µm
     return prefix + name;
 }
 

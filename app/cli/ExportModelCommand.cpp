@@ -145,7 +145,7 @@ int ExportModelCommand::run(const QStringList &args)
         CliSupport::writeJson(QJsonDocument(summary), p.value(json));
     if (!p.isSet(json) || p.value(json) != QLatin1String("-")) {
         o << result.kind << " -> " << result.target << ": " << result.paths.size() << " file(s) in " << dir
-          << ", approximation error " << QString::number(result.exported.approximationError_um, 'g', 4) << " \u00b5m\n";
+          << ", approximation error " << QString::number(result.exported.approximationError_um, 'g', 4) << QStringLiteral(" \u00b5m\n");
         for (const QString &f : result.paths)
             o << "  " << f << '\n';
         for (const std::string &n : result.exported.notes)
