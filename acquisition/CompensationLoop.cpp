@@ -256,9 +256,9 @@ void CompensationLoop::run()
         QStringList holds, changed;
         for (int i = 0; i < map.axes.size(); ++i) {
             OffsetGovernor &g = governors[static_cast<size_t>(i)];
-            holds << QStringLiteral("%1 %2 um").arg(map.axes[i].label()).arg(held[i]);
+            holds << QStringLiteral("%1 %2 \u00b5m").arg(map.axes[i].label()).arg(held[i]);
             if (g.hasWritten() && std::abs(held[i] - g.lastWritten_um()) > 0.5 * map.resolution_um)
-                changed << QStringLiteral("%1 %2 um instead of the %3 um last written").arg(map.axes[i].label()).arg(held[i]).arg(g.lastWritten_um());
+                changed << QStringLiteral("%1 %2 \u00b5m instead of the %3 \u00b5m last written").arg(map.axes[i].label()).arg(held[i]).arg(g.lastWritten_um());
             g.adopt(held[i]);
         }
         {
@@ -339,13 +339,13 @@ void CompensationLoop::run()
             if (!failure.why.isEmpty()) {
                 ++failed;
                 disturbed = true;
-                disconnect(t, failure, QStringLiteral("writing %1 um to %2 (%3)").arg(d.value_um).arg(registers(map.axes[i].address), map.axes[i].label()));
+                disconnect(t, failure, QStringLiteral("writing %1 \u00b5m to %2 (%3)").arg(d.value_um).arg(registers(map.axes[i].address), map.axes[i].label()));
                 break;
             }
             refusedBackoff_s = kRefusedBackoffInitial_s;
             g.written(t, d.value_um);
             ++writes;
-            note(t, QStringLiteral("write %1 %2 um (R%3/R%4 = %5, %6)")
+            note(t, QStringLiteral("write %1 %2 \u00b5m (R%3/R%4 = %5, %6)")
                         .arg(map.axes[i].label())
                         .arg(d.value_um)
                         .arg(map.axes[i].address)

@@ -48,7 +48,7 @@ public:
 
     struct Entry {
         double t_s = 0.0;
-        QString what;      // "write X 12 um (R5700/R5701 = 12, 0)", "connection to ... lost: ...", ...
+        QString what;      // "write X 12 µm (R5700/R5701 = 12, 0)", "connection to ... lost: ...", ...
     };
     struct Status {
         bool running = false;

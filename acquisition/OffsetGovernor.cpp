@@ -9,9 +9,9 @@ namespace driftlab {
 void OffsetGovernor::Limits::check() const
 {
     if (!(maxOffset_um > 0.0) || !std::isfinite(maxOffset_um))
-        throw std::invalid_argument(QStringLiteral("max_offset_um must be a positive number of um, got %1").arg(maxOffset_um).toStdString());
+        throw std::invalid_argument(QStringLiteral("max_offset_um must be a positive number of \u00b5m, got %1").arg(maxOffset_um).toStdString());
     if (!(maxRate_um_s > 0.0) || !std::isfinite(maxRate_um_s))
-        throw std::invalid_argument(QStringLiteral("max_rate_um_s must be a positive number of um/s, got %1").arg(maxRate_um_s).toStdString());
+        throw std::invalid_argument(QStringLiteral("max_rate_um_s must be a positive number of \u00b5m/s, got %1").arg(maxRate_um_s).toStdString());
 }
 
 OffsetGovernor::OffsetGovernor(const Limits &limits, double resolution_um) : m_limits(limits), m_resolution_um(resolution_um)

@@ -157,7 +157,7 @@ QVector<quint16> OffsetRegisterMap::words(double offset_um) const
 {
     const double counts = std::round(sign * offset_um / resolution_um);
     if (!(std::abs(counts) <= static_cast<double>(std::numeric_limits<qint32>::max())))
-        throw std::out_of_range(QStringLiteral("offset %1 um does not fit the register pair").arg(offset_um).toStdString());
+        throw std::out_of_range(QStringLiteral("offset %1 \u00b5m does not fit the register pair").arg(offset_um).toStdString());
     const quint32 raw = static_cast<quint32>(static_cast<qint32>(counts));
     const quint16 low = static_cast<quint16>(raw & 0xffffu);
     const quint16 high = static_cast<quint16>(raw >> 16);

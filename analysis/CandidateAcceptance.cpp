@@ -162,14 +162,14 @@ CandidateOutcome CandidateAcceptance::judge(const CandidateEffect &effect, const
                           fixedText(ev.fit.parameters.fixedEndPosition_mm, 1) + " mm, distance " + fixedText(out.plausibilityDistance, 2) +
                           " vs reference " + fixedText(baseDistance, 2) +
                           (plausibleOk ? "" : " (the refit bends the seed-000 parameters away from physics)"));
-    out.reasons.push_back("held-out RMS " + fixedText(ev.eval.heldoutRms_um, 3) + " um vs reference " + fixedText(b.heldoutRms_um, 3) + " um (" +
+    out.reasons.push_back("held-out RMS " + fixedText(ev.eval.heldoutRms_um, 3) + " \u00b5m vs reference " + fixedText(b.heldoutRms_um, 3) + " \u00b5m (" +
                           fixedText(100.0 * out.heldoutImprovement, 1) + " % better" +
                           (out.heldoutImprovement >= heldNeeded ? ")" : ", below the " + fixedText(100.0 * heldNeeded, 0) + " % needed)"));
     if (!std::isfinite(ev.eval.cvRms_um) && std::isfinite(b.cvRms_um) && !ev.cvSkipped.empty()) {
         out.reasons.push_back("not cross-validated (" + ev.cvSkipped + "): the held-out gain must reach " +
                               fixedText(100.0 * m_options.cvWaiverHeldoutImprovement, 0) + " % instead" + (cvWaived ? "" : " (it does not)"));
     } else {
-        out.reasons.push_back("cross-validation RMS " + fixedText(ev.eval.cvRms_um, 3) + " um vs " + fixedText(b.cvRms_um, 3) + " um (" +
+        out.reasons.push_back("cross-validation RMS " + fixedText(ev.eval.cvRms_um, 3) + " \u00b5m vs " + fixedText(b.cvRms_um, 3) + " \u00b5m (" +
                               fixedText(100.0 * out.cvImprovement, 1) + " % better" +
                               (cvPassed ? ")"
                                : cvWaived

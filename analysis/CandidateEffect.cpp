@@ -206,14 +206,14 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
     lib.push_back({"structure_offset",
                    "The machine structure (bed, column, encoder mounting) expands with its own temperature and "
                    "shifts every target by the same amount (seed 000 attributes all error to the screw). "
-                   "Modelled as c (T_structure(t) - T_structure(t_ref)), c in um/K.",
+                   "Modelled as c (T_structure(t) - T_structure(t_ref)), c in \u00b5m/K.",
                    "role:structure",
                    {"structure"},
                    [](const DiagnosisRecording &, int) { return structureTerms(false); }});
     lib.push_back({"structure_linear",
                    "The structure or the scale expands with its own temperature in proportion to the axis "
                    "position (a slope across the travel). Modelled as (c1 P_x + c0) (T_structure(t) - "
-                   "T_structure(t_ref)), c1 in um/(m K), c0 in um/K.",
+                   "T_structure(t_ref)), c1 in \u00b5m/(m K), c0 in \u00b5m/K.",
                    "role:structure",
                    {"structure"},
                    [](const DiagnosisRecording &, int) { return structureTerms(true); },

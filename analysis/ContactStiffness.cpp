@@ -57,7 +57,7 @@ double ContactStiffness::nutStiffness_N_um(double nutPreload_N, double dynamicLo
     require(nutPreload_N >= 0.0 && std::isfinite(nutPreload_N),
             "nut preload must be >= 0 N, got " + std::to_string(nutPreload_N));
     require(dynamicLoadRating_N > 0.0, "dynamic load rating C_a must be > 0 N");
-    require(catalogueStiffness_N_um > 0.0, "catalogue stiffness K must be > 0 N/um");
+    require(catalogueStiffness_N_um > 0.0, "catalogue stiffness K must be > 0 N/\u00b5m");
     require(epsilon > 0.0, "epsilon must be > 0");
     return 0.8 * std::cbrt(nutPreload_N / (epsilon * dynamicLoadRating_N)) * catalogueStiffness_N_um;
 }

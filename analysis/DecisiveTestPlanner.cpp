@@ -151,7 +151,7 @@ DecisiveTestPlanner::Rivals DecisiveTestPlanner::rivals(const DiagnosisReport &r
         r.trigger = "step " + std::to_string(s + 1) + ": the runner-up " + runner->effect + " is close to " + w->effect + " (score " +
                     fixedText(runner->score, 2) + " vs " + fixedText(w->score, 2) + ", held-out RMS " +
                     fixedText(runner->evaluation.heldoutRms_um, 3) + " vs " + fixedText(w->evaluation.heldoutRms_um, 3) +
-                    " um; close means a score within " + fixedText(scoreMargin, 2) + " or a held-out RMS within " +
+                    " \u00b5m; close means a score within " + fixedText(scoreMargin, 2) + " or a held-out RMS within " +
                     fixedText(100.0 * (heldoutRatio - 1.0), 0) + " %)";
         return r;
     }

@@ -36,7 +36,7 @@ std::string DiagnosisReportAssembler::noneExplanation(const DiagnosisReport &rep
         return "No candidate effect earns its keep: no library effect or empirical term explains the baseline's residual with "
                "enough held-out evidence, so no correction is named. That residual is not plain noise (" + why +
                "; held-out RMS " + fixedText(report.baseline.heldoutRms_um, 2) +
-               " um): the location shows where it is largest, the evidence per candidate how close each came; longer recordings "
+               " \u00b5m): the location shows where it is largest, the evidence per candidate how close each came; longer recordings "
                "or more interferometer runs may decide whether it is an effect.";
     return "No candidate effect earns its keep: none improves the held-out RMS, the cross-validation RMS and the "
            "autocorrelation-corrected information criterion with a significant, in-bounds amplitude, and the baseline's "
@@ -215,10 +215,10 @@ std::vector<double> DiagnosisReportAssembler::explainRest(DiagnosisReport &repor
     const bool located = ResidualLocator::isLocated(report.correctedLocation, nullptr);
     auto um = [](double v) { return fixedText(v, 3); };
     auto pct = [](double v) { return std::to_string(static_cast<int>(std::lround(100.0 * v))) + " %"; };
-    d.reasons.push_back("held-out RMS " + um(d.heldoutBefore_um) + " -> " + um(d.heldoutAfter_um) + " um (" + pct(heldGain) +
+    d.reasons.push_back("held-out RMS " + um(d.heldoutBefore_um) + " -> " + um(d.heldoutAfter_um) + " \u00b5m (" + pct(heldGain) +
                         " better" + (heldOk ? ")" : ", below the " + pct(m_options.minHeldoutImprovement) + " needed)"));
     d.reasons.push_back("time-blocked cross-validation RMS of the residual " + um(d.cvBefore_um) + " -> " + um(d.cvAfter_um) +
-                        " um (" + pct(cvGain) + " better" + (cvOk ? ")" : ", below the " + pct(m_options.minCvImprovement) + " needed)"));
+                        " \u00b5m (" + pct(cvGain) + " better" + (cvOk ? ")" : ", below the " + pct(m_options.minCvImprovement) + " needed)"));
     if (!located)
         d.reasons.push_back("the model's training residual looks white and correlates with no driver (|r| < 0.5): noise, not a "
                             "located discrepancy");

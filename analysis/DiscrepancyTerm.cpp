@@ -236,13 +236,13 @@ std::string DiscrepancyTerm::hypothesis(const Fit &fit, double fixedEnd_mm)
     const double xLo = fit.xMid_mm - fit.xHalf_mm, xHi = fit.xMid_mm + fit.xHalf_mm;
     const double big = std::max({std::fabs(lo), std::fabs(mid), std::fabs(hi)});
     if (big > 0 && std::min(std::fabs(lo), std::fabs(hi)) > 0.7 * big && lo * hi > 0) {
-        s += ", about the same along the travel (" + fixedText(mid, 2) + " um per K: a shift of every target)";
+        s += ", about the same along the travel (" + fixedText(mid, 2) + " \u00b5m per K: a shift of every target)";
     } else {
         const bool loIsFixedEnd = !std::isfinite(fixedEnd_mm) || std::fabs(xLo - fixedEnd_mm) <= std::fabs(xHi - fixedEnd_mm);
         const bool largerAtLo = std::fabs(lo) > std::fabs(hi);
         const std::string end = largerAtLo == loIsFixedEnd ? "fixed" : "free";
-        s += ", largest towards the " + end + " end of the screw (" + fixedText(lo, 2) + " um/K at " + fixedText(xLo, 0) + " mm, " +
-             fixedText(hi, 2) + " um/K at " + fixedText(xHi, 0) + " mm)";
+        s += ", largest towards the " + end + " end of the screw (" + fixedText(lo, 2) + " \u00b5m/K at " + fixedText(xLo, 0) + " mm, " +
+             fixedText(hi, 2) + " \u00b5m/K at " + fixedText(xHi, 0) + " mm)";
     }
     s += ". Terms: ";
     for (size_t j = 0; j < fit.terms.size(); ++j)

@@ -98,7 +98,7 @@ void EmpiricalSearch::run(ForwardSelection::Result &result, const CandidateFit &
     step.outcome = result.empiricalRound[static_cast<size_t>(best)];
     if (std::isfinite(step.fit.eval.cvRms_um))
         step.outcome.reasons.push_back("cross-validated once accepted (not part of the decision): RMS " + fixedText(step.fit.eval.cvRms_um, 3) +
-                                       " um vs " + fixedText(reference.eval.cvRms_um, 3) + " um for the model before it");
+                                       " \u00b5m vs " + fixedText(reference.eval.cvRms_um, 3) + " \u00b5m for the model before it");
     step.candidatesTried = static_cast<int>(library->size());
     result.steps.push_back(std::move(step));
 }

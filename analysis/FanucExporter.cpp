@@ -51,7 +51,7 @@ ExportResult FanucExporter::exportModel(const ExportableModel &model, const Expo
       << "M99\n%\n";
     ExportResult r;
     r.files.push_back({o.baseName + ".nc", p.str()});
-    r.notes.push_back("inputs are macro variables " + s.inputs.front() + ".. (degC) the PMC keeps current; call O9100 "
+    r.notes.push_back("inputs are macro variables " + s.inputs.front() + ".. (\u00b0C) the PMC keeps current; call O9100 "
                       "periodically: the external offset is exact for the model at that moment");
     r.notes.push_back("constants written with 8 significant digits (the macro limit)");
     return r;

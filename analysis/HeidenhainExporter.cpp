@@ -70,7 +70,7 @@ ExportResult HeidenhainExporter::exportModel(const ExportableModel &model, const
     }
     r.approximationError_um = std::max(r.approximationError_um, worst);
     r.notes.push_back("the PLC selects the .CMA line of the nearest temperature: up to " +
-                      CompensationLaw::number(worst, 4) + " um between the stored temperatures");
+                      CompensationLaw::number(worst, 4) + " \u00b5m between the stored temperatures");
     return r;
 }
 

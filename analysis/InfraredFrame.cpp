@@ -71,7 +71,7 @@ cv::Mat InfraredFrame::readRadiometricCsv(const std::string &path)
                 ++end;
             if (end == begin || (end && *end) || errno == ERANGE || v < -273.15 || v > 3000.0)
                 throw std::runtime_error(path + ": line " + std::to_string(lineNo) + ", column " + std::to_string(col) +
-                                         ": '" + cell + "' is not a temperature in degC");
+                                         ": '" + cell + "' is not a temperature in \u00b0C");
             row.push_back(static_cast<float>(v));
         }
         if (!rows.empty() && row.size() != rows.front().size())

@@ -72,10 +72,10 @@ ExportResult LinuxCncExporter::exportModel(const ExportableModel &model, const E
     r.files.push_back({base + ".ini", ini.str()});
     r.files.push_back({base + ".hal", hal.str()});
     r.approximationError_um = drift;
-    r.notes.push_back("COMP_FILE holds the model at " + CompensationLaw::number(T, 6) + " degC; over " +
+    r.notes.push_back("COMP_FILE holds the model at " + CompensationLaw::number(T, 6) + " \u00b0C; over " +
                       CompensationLaw::number(o.temperatures.from, 6) + ".." + CompensationLaw::number(o.temperatures.to, 6) +
-                      " degC the model moves up to " + CompensationLaw::number(drift, 4) +
-                      " um from it: drive that part through the external offsets (.hal)");
+                      " \u00b0C the model moves up to " + CompensationLaw::number(drift, 4) +
+                      " \u00b5m from it: drive that part through the external offsets (.hal)");
     return r;
 }
 

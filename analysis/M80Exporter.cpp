@@ -11,13 +11,13 @@ namespace driftlab {
 
 std::string M80Exporter::description() const
 {
-    return "Mitsubishi M80 register map (R5700.. pairs, 1 um, low word first) and the register values over "
+    return "Mitsubishi M80 register map (R5700.. pairs, 1 \u00b5m, low word first) and the register values over "
            "temperature and position";
 }
 
 std::string M80Exporter::reference() const
 {
-    return "Seed 003 (thermal error compensation on a Mitsubishi M80 through R registers in 1 um steps); "
+    return "Seed 003 (thermal error compensation on a Mitsubishi M80 through R registers in 1 \u00b5m steps); "
            "Mitsubishi M800/M80 Series PLC Interface Manual, R register device (16-bit words)";
 }
 
@@ -66,8 +66,8 @@ ExportResult M80Exporter::exportModel(const ExportableModel &model, const Export
     r.files.push_back({o.baseName + "_m80_map.json", map.str()});
     r.files.push_back({o.baseName + "_m80_registers.csv", csv.str()});
     r.approximationError_um = rounding;
-    r.notes.push_back("register values are the compensation -E rounded to 1 um (up to " + CompensationLaw::number(rounding, 3) +
-                      " um); a 32-bit two's-complement value, low word in R" + std::to_string(low));
+    r.notes.push_back("register values are the compensation -E rounded to 1 \u00b5m (up to " + CompensationLaw::number(rounding, 3) +
+                      " \u00b5m); a 32-bit two's-complement value, low word in R" + std::to_string(low));
     return r;
 }
 

@@ -293,12 +293,12 @@ std::vector<SensorFinding> MeasurementChainCheck::airByJointFit(const DiagnosisR
     f.unit = "um/(m K)";
     f.recording = train.screw.name;
     f.law = "the interferometer reading follows the air temperature at " + fixedText(a.k, 2) +
-            " um/m/K over the axis position (air compensation off or wrong); the probe and the screw model do not";
+            " \u00b5m/m/K over the axis position (air compensation off or wrong); the probe and the screw model do not";
     f.evidence.push_back("training, refitted with the screw model (the probe anchors the screw): k = " + fixedText(a.k, 3) +
-                         " +- " + fixedText(a.se, 3) + " um/m/K (t = " + fixedText(a.t(), 1) + ")");
-    f.evidence.push_back("validation, refitted on its own: k = " + fixedText(b.k, 3) + " um/m/K (t = " + fixedText(b.t(), 1) + ")");
-    f.evidence.push_back("validation interferometer RMS predicted with the law " + fixedText(a.heldoutRms, 3) + " um, without " +
-                         fixedText(baseHeldout, 3) + " um");
+                         " +- " + fixedText(a.se, 3) + " \u00b5m/m/K (t = " + fixedText(a.t(), 1) + ")");
+    f.evidence.push_back("validation, refitted on its own: k = " + fixedText(b.k, 3) + " \u00b5m/m/K (t = " + fixedText(b.t(), 1) + ")");
+    f.evidence.push_back("validation interferometer RMS predicted with the law " + fixedText(a.heldoutRms, 3) + " \u00b5m, without " +
+                         fixedText(baseHeldout, 3) + " \u00b5m");
     out.push_back(std::move(f));
     return out;
 }
@@ -431,12 +431,12 @@ std::vector<SensorFinding> MeasurementChainCheck::check(const DiagnosisRecording
                 f.unit = "um/(m K)";
                 f.recording = train.screw.name;
                 f.law = "the interferometer reading follows the air temperature at " + fixedText(k, 2) +
-                        " um/m/K over the axis position (air compensation off or wrong); the " +
-                        (p.ok ? "probe does not (" + fixedText(p.beta(1), 2) + " um/K, t = " + fixedText(p.t(1), 1) + ")"
+                        " \u00b5m/m/K over the axis position (air compensation off or wrong); the " +
+                        (p.ok ? "probe does not (" + fixedText(p.beta(1), 2) + " \u00b5m/K, t = " + fixedText(p.t(1), 1) + ")"
                               : "model's screw temperatures do not");
-                f.evidence.push_back("training: k = " + fixedText(k, 3) + " +- " + fixedText(a.se(1), 3) + " um/m/K (t = " +
+                f.evidence.push_back("training: k = " + fixedText(k, 3) + " +- " + fixedText(a.se(1), 3) + " \u00b5m/m/K (t = " +
                                      fixedText(tk, 1) + "), R2 " + fixedText(a.r2, 2) + " of the baseline's residual");
-                f.evidence.push_back("validation: k = " + fixedText(b.beta(1), 3) + " um/m/K (t = " + fixedText(b.t(1), 1) + ")");
+                f.evidence.push_back("validation: k = " + fixedText(b.beta(1), 3) + " \u00b5m/m/K (t = " + fixedText(b.t(1), 1) + ")");
                 if (!bestOtherRole.empty())
                     f.evidence.push_back("best other temperature for the same law: " + bestOtherRole + " (R2 " +
                                          fixedText(bestOther, 2) + ")");
@@ -493,6 +493,7 @@ std::vector<SensorFinding> MeasurementChainCheck::check(const DiagnosisRecording
             if (interQuiet && confirmed) {
                 const bool time = best.driver == "time";
                 const std::string unit = time ? "um/h" : "um/K";
+                const std::string shown = time ? "\u00b5m/h" : "\u00b5m/K"; // the unit code above is stored, this one is read
                 SensorFinding f;
                 f.sensor = "screw_elongation probe";
                 f.role = "screw_elongation";
@@ -504,13 +505,13 @@ std::vector<SensorFinding> MeasurementChainCheck::check(const DiagnosisRecording
                 f.recording = train.screw.name;
                 f.law = "the screw-end probe reading follows " +
                         (time ? std::string("time") : "the " + best.driver + " temperature") + " at " +
-                        fixedText(best.fit.beta(1), 2) + " " + unit + " (its holder moves); the interferometer does not (" +
-                        (qi.ok ? fixedText(qi.beta(1), 2) + " " + unit + ", t = " + fixedText(qi.t(1), 1) : "n/a") +
+                        fixedText(best.fit.beta(1), 2) + " " + shown + " (its holder moves); the interferometer does not (" +
+                        (qi.ok ? fixedText(qi.beta(1), 2) + " " + shown + ", t = " + fixedText(qi.t(1), 1) : "n/a") +
                         "): the probe is left out";
                 f.evidence.push_back("training: " + fixedText(best.fit.beta(1), 3) + " +- " + fixedText(best.fit.se(1), 3) + " " +
-                                     unit + " (t = " + fixedText(best.fit.t(1), 1) + "), R2 " + fixedText(best.fit.r2, 2) +
+                                     shown + " (t = " + fixedText(best.fit.t(1), 1) + "), R2 " + fixedText(best.fit.r2, 2) +
                                      " of the probe's disagreement with a model fitted to the interferometer alone");
-                f.evidence.push_back("validation: " + fixedText(qb.beta(1), 3) + " " + unit + " (t = " + fixedText(qb.t(1), 1) + ")");
+                f.evidence.push_back("validation: " + fixedText(qb.beta(1), 3) + " " + shown + " (t = " + fixedText(qb.t(1), 1) + ")");
                 out.push_back(std::move(f));
             }
         }

@@ -402,14 +402,14 @@ void ResidualLocator::summarise(ResidualLocation &loc)
         n += g.count;
     }
     if (n)
-        s << "interferometer residual RMS " << fmt(std::sqrt(total / n)) << " um";
+        s << "interferometer residual RMS " << fmt(std::sqrt(total / n)) << " \u00b5m";
     if (const ResidualGroup *w = worst(loc.byPhase))
-        s << "; largest in phase '" << w->label << "' (RMS " << fmt(w->rms_um) << " um, mean " << fmt(w->mean_um)
-          << " um)";
+        s << "; largest in phase '" << w->label << "' (RMS " << fmt(w->rms_um) << " \u00b5m, mean " << fmt(w->mean_um)
+          << " \u00b5m)";
     if (const ResidualGroup *w = worst(loc.byScrewPart))
-        s << "; along the axis largest in the " << w->label << " (RMS " << fmt(w->rms_um) << " um)";
+        s << "; along the axis largest in the " << w->label << " (RMS " << fmt(w->rms_um) << " \u00b5m)";
     if (const ResidualGroup *w = worst(loc.byHour))
-        s << "; in time largest at " << w->label << " (RMS " << fmt(w->rms_um) << " um)";
+        s << "; in time largest at " << w->label << " (RMS " << fmt(w->rms_um) << " \u00b5m)";
     s << "; residuals " << (loc.white ? "look white" : "are NOT white") << " (lag-1 r = " << fmt(loc.lag1Autocorrelation)
       << ", Ljung-Box p = " << fmt(loc.ljungBoxP, 3) << ")";
     if (!loc.correlations.empty())

@@ -58,15 +58,15 @@ ExportResult Siemens840dExporter::exportModel(const ExportableModel &model, cons
         << " $SA_TEMP_COMP_SLOPE[" << ax << "]=" << law.compensationSlopeFormula(syntax) << "\n"
         << "M30\n";
     r.files.push_back({o.baseName + ".mpf", mpf.str()});
-    r.notes.push_back("inputs are R parameters " + syntax.inputs.front() + ".. filled by the PLC in degC");
+    r.notes.push_back("inputs are R parameters " + syntax.inputs.front() + ".. filled by the PLC in \u00b0C");
     r.notes.push_back("largest |SD43910| on " + CompensationLaw::number(o.temperatures.from, 6) + ".." +
-                      CompensationLaw::number(o.temperatures.to, 6) + " degC: " + CompensationLaw::number(maxSlope, 6) +
+                      CompensationLaw::number(o.temperatures.to, 6) + " \u00b0C: " + CompensationLaw::number(maxSlope, 6) +
                       " (MD32760 limits the gradient; default factor " + CompensationLaw::number(velocityFactor, 3) + ")");
     r.notes.push_back("MD32760 = " + CompensationLaw::number(velocityFactor, 3) + " with MD32000 = " +
                       CompensationLaw::number(o.maxAxisVelocity_mm_min, 6) + " mm/min and an IPO cycle of " +
                       CompensationLaw::number(o.ipoCycle_s * 1e3, 4) + " ms lets the compensation move " +
                       CompensationLaw::number(velocityFactor * o.maxAxisVelocity_mm_min / 60.0 * o.ipoCycle_s * 1e3, 4) +
-                      " um per IPO cycle");
+                      " \u00b5m per IPO cycle");
 
     if (law.scalarTemperature()) {
         const CompensationTable t = CompensationTable::build(law, o, name());

@@ -53,7 +53,7 @@ ExportResult TableExporter::exportModel(const ExportableModel &model, const Expo
     r.files.push_back({o.baseName + (m_json ? ".json" : ".csv"), out.str()});
     r.approximationError_um = t.interpolationError_um;
     r.notes.push_back("linear interpolation between the stored temperatures: up to " +
-                      CompensationLaw::number(t.interpolationError_um, 4) + " um");
+                      CompensationLaw::number(t.interpolationError_um, 4) + " \u00b5m");
     return r;
 }
 

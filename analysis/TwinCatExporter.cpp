@@ -56,9 +56,9 @@ ExportResult TwinCatExporter::exportModel(const ExportableModel &model, const Ex
     r.files.push_back({o.baseName + "_axis.lis", lis.str()});
     r.files.push_back({o.baseName + "_tempc.csv", csv.str()});
     r.approximationError_um = std::max(rounding, table.interpolationError_um);
-    r.notes.push_back("axis parameters at " + CompensationLaw::number(T, 6) + " degC, rounded to 0.1 um and 1 um/m: up to " +
-                      CompensationLaw::number(rounding, 4) + " um; the PLC table interpolated linearly in temperature: up to " +
-                      CompensationLaw::number(table.interpolationError_um, 4) + " um");
+    r.notes.push_back("axis parameters at " + CompensationLaw::number(T, 6) + " \u00b0C, rounded to 0.1 \u00b5m and 1 \u00b5m/m: up to " +
+                      CompensationLaw::number(rounding, 4) + " \u00b5m; the PLC table interpolated linearly in temperature: up to " +
+                      CompensationLaw::number(table.interpolationError_um, 4) + " \u00b5m");
     return r;
 }
 

@@ -80,11 +80,11 @@ QString FdmModelJson::metricLabel(const QString &key)
 {
     static const QPair<const char *, const char *> kLabels[] = {
         {"interferometer_points", "interferometer points"},
-        {"interferometer_rms_um", "interferometer RMS residual (um)"},
-        {"interferometer_peak_to_valley_um", "interferometer thermal error peak-to-valley (um)"},
+        {"interferometer_rms_um", "interferometer RMS residual (\u00b5m)"},
+        {"interferometer_peak_to_valley_um", "interferometer thermal error peak-to-valley (\u00b5m)"},
         {"elongation_points", "screw-end elongation samples"},
-        {"elongation_rms_um", "screw-end elongation RMS residual (um)"},
-        {"elongation_peak_um", "screw-end elongation peak (um)"},
+        {"elongation_rms_um", "screw-end elongation RMS residual (\u00b5m)"},
+        {"elongation_peak_um", "screw-end elongation peak (\u00b5m)"},
         {"session", "session id"},
         {"max_relative_standard_error", "poorly identified above standard error / value of"},
         {"note", "note"},
@@ -101,7 +101,7 @@ QString FdmModelJson::metricLabel(const QString &key)
     }
     for (const auto &l : kLabels)
         if (name == QLatin1String(l.first))
-            return prefix + QLatin1String(l.second);
+            return prefix + QString::fromUtf8(l.second); // the labels write µm
     return prefix + name;
 }
 

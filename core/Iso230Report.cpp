@@ -341,7 +341,7 @@ QString Iso230Report::text() const
                                          : ref->directionRecorded ? QStringLiteral("one direction") : QStringLiteral("direction not recorded"))
                  .arg(ref->minApproaches);
     const Iso230Axis &a = ref->axis;
-    lines << QStringLiteral("reference test (run %1, %2 h), um: B %3  B_mean %4  R+ %5  R- %6  R %7  E+ %8  E- %9  E %10  M %11  A+ %12  A- %13  A %14")
+    lines << QStringLiteral("reference test (run %1, %2 h), \u00b5m: B %3  B_mean %4  R+ %5  R- %6  R %7  E+ %8  E- %9  E %10  M %11  A+ %12  A- %13  A %14")
                  .arg(ref->runs.front())
                  .arg(ref->time_s / 3600.0, 0, 'f', 2)
                  .arg(um(a.reversal_um), um(a.meanReversal_um), um(a.repeatUp_um), um(a.repeatDown_um), um(a.repeat_um),
@@ -362,13 +362,13 @@ QString Iso230Report::text() const
                 hiB = std::max(hiB, t.axis.reversal_um);
             }
         }
-        lines << QStringLiteral("over the %1 tests: E %2 .. %3 um%4")
+        lines << QStringLiteral("over the %1 tests: E %2 .. %3 \u00b5m%4")
                      .arg(m_tests.size())
                      .arg(um(loE), um(hiE))
-                     .arg(hiB >= loB ? QStringLiteral(", B %1 .. %2 um").arg(um(loB), um(hiB)) : QString());
+                     .arg(hiB >= loB ? QStringLiteral(", B %1 .. %2 \u00b5m").arg(um(loB), um(hiB)) : QString());
     }
     const Iso230DriftSummary &d = m_drift;
-    lines << QStringLiteral("largest drift from the reference: %1 um at %2 mm%3, %4 h (run %5)")
+    lines << QStringLiteral("largest drift from the reference: %1 \u00b5m at %2 mm%3, %4 h (run %5)")
                  .arg(d.maxDrift_um, 0, 'f', 2)
                  .arg(d.maxDriftPosition_mm, 0, 'f', 1)
                  .arg(d.maxDriftDirection ? QStringLiteral(" (%1)").arg(dirName(d.maxDriftDirection)) : QString())
@@ -377,7 +377,7 @@ QString Iso230Report::text() const
     if (d.withTemperature) {
         for (const Iso230DriftSeries &s : d.series) {
             if (s.position_mm == d.maxDriftPosition_mm && s.direction == d.maxDriftDirection)
-                lines << QStringLiteral("against %1 (range %2 K): %3 um/K there (r = %4)")
+                lines << QStringLiteral("against %1 (range %2 K): %3 \u00b5m/K there (r = %4)")
                              .arg(m_request.temperatureChannel)
                              .arg(d.temperatureRange_K, 0, 'f', 2)
                              .arg(um(s.slope_um_per_K), std::isfinite(s.correlation) ? QString::number(s.correlation, 'f', 3) : QStringLiteral("-"));

@@ -150,9 +150,9 @@ void SessionOffsetSource::choose(double t)
         else if (next >= 0)
             text = QStringLiteral("input '%1' %2: using the model without %1").arg(name, why);
         else if (count > 1)
-            text = QStringLiteral("inputs %1 failed (%2 %3): holding %4 um").arg(names.join(QStringLiteral(", ")), name, why).arg(-m_safe_um, 0, 'f', 1);
+            text = QStringLiteral("inputs %1 failed (%2 %3): holding %4 \u00b5m").arg(names.join(QStringLiteral(", ")), name, why).arg(-m_safe_um, 0, 'f', 1);
         else
-            text = QStringLiteral("input '%1' %2, no model without it: holding %3 um").arg(name, why).arg(-m_safe_um, 0, 'f', 1);
+            text = QStringLiteral("input '%1' %2, no model without it: holding %3 \u00b5m").arg(name, why).arg(-m_safe_um, 0, 'f', 1);
         m_events.push_back({t, text});
         try { // a busy or read-only database must not cost the offset: the event is still logged (takeEvents)
             if (m_store)

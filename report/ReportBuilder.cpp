@@ -13,6 +13,7 @@
 #include "SessionAnalysis.h"
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
+#include "UnitLabels.h"
 
 #include <QBuffer>
 #include <QJsonArray>
@@ -146,7 +147,7 @@ void ReportBuilder::sessionSection(ReportDocument &doc) const
                                                        num(*std::max_element(d.max.begin(), d.max.end()), 4));
             }
         }
-        rows.push_back({c.key, c.kind, c.sensor, c.unit, QString::number(n), range});
+        rows.push_back({c.key, c.kind, c.sensor, UnitLabels::display(c.unit), QString::number(n), range});
         places.push_back({c.key, c.location, c.role, c.screwPosition_m ? num(*c.screwPosition_m * 1000.0, 5) : QStringLiteral("-")});
     }
     const QVector<InterferometerPoint> points = m_store.interferometerPoints(m_session);
@@ -287,7 +288,7 @@ void ReportBuilder::iso230Section(ReportDocument &doc) const
         for (const std::string &n : t.notes)
             notes.insert(QString::fromStdString(n));
     }
-    doc.paragraph(QStringLiteral("ISO 230-2 axis values per interferometer test, in um: A accuracy, E systematic "
+    doc.paragraph(QStringLiteral("ISO 230-2 axis values per interferometer test, in \u00b5m: A accuracy, E systematic "
                                  "positioning error, M range of the mean positional deviation, R repeatability, "
                                  "B reversal value; n = fewest approaches per target and direction."));
     doc.table({QStringLiteral("Runs"), QStringLiteral("t (h)"), QStringLiteral("Targets"), QStringLiteral("Directions"),
@@ -308,7 +309,7 @@ void ReportBuilder::iso230Section(ReportDocument &doc) const
             targets.push_back({num(t.position_mm, 6), QString::number(t.approachesUp), QString::number(t.approachesDown),
                                num(t.meanUp_um, 4), num(t.meanDown_um, 4), num(t.reversal_um, 4), num(t.repeatUp_um, 4),
                                num(t.repeatDown_um, 4), num(t.repeat_um, 4)});
-        doc.paragraph(QStringLiteral("ISO 230-2 per target and direction of the reference test (run %1), in um: "
+        doc.paragraph(QStringLiteral("ISO 230-2 per target and direction of the reference test (run %1), in \u00b5m: "
                                      "mean positional deviation x up and down, reversal B, repeatability R up, down and "
                                      "bidirectional.")
                           .arg(iso->referenceRun()));
@@ -331,7 +332,7 @@ void ReportBuilder::iso230Section(ReportDocument &doc) const
         doc.leftOut(QStringLiteral("ISO 230-3 drift: the session has a single positioning test, so there is no drift"));
         return;
     }
-    doc.paragraph(QStringLiteral("ISO 230-3 drift against the reference run %1: largest drift %2 um at %3 mm (%4) in run %5, "
+    doc.paragraph(QStringLiteral("ISO 230-3 drift against the reference run %1: largest drift %2 \u00b5m at %3 mm (%4) in run %5, "
                                  "%6 h after the start.")
                       .arg(d.referenceRun)
                       .arg(num(d.maxDrift_um, 4), num(d.maxDriftPosition_mm, 6),
@@ -342,7 +343,7 @@ void ReportBuilder::iso230Section(ReportDocument &doc) const
     for (const Iso230DriftSeries &s : d.series)
         drift.push_back({num(s.position_mm, 6), s.direction > 0 ? QStringLiteral("+") : s.direction < 0 ? QStringLiteral("-") : QStringLiteral("?"),
                          num(s.maxDrift_um, 4), hours(s.maxDriftTime_s), QString::number(s.maxDriftRun)});
-    doc.table({QStringLiteral("Target (mm)"), QStringLiteral("Direction"), QStringLiteral("Largest drift (um)"),
+    doc.table({QStringLiteral("Target (mm)"), QStringLiteral("Direction"), QStringLiteral("Largest drift (\u00b5m)"),
                QStringLiteral("at t (h)"), QStringLiteral("Run")},
               drift);
 }
@@ -399,7 +400,7 @@ void ReportBuilder::modelSection(ReportDocument &doc) const
         const QJsonObject errors = m.uncertainties.value(QStringLiteral("standard_errors")).toObject();
         const QJsonObject linear = m.parameters.value(QStringLiteral("linear")).toObject();
         if (!linear.isEmpty()) { // linear data-driven models: coefficients of scaled, lagged inputs
-            rows.push_back({QStringLiteral("intercept (um)"), jsonText(linear.value(QStringLiteral("intercept"))),
+            rows.push_back({QStringLiteral("intercept (\u00b5m)"), jsonText(linear.value(QStringLiteral("intercept"))),
                             jsonText(linear.value(QStringLiteral("intercept_standard_error")))});
             for (const QJsonValue &tv : linear.value(QStringLiteral("terms")).toArray()) {
                 const QJsonObject term = tv.toObject();
@@ -452,7 +453,7 @@ void ReportBuilder::modelSection(ReportDocument &doc) const
             TimeSeriesPlot plot;
             plot.resize(1600, 1000);
             AnalysisPlots::showPrediction(plot, series, nullptr);
-            doc.figure(QStringLiteral("%1: measured and predicted over this session (RMSE %2 um)")
+            doc.figure(QStringLiteral("%1: measured and predicted over this session (RMSE %2 \u00b5m)")
                            .arg(m.model, num(series.metrics.rmse, 4)),
                        svg(plot, kFigure_mm), kFigure_mm);
         } catch (const std::exception &e) {
@@ -481,8 +482,8 @@ void ReportBuilder::dataDrivenChoice(ReportDocument &doc, const FittedModel &m) 
     }
     doc.paragraph(QStringLiteral("Chosen by fit --model auto: %1. Held-out RMSE is shown, never used to choose.")
                       .arg(selection.value(QStringLiteral("rule")).toString()));
-    doc.table({QStringLiteral("Family"), QStringLiteral("CV RMSE (um)"), QStringLiteral("Nested CV (um)"), QStringLiteral("Paired SE (um)"),
-               QStringLiteral("Parameters"), QStringLiteral("Reference"), QStringLiteral("Held-out RMSE (um)"), QStringLiteral("Note")},
+    doc.table({QStringLiteral("Family"), QStringLiteral("CV RMSE (\u00b5m)"), QStringLiteral("Nested CV (\u00b5m)"), QStringLiteral("Paired SE (\u00b5m)"),
+               QStringLiteral("Parameters"), QStringLiteral("Reference"), QStringLiteral("Held-out RMSE (\u00b5m)"), QStringLiteral("Note")},
               rows);
 }
 
@@ -541,9 +542,9 @@ void ReportBuilder::fdmFigure(ReportDocument &doc, const FittedModel &m) const
         plot.resize(1600, 1000);
         plot.addCurve(QStringLiteral("measured (screw_elongation)"), t, measured, false);
         plot.addCurve(QStringLiteral("fdm-seed000 as fitted"), t, model, false);
-        plot.setTitle(QStringLiteral("Screw-end elongation (um): measured and the fitted model"));
+        plot.setTitle(QStringLiteral("Screw-end elongation (\u00b5m): measured and the fitted model"));
         plot.replot();
-        doc.figure(QStringLiteral("fdm-seed000 run over this session against the probe (RMS %1 um over %2 samples)")
+        doc.figure(QStringLiteral("fdm-seed000 run over this session against the probe (RMS %1 \u00b5m over %2 samples)")
                        .arg(num(std::sqrt(sum2 / static_cast<double>(probe.t.size())), 4))
                        .arg(probe.t.size()),
                    svg(plot, kFigure_mm), kFigure_mm);
@@ -578,7 +579,7 @@ void ReportBuilder::diagnosisSection(ReportDocument &doc) const
                             QString::number(qRound(100.0 * s.value(QStringLiteral("heldout_gain")).toDouble())) + QStringLiteral(" %"),
                             s.value(QStringLiteral("explanation")).toString()});
         }
-        doc.table({QStringLiteral("Step"), QStringLiteral("Effect"), QStringLiteral("Held-out RMS before -> after (um)"),
+        doc.table({QStringLiteral("Step"), QStringLiteral("Effect"), QStringLiteral("Held-out RMS before -> after (\u00b5m)"),
                    QStringLiteral("Gain"), QStringLiteral("Explanation")},
                   rows);
     } else {
@@ -589,7 +590,7 @@ void ReportBuilder::diagnosisSection(ReportDocument &doc) const
     if (!where.isEmpty())
         doc.paragraph(QStringLiteral("Where: %1").arg(where));
     const QJsonObject base = d.value(QStringLiteral("baseline")).toObject(), corr = d.value(QStringLiteral("corrected")).toObject();
-    doc.table({QStringLiteral("Residual RMS (um)"), QStringLiteral("before (model as fitted)"), QStringLiteral("after (with the effect)")},
+    doc.table({QStringLiteral("Residual RMS (\u00b5m)"), QStringLiteral("before (model as fitted)"), QStringLiteral("after (with the effect)")},
               {{QStringLiteral("training"), jsonText(base.value(QStringLiteral("train_rms_um"))), jsonText(corr.value(QStringLiteral("train_rms_um")))},
                {QStringLiteral("held-out recording"), jsonText(base.value(QStringLiteral("heldout_rms_um"))),
                 jsonText(corr.value(QStringLiteral("heldout_rms_um")))},
@@ -601,7 +602,7 @@ void ReportBuilder::diagnosisSection(ReportDocument &doc) const
                         jsonText(c.value(QStringLiteral("heldout_rms_um"))), c.value(QStringLiteral("accepted")).toBool() ? QStringLiteral("yes") : QString()});
     }
     if (!rows.isEmpty())
-        doc.table({QStringLiteral("Candidate effect"), QStringLiteral("Score"), QStringLiteral("Held-out RMS (um)"), QStringLiteral("Accepted")}, rows);
+        doc.table({QStringLiteral("Candidate effect"), QStringLiteral("Score"), QStringLiteral("Held-out RMS (\u00b5m)"), QStringLiteral("Accepted")}, rows);
     // Which added measurement would decide between the two closest explanations (issue 36).
     const QJsonObject advice = d.value(QStringLiteral("decisive_test")).toObject();
     if (advice.value(QStringLiteral("given")).toBool()) {

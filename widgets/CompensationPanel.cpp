@@ -252,7 +252,7 @@ void CompensationPanel::onTick()
     for (; m_shown < log.size(); ++m_shown)
         m_log->appendPlainText(QStringLiteral("%1 s  %2")
                                    .arg(log[m_shown].t_s, 8, 'f', 2)
-                                   .arg(QString(log[m_shown].what).replace(QStringLiteral(" um "), QStringLiteral(" µm "))));
+                                   .arg(log[m_shown].what));
     QString state = s.connected ? tr("connected") : tr("<span style='color:#b00020'>%1</span>").arg(s.message.toHtmlEscaped());
     state += s.enabled ? tr(", writing") : tr(", writing off");
     if (s.clamped)

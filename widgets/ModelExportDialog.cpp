@@ -209,7 +209,7 @@ void ModelExportDialog::refresh()
         m_result = m_exporting.prepare(request);
         m_ok = true;
         const ExportResult &exported = m_result.exported;
-        QStringList lines{tr("%1 -> %2: %n file(s), approximation error %3 um", nullptr, static_cast<int>(exported.files.size()))
+        QStringList lines{tr("%1 -> %2: %n file(s), approximation error %3 \u00b5m", nullptr, static_cast<int>(exported.files.size()))
                               .arg(m_result.kind, m_result.target)
                               .arg(exported.approximationError_um, 0, 'g', 4)};
         for (const std::string &n : exported.notes)

@@ -1,8 +1,11 @@
 #include "ReviewWorkspace.h"
 
+#include "OverlayMarks.h"
+
 #include "ErrorSurface3D.h"
 #include "ErrorSurfacePlot.h"
 #include "InfraredPanel.h"
+#include "OverlayMarks.h"
 #include "SessionReviewData.h"
 #include "SessionStore.h"
 #include "ThermalErrorViews.h"
@@ -98,6 +101,7 @@ void ReviewWorkspace::clear()
     m_hasErrors = false;
     m_overlay.clear();
     m_envelopes.clear();
+    clearMarks();
     m_timeSeries->clearCurves();
     m_heading->setText(tr("No session"));
     m_tabs->setCurrentIndex(TimeSeriesTab); // before disabling the others (see setSession)
@@ -248,16 +252,25 @@ void ReviewWorkspace::setOverlay(const QVector<qint64> &sessionIds)
             m_overlay.push_back(id);
     if (!m_store || !m_data)
         return;
-    // The title says which session each line style is.
-    QStringList names{tr("#%1 %2 (solid)").arg(m_sessionId).arg(m_data->info().name)};
-    const QStringList styles{tr("dashed"), tr("dotted"), tr("dash-dot")};
+    // The title says which session each mark is (showChannels: the overlaid sessions' curves
+    // carry open symbols, a dash pattern is invisible on dense noisy data).
+    QStringList names{tr("#%1 %2 (line)").arg(m_sessionId).arg(m_data->info().name)};
     for (int k = 0; k < m_overlay.size(); ++k)
-        names << tr("#%1 %2 (%3)").arg(m_overlay[k]).arg(m_store->session(m_overlay[k]).name, styles[k % 3]);
+        names << tr("#%1 %2 (line with %3)").arg(m_overlay[k]).arg(m_store->session(m_overlay[k]).name, OverlayMarks::styleName(k + 1));
     m_timeSeries->setTitle(m_overlay.isEmpty() ? m_data->info().name : names.join(QStringLiteral(", ")));
     showChannels(m_shown);
     updateProfiles();
     if (m_tabs->currentIndex() != ProfilesTab || !m_tabs->isTabEnabled(ProfilesTab))
         m_tabs->setCurrentIndex(TimeSeriesTab);
+}
+
+void ReviewWorkspace::clearMarks()
+{
+    for (OverlayMarks *m : m_marks) {
+        m->detach();
+        delete m;
+    }
+    m_marks.clear();
 }
 
 void ReviewWorkspace::updateProfiles()
@@ -296,6 +309,7 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
 {
     m_shown = channelIds;
     const TimeSeriesPlot::Batch batch(m_timeSeries);
+    clearMarks();
     m_timeSeries->clearCurves();
     m_leftOut.clear();
     if (!m_store || !m_data)
@@ -324,8 +338,8 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
             leftOut << QStringLiteral("%1 (%2)").arg(c.key, UnitLabels::display(c.unit));
             continue;
         }
-        // Overlaid sessions (setOverlay): the same channel (key and unit) of each, dashed,
-        // dotted, ...; every curve then names its session.
+        // Overlaid sessions (setOverlay): the same channel (key and unit) of each, marked with
+        // open circles, triangles, ... (OverlayMarks); every curve then names its session.
         for (int k = 0; k <= m_overlay.size(); ++k) {
             const qint64 session = k == 0 ? m_sessionId : m_overlay[k - 1];
             qint64 id = k == 0 ? c.id : 0;
@@ -335,8 +349,12 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
             if (id == 0)
                 continue;
             const QString name = m_overlay.isEmpty() ? c.key : QStringLiteral("#%1 %2").arg(session).arg(c.key);
-            const Qt::PenStyle style = k == 0 ? Qt::SolidLine : k % 3 == 1 ? Qt::DashLine : k % 3 == 2 ? Qt::DotLine : Qt::DashDotLine;
-            addChannelCurve(id, name, right, k == 0, style); // keeps this session's curves
+            QwtPlotCurve *curve = addChannelCurve(id, name, right, k == 0, Qt::SolidLine); // keeps this session's curves
+            if (k > 0) {
+                auto *marks = new OverlayMarks(curve, k);
+                marks->attach(m_timeSeries);
+                m_marks.push_back(marks);
+            }
         }
         QStringList &names = right ? rightNames : leftNames;
         if (!names.contains(UnitLabels::quantity(c.kind)))

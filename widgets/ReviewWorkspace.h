@@ -24,6 +24,7 @@ namespace driftlab {
 class ErrorSurface3D;
 class ErrorSurfacePlot;
 class InfraredPanel;
+class OverlayMarks;
 class SessionReviewData;
 class SessionStore;
 
@@ -72,6 +73,7 @@ public:
     QString heading() const;
 
 private:
+    void clearMarks();
     QwtPlotCurve *addChannelCurve(qint64 channelId, const QString &title, bool rightAxis, bool keep, Qt::PenStyle style);
     void updateTemperatureView();
     void updateProfiles();
@@ -104,6 +106,7 @@ private:
         bool decimated = false;
     };
     QHash<qint64, KeptCurve> m_envelopes;
+    QVector<OverlayMarks *> m_marks; // the overlaid sessions' marks (showChannels)
     bool m_envelopesComplete = false;
 };
 

@@ -95,8 +95,8 @@ int AnalyseCommand::run(const QStringList &args)
     if (p.isSet(json)) {
         CliSupport::writeJson(QJsonDocument(result), p.value(json));
     } else {
-        QTextStream(stdout) << QStringLiteral("session %1: screw-end elongation measured peak %2 um, model peak %3 um, "
-                                              "RMS difference %4 um over %5 samples\n  model: seed-000 with %6\n")
+        QTextStream(stdout) << QStringLiteral("session %1: screw-end elongation measured peak %2 \u00b5m, model peak %3 \u00b5m, "
+                                              "RMS difference %4 \u00b5m over %5 samples\n  model: seed-000 with %6\n")
                                    .arg(id)
                                    .arg(check.comparison.measuredPeak_um, 0, 'f', 2)
                                    .arg(check.comparison.predictedPeak_um, 0, 'f', 2)

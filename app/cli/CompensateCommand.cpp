@@ -54,7 +54,7 @@ QString CompensateCommand::summary() const
         "model (a data-driven MODEL.json from 'fit --model ... --out' on its input channels, or the\n"
         "seed-000 screw model from 'fit --json' on the axis position, feed and ambient) and write the\n"
         "compensation -E of the chosen axis to a controller's Modbus TCP holding registers (--map: the\n"
-        "preset m80, seed 003's R5700.. registers in 1 um steps, or a map file). Writing is off unless\n"
+        "preset m80, seed 003's R5700.. registers in 1 \u00b5m steps, or a map file). Writing is off unless\n"
         "--enable; the offset is clamped to --max-offset, moves at most --max-rate and only in whole\n"
         "register steps; a lost connection stops writing and is retried. Runs for --duration or until\n"
         "Ctrl-C. Exit 1 if the controller was never reached. See docs/export.md.");
@@ -76,9 +76,9 @@ int CompensateCommand::run(const QStringList &args)
                                       QStringLiteral("time"));
     const QCommandLineOption rate(QStringLiteral("rate"), QStringLiteral("Loop rate, Hz (default 10)."), QStringLiteral("Hz"),
                                   QStringLiteral("10"));
-    const QCommandLineOption maxOffset(QStringLiteral("max-offset"), QStringLiteral("Largest offset written, um (default 50)."),
+    const QCommandLineOption maxOffset(QStringLiteral("max-offset"), QStringLiteral("Largest offset written, \u00b5m (default 50)."),
                                        QStringLiteral("um"), QStringLiteral("50"));
-    const QCommandLineOption maxRate(QStringLiteral("max-rate"), QStringLiteral("Fastest change of the offset, um/s (default 5)."),
+    const QCommandLineOption maxRate(QStringLiteral("max-rate"), QStringLiteral("Fastest change of the offset, \u00b5m/s (default 5)."),
                                      QStringLiteral("um/s"), QStringLiteral("5"));
     const QCommandLineOption timeout(QStringLiteral("timeout"), QStringLiteral("Controller answer timeout, s (default 0.5)."),
                                      QStringLiteral("s"), QStringLiteral("0.5"));
@@ -208,7 +208,7 @@ int CompensateCommand::run(const QStringList &args)
                                          .arg(s.connected ? QString() : QStringLiteral(" (not connected)")));
                 continue;
             }
-            CliSupport::progress(QStringLiteral("  %1 s: session time %2 s, E %3 um (1 sigma %4 um), offset %5 um requested, %6 um written%7")
+            CliSupport::progress(QStringLiteral("  %1 s: session time %2 s, E %3 \u00b5m (1 sigma %4 \u00b5m), offset %5 \u00b5m requested, %6 \u00b5m written%7")
                                      .arg(lastReport, 0, 'f', 0)
                                      .arg(modelTime.load(), 0, 'f', 1)
                                      .arg(error.load(), 0, 'f', 2)

@@ -184,7 +184,7 @@ int DiagnoseCommand::run(const QStringList &args)
         CliSupport::progress(QStringLiteral("note: ") + QString::fromStdString(n));
     for (const SensorFinding &f : report.measurementChain)
         CliSupport::progress(QStringLiteral("measurement chain: ") + QString::fromStdString(f.law));
-    CliSupport::progress(QStringLiteral("diagnosis: %1 (baseline held-out RMS %2 um, corrected %3 um) in %4 s")
+    CliSupport::progress(QStringLiteral("diagnosis: %1 (baseline held-out RMS %2 \u00b5m, corrected %3 \u00b5m) in %4 s")
                              .arg(QString::fromStdString(report.effect))
                              .arg(report.baseline.heldoutRms_um, 0, 'f', 3)
                              .arg(report.corrected.heldoutRms_um, 0, 'f', 3)

@@ -69,11 +69,11 @@ int ExportModelCommand::run(const QStringList &args)
                                        QStringLiteral("Table positions, mm (default: the model's range)."),
                                        QStringLiteral("from:to:step"));
     const QCommandLineOption temperatures(QStringLiteral("temperatures"),
-                                          QStringLiteral("Table temperatures, degC (default 15:40:1)."),
+                                          QStringLiteral("Table temperatures, \u00b0C (default 15:40:1)."),
                                           QStringLiteral("from:to:step"), QStringLiteral("15:40:1"));
     const QCommandLineOption temperature(QStringLiteral("temperature"),
                                          QStringLiteral("Temperature of single-temperature files (linuxcnc, twincat "
-                                                        "parameters), degC (default: middle of --temperatures)."),
+                                                        "parameters), \u00b0C (default: middle of --temperatures)."),
                                          QStringLiteral("degC"));
     const QCommandLineOption first(QStringLiteral("first-variable"),
                                    QStringLiteral("First controller variable of the inputs (840d R, fanuc #, heidenhain W)."),
@@ -145,7 +145,7 @@ int ExportModelCommand::run(const QStringList &args)
         CliSupport::writeJson(QJsonDocument(summary), p.value(json));
     if (!p.isSet(json) || p.value(json) != QLatin1String("-")) {
         o << result.kind << " -> " << result.target << ": " << result.paths.size() << " file(s) in " << dir
-          << ", approximation error " << QString::number(result.exported.approximationError_um, 'g', 4) << " um\n";
+          << ", approximation error " << QString::number(result.exported.approximationError_um, 'g', 4) << QStringLiteral(" \u00b5m\n");
         for (const QString &f : result.paths)
             o << "  " << f << '\n';
         for (const std::string &n : result.exported.notes)

@@ -24,12 +24,12 @@ QString statsLine(const FitStatistics &s)
 {
     QString line;
     if (s.interferometerPoints > 0)
-        line += QStringLiteral("interferometer RMS %1 um over %2 points (P-V %3 um)")
+        line += QStringLiteral("interferometer RMS %1 \u00b5m over %2 points (P-V %3 \u00b5m)")
                     .arg(s.interferometerRms_um, 0, 'f', 3)
                     .arg(s.interferometerPoints)
                     .arg(s.interferometerPeakToValley_um, 0, 'f', 1);
     if (s.elongationPoints > 0)
-        line += QStringLiteral("%1elongation RMS %2 um over %3 samples (peak %4 um)")
+        line += QStringLiteral("%1elongation RMS %2 \u00b5m over %3 samples (peak %4 \u00b5m)")
                     .arg(line.isEmpty() ? QString() : QStringLiteral("; "))
                     .arg(s.elongationRms_um, 0, 'f', 3)
                     .arg(s.elongationPoints)
@@ -44,7 +44,7 @@ QString FitCommand::summary() const
     return QStringLiteral(
         "Identify the seed-000 finite-difference screw model (k1..k4, lambda, P_f; eq. 20) from one or\n"
         "several sessions: interferometer thermal errors (run minus reference run) and the screw-end\n"
-        "elongation channel are the observations (sigma 1 um each, probe decimated to one sample a\n"
+        "elongation channel are the observations (sigma 1 \u00b5m each, probe decimated to one sample a\n"
         "minute). Without interferometer runs the fit uses the elongation alone and holds P_f at the\n"
         "machine block's value. Prints parameters with standard errors; --json writes MODEL.json for\n"
         "'simulate --model'. The fitted model is stored with each session.\n"

@@ -29,7 +29,7 @@ int Iso230Command::run(const QStringList &args)
     QCommandLineParser p;
     const auto [db, json, force] = CliOptions::dbJsonForce(p);
     const QCommandLineOption temperature(QStringLiteral("temperature"),
-                                         QStringLiteral("Channel id to regress the drift on (um/K), e.g. the nut or bearing PT100."),
+                                         QStringLiteral("Channel id to regress the drift on (\u00b5m/K), e.g. the nut or bearing PT100."),
                                          QStringLiteral("channel"));
     const QCommandLineOption perTest(QStringLiteral("runs-per-test"),
                                      QStringLiteral("Consecutive runs that form one ISO 230-2 test (default 1: each run is a test and\n"

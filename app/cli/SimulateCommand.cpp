@@ -150,12 +150,12 @@ int SimulateCommand::run(const QStringList &args)
     }
     if (!p.isSet(json) || p.value(json) != QLatin1String("-")) {
         QTextStream o(stdout);
-        o << "session " << id << ": predicted peak elongation " << QString::number(peak, 'f', 2) << " um";
+        o << "session " << id << ": predicted peak elongation " << QString::number(peak, 'f', 2) << QStringLiteral(" \u00b5m");
         if (ne)
-            o << ", RMS against the probe " << QString::number(rmsE, 'f', 3) << " um over " << ne << " samples";
+            o << ", RMS against the probe " << QString::number(rmsE, 'f', 3) << QStringLiteral(" \u00b5m over ") << ne << " samples";
         if (ni)
-            o << "; positioning error max " << QString::number(maxTe, 'f', 2) << " um, RMS against the interferometer "
-              << QString::number(rmsI, 'f', 3) << " um over " << ni << " points";
+            o << "; positioning error max " << QString::number(maxTe, 'f', 2) << QStringLiteral(" \u00b5m, RMS against the interferometer ")
+              << QString::number(rmsI, 'f', 3) << QStringLiteral(" \u00b5m over ") << ni << " points";
         o << '\n';
     }
     return 0;

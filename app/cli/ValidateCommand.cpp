@@ -79,7 +79,7 @@ int ValidateCommand::run(const QStringList &args)
     if (!p.isSet(json) || p.value(json) != QLatin1String("-")) {
         QTextStream o(stdout);
         auto line = [&](const QString &where, const ErrorMetrics &m) {
-            o << QStringLiteral("%1 model of %2 %3: RMSE %4 um  MAE %5 um  max|e| %6 um  MSE %7 um^2  "
+            o << QStringLiteral("%1 model of %2 %3: RMSE %4 \u00b5m  MAE %5 \u00b5m  max|e| %6 \u00b5m  MSE %7 \u00b5m^2  "
                                 "fitting degree %8 %  (%9 samples)\n")
                      .arg(QString::fromStdString(model.kind), QString::fromStdString(model.target.id), where)
                      .arg(m.rmse, 0, 'f', 3)

@@ -322,7 +322,7 @@ void TestCompensationLoop::restartedControllerIsRampedFromItsRegisters()
     QCOMPARE(held, 5.0);
     QVERIFY((after.back().ms - after.front().ms) / 1000.0 >= 2.0 - 0.05);
     const QStringList events = eventsSince(loop, 0.0);
-    QVERIFY2(!events.filter(QStringLiteral("X 0 um instead of the 5 um last written")).isEmpty(), qPrintable(events.join(QLatin1Char('\n'))));
+    QVERIFY2(!events.filter(QStringLiteral("X 0 \u00b5m instead of the 5 \u00b5m last written")).isEmpty(), qPrintable(events.join(QLatin1Char('\n'))));
 }
 
 void TestCompensationLoop::refusedWritesBackOffMoreAndMore()

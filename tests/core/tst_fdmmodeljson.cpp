@@ -125,7 +125,7 @@ void TestFdmModelJson::labelsForPeople()
     QCOMPARE(rows.size(), 3); // the empty note and the flag list are not rows
     for (const auto &r : rows)
         QVERIFY2(!r.first.contains(QLatin1Char('_')) && !r.first.contains(QLatin1Char('.')), qPrintable(r.first));
-    QCOMPARE(rows[0].first, QStringLiteral("fit: screw-end elongation RMS residual (um)"));
+    QCOMPARE(rows[0].first, QStringLiteral("fit: screw-end elongation RMS residual (\u00b5m)"));
     QCOMPARE(rows[0].second, QStringLiteral("1.25"));
 }
 

@@ -162,7 +162,7 @@ void TestSessionIso230::driftIsTheKnownDrift()
     }
     QVERIFY(std::fabs(d.maxDrift_um - 5.0) < 1e-9);
     QCOMPARE(d.maxDriftRun, 2);
-    QVERIFY(r.text().contains(QStringLiteral("largest drift from the reference: 5.00 um")));
+    QVERIFY(r.text().contains(QStringLiteral("largest drift from the reference: 5.00 \u00b5m")));
 }
 
 void TestSessionIso230::driftAgainstTemperature()

@@ -157,7 +157,7 @@ void TestFacesAgree::reportShowsTheFitAsFitPrintedIt()
     for (const char *raw : {"elongation_rms_um", "max_relative_standard_error", "interferometer_points", "lambda_W_mK",
                             "plausibility."})
         QVERIFY2(!text.contains(QLatin1String(raw)), raw);
-    QVERIFY(text.contains(QStringLiteral("screw-end elongation RMS residual (um)")));
+    QVERIFY(text.contains(QStringLiteral("screw-end elongation RMS residual (\u00b5m)")));
 }
 
 void TestFacesAgree::diagnosisStoresTheSameRecordAndReachesTheReport()

@@ -165,7 +165,7 @@ void TestReportCli::pdfCarriesTheSessionsResults()
     QVERIFY(m_text.contains(QStringLiteral("0.8125")));
     QVERIFY(m_text.contains(QStringLiteral("held")));
     const QString rms = QString::number(m_analyse.value(QStringLiteral("elongation_rms_error_um")).toDouble(), 'g', 4);
-    QVERIFY2(m_text.contains(QStringLiteral("against the probe (RMS %1 um over %2 samples)")
+    QVERIFY2(m_text.contains(QStringLiteral("against the probe (RMS %1 \u00b5m over %2 samples)")
                                  .arg(rms)
                                  .arg(m_analyse.value(QStringLiteral("samples")).toInt())),
              qPrintable(rms));

@@ -1,7 +1,9 @@
 // Two or more sessions on one time axis (issue 33 item 4): the review workspace draws the
 // shown channels of the current session and their namesakes (same key and unit) of each
-// overlaid session on the same elapsed-time axis; each curve is named "#session key", line
-// styles tell the sessions apart and the title names every session with its style. A session
+// overlaid session on the same elapsed-time axis; each curve is named "#session key", open
+// symbols on the overlaid sessions' curves tell the sessions apart (a dash pattern does not
+// show on dense noisy data: checked on the pixels drawn) and the title and the legend name
+// every session with its mark. A session
 // without the channel adds nothing; choosing another session ends the overlay. Data are
 // written by hand with known values, and the curves must hold exactly those samples.
 // The same overlay on one position axis: the error-vs-position view draws the last
@@ -9,15 +11,19 @@
 // each target), named by session id, name and start in the legend.
 
 #include "MainWindow.h"
+#include "OverlayMarks.h"
 #include "PlotInteraction.h"
 #include "ReviewWorkspace.h"
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
 #include "Workbench.h"
 
+#include <QImage>
 #include <QSettings>
 #include <QTemporaryDir>
 #include <QtTest>
+
+#include <random>
 
 #include <qwt_legend.h>
 #include <qwt_legend_label.h>
@@ -33,6 +39,7 @@ private slots:
     void overlaysNamesakesOnOneAxis();
     void overlaysLastRunsOnOnePositionAxis();
     void fromTheMainWindow();
+    void denseNoisySessionsAreDrawnDistinctly();
 
 private:
     qint64 session(SessionStore &store, const QString &name, const QString &key, double offset, double length_s)
@@ -116,12 +123,37 @@ void TestSessionOverlay::overlaysNamesakesOnOneAxis()
     QCOMPARE(d->sample(180).y(), 22.0 + 18.0);
     QCOMPARE(a->yAxis(), b->yAxis());
     QCOMPARE(a->xAxis(), b->xAxis());
-    QCOMPARE(a->pen().style(), Qt::SolidLine);
-    QCOMPARE(b->pen().style(), Qt::DashLine);
-    QCOMPARE(d->pen().style(), Qt::DashDotLine); // third in the list, though "other sensors" drew nothing
+    // The legend entry of each overlaid session shows its mark: circle, then square (the
+    // third in the list, though "other sensors" drew nothing); the current session's a line.
+    auto legendEntry = [plot](const QString &title) -> const QwtPlotItem * {
+        const QwtPlotItem *found = nullptr;
+        for (const QwtPlotItem *i : plot->itemList())
+            if (i->title().text() == title && i->testItemAttribute(QwtPlotItem::Legend))
+                found = found ? nullptr : i; // exactly one
+        return found;
+    };
+    const QwtPlotItem *la = legendEntry(QStringLiteral("#%1 T1").arg(m_a));
+    const QwtPlotItem *lb = legendEntry(QStringLiteral("#%1 T1").arg(m_b));
+    const QwtPlotItem *ld = legendEntry(QStringLiteral("#%1 T1").arg(m_d));
+    QVERIFY(la && lb && ld);
+    QCOMPARE(la, static_cast<const QwtPlotItem *>(a));
+    QVERIFY(!a->symbol());
+    QCOMPARE(lb->rtti(), static_cast<int>(OverlayMarks::Rtti));
+    QCOMPARE(static_cast<const OverlayMarks *>(lb)->symbol()->style(), QwtSymbol::Ellipse);
+    QCOMPARE(static_cast<const OverlayMarks *>(ld)->symbol()->style(), QwtSymbol::Rect);
+    QCOMPARE(static_cast<const OverlayMarks *>(lb)->pen().color(), b->pen().color());
+    QVERIFY(static_cast<const OverlayMarks *>(lb)->testLegendAttribute(QwtPlotCurve::LegendShowSymbol));
+    // ... and the legend widget holds that entry once: the marks' (line and symbol), not the curve's.
+    QCoreApplication::processEvents();
+    auto *legend = qobject_cast<QwtLegend *>(plot->legend());
+    QVERIFY(legend);
+    QVERIFY(legend->legendWidgets(plot->itemToInfo(const_cast<QwtPlotCurve *>(b))).isEmpty());
+    QCOMPARE(legend->legendWidgets(plot->itemToInfo(const_cast<QwtPlotItem *>(lb))).size(), 1);
+    QCOMPARE(legend->legendWidgets(plot->itemToInfo(const_cast<QwtPlotCurve *>(a))).size(), 1);
     const QString title = plot->title().text();
-    QVERIFY2(title.contains(QStringLiteral("#%1 monday (solid)").arg(m_a)) &&
-                 title.contains(QStringLiteral("#%1 tuesday (dashed)").arg(m_b)),
+    QVERIFY2(title.contains(QStringLiteral("#%1 monday (line)").arg(m_a)) &&
+                 title.contains(QStringLiteral("#%1 tuesday (line with \u25cb)").arg(m_b)) &&
+                 title.contains(QStringLiteral("#%1 wednesday (line with \u25a1)").arg(m_d)),
              qPrintable(title));
     // The axis spans the longest session.
     plot->replot();
@@ -138,6 +170,86 @@ void TestSessionOverlay::overlaysNamesakesOnOneAxis()
     w.setSession(&store, m_b); // another session: the overlay ends
     QVERIFY(w.overlay().isEmpty());
     QCOMPARE(plot->curves().size(), 1);
+    QCOMPARE(plot->itemList(OverlayMarks::Rtti).size(), 0); // its marks too
+}
+
+// Two sessions as a 1 Hz logger records them over three hours (10,800 noisy samples each,
+// drawn as per-pixel envelopes) must look different on the canvas, not only in the legend.
+// Per pixel column, the vertical extent of each curve's colour is measured: the current
+// session's stays within its noise band; the overlaid one's must exceed that band in at
+// least 20 separate places (its marks; exceeding columns closer than 12 px, a mark's width
+// and a pixel, are one place). A dash pattern fails this: drawn along a dense
+// envelope it leaves the same band as a solid line.
+void TestSessionOverlay::denseNoisySessionsAreDrawnDistinctly()
+{
+    const QString db = m_dir.filePath(QStringLiteral("dense.sqlite"));
+    SessionStore store(db);
+    std::mt19937 random(33);
+    std::uniform_real_distribution<double> noise(-0.02, 0.02);
+    auto dense = [&](const QString &name, double offset) {
+        SessionInfo info;
+        info.name = name;
+        info.started = QStringLiteral("2026-11-2%1T08:00:00Z").arg(store.sessions().size());
+        const qint64 id = store.createSession(info);
+        ChannelInfo c;
+        c.key = QStringLiteral("T1");
+        c.kind = QStringLiteral("temperature");
+        c.unit = QStringLiteral("degC");
+        const qint64 ch = store.addChannel(id, c);
+        QVector<double> t, v;
+        for (int s = 0; s < 3 * 3600; ++s) {
+            t << s;
+            v << offset + 4.0 * (1.0 - std::exp(-s / 3600.0)) + noise(random);
+        }
+        store.appendSamples(ch, t, v);
+        return id;
+    };
+    const qint64 first = dense(QStringLiteral("yesterday"), 20.0);
+    const qint64 second = dense(QStringLiteral("today"), 21.0);
+    ReviewWorkspace w;
+    w.resize(1100, 650);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.setSession(&store, first);
+    w.setOverlay({second});
+    TimeSeriesPlot *plot = w.timeSeriesPlot();
+    plot->replot();
+    QCoreApplication::processEvents();
+    const QwtPlotCurve *a = plot->curve(QStringLiteral("#%1 T1").arg(first));
+    const QwtPlotCurve *b = plot->curve(QStringLiteral("#%1 T1").arg(second));
+    QVERIFY(a && b);
+    QVERIFY(a->pen().color() != b->pen().color());
+    const QImage image = plot->canvas()->grab().toImage().convertToFormat(QImage::Format_RGB32);
+    auto extents = [&image](const QColor &colour) {
+        QVector<int> extent(image.width(), 0);
+        for (int x = 0; x < image.width(); ++x) {
+            int top = -1, bottom = -1;
+            for (int y = 0; y < image.height(); ++y) {
+                const QColor p = image.pixelColor(x, y);
+                if (std::abs(p.red() - colour.red()) + std::abs(p.green() - colour.green()) + std::abs(p.blue() - colour.blue()) < 40) {
+                    if (top < 0)
+                        top = y;
+                    bottom = y;
+                }
+            }
+            extent[x] = top < 0 ? 0 : bottom - top + 1;
+        }
+        return extent;
+    };
+    const QVector<int> ea = extents(a->pen().color()), eb = extents(b->pen().color());
+    const int band = *std::max_element(ea.cbegin(), ea.cend());
+    QVERIFY2(band > 0 && band <= 8, qPrintable(QString::number(band))); // the noise band, drawn
+    int places = 0, last = -100;
+    for (int x = 0; x < eb.size(); ++x) {
+        if (eb[x] <= band + 2)
+            continue;
+        if (x - last > 12)
+            ++places;
+        last = x;
+    }
+    qInfo("current session's band %d px; the overlaid curve exceeds it by > 2 px in %d places", band, places);
+    QVERIFY2(places >= 20, qPrintable(QString::number(places)));
+    QVERIFY2(places <= OverlayMarks::kMarks, qPrintable(QString::number(places)));
 }
 
 void TestSessionOverlay::overlaysLastRunsOnOnePositionAxis()
