@@ -375,6 +375,26 @@ std::vector<std::string> CandidateEffectLibrary::grammarCodes()
     return c;
 }
 
+CandidateModel CandidateEffectLibrary::asBuilt(const DiagnosisRecording &train, double maxContact_W_K)
+{
+    if (!(maxContact_W_K > 0.0) || !train.hasRole("fixed_bearing") || !train.hasRole("nut"))
+        return {};
+    const double g0 = 0.1 * maxContact_W_K;
+    auto bearing = std::make_shared<ChannelHeatSource>(
+        ParameterSpec{"a_fixed_housing_as_built", "1", 1.0, 0.0, 3.0, 1.0}, ChannelHeatSource::Location::FixedBearing,
+        true, ParameterSpec{"G_fixed_housing_as_built", "W/K", g0, 0.0, maxContact_W_K, g0});
+    auto nut = std::make_shared<ChannelHeatSource>(ParameterSpec{"a_nut_housing_as_built", "1", 1.0, 0.0, 3.0, 1.0},
+                                                   ChannelHeatSource::Location::Nut, true,
+                                                   ParameterSpec{"G_nut_housing_as_built", "W/K", g0, 0.0, maxContact_W_K, g0});
+    CandidateModel m;
+    m.sources = {bearing, nut};
+    m.bind = [bearing, nut](const DiagnosisRecording &r) {
+        bearing->bind(roleSeries(r, "fixed_bearing"), ambientOf(r), startOf(r));
+        nut->bind(roleSeries(r, "nut"), ambientOf(r), startOf(r));
+    };
+    return m;
+}
+
 std::vector<std::string> CandidateEffectLibrary::codes()
 {
     std::vector<std::string> c;
