@@ -39,6 +39,7 @@ private slots:
 private:
     static DiagnosisRecording make(bool validation, double kFree, double tau_s, bool standstill = true);
     static DiagnosisRecording withHousings(bool validation, double gFixed_W_K, double gNut_W_K);
+    static void addDifference(DiagnosisRecording &r, const FitStatistics &a, const FitStatistics &b);
 };
 
 void TestDiagnosisGrammar::everyLibraryCodeIsAMember()
@@ -162,6 +163,31 @@ void TestDiagnosisGrammar::generatedMembers()
     QCOMPARE(CandidateEffectLibrary::member(housing).requiredRoles, std::vector<std::string>{"free_bearing"});
 }
 
+// Adds the difference of two predictions (with minus without the added physics) to the
+// recording's interferometer points and probe.
+void TestDiagnosisGrammar::addDifference(DiagnosisRecording &r, const FitStatistics &a, const FitStatistics &b)
+{
+    TimeSeries probe;
+    int matched = 0;
+    for (size_t k = 0; k < a.points.size(); ++k) {
+        const double d = a.points[k].predicted_um - b.points[k].predicted_um;
+        if (a.points[k].elongation) {
+            probe.t.push_back(a.points[k].t_s);
+            probe.v.push_back(d);
+            continue;
+        }
+        for (PositioningErrorPoint &p : r.screw.interferometer)
+            if (!a.points[k].temperature && p.t_s == a.points[k].t_s && p.position_mm == a.points[k].position_mm) {
+                p.error_um += d;
+                ++matched;
+            }
+    }
+    if (matched == 0)
+        throw std::logic_error("no interferometer point simulated");
+    for (size_t k = 0; k < r.screw.elongation_um.size(); ++k)
+        r.screw.elongation_um.v[k] += probe.empty() ? 0.0 : probe.at(r.screw.elongation_um.t[k]);
+}
+
 DiagnosisRecording TestDiagnosisGrammar::make(bool validation, double kFree, double tau_s, bool standstill)
 {
     // Seed 000 (explicit model, fine grid, lambda 45) plus heat k v at the free-end cell through a
@@ -183,25 +209,7 @@ DiagnosisRecording TestDiagnosisGrammar::make(bool validation, double kFree, dou
         IdentificationResult without = with;
         without.amplitudes.back() = 0.0;
         const FitStatistics a = id.predict(with, {r.screw}), b = id.predict(without, {r.screw});
-        TimeSeries probe;
-        int matched = 0;
-        for (size_t k = 0; k < a.points.size(); ++k) {
-            const double d = a.points[k].predicted_um - b.points[k].predicted_um;
-            if (a.points[k].elongation) {
-                probe.t.push_back(a.points[k].t_s);
-                probe.v.push_back(d);
-                continue;
-            }
-            for (PositioningErrorPoint &p : r.screw.interferometer)
-                if (!a.points[k].temperature && p.t_s == a.points[k].t_s && p.position_mm == a.points[k].position_mm) {
-                    p.error_um += d;
-                    ++matched;
-                }
-        }
-        if (matched == 0)
-            throw std::logic_error("no interferometer point simulated");
-        for (size_t k = 0; k < r.screw.elongation_um.size(); ++k)
-            r.screw.elongation_um.v[k] += probe.empty() ? 0.0 : probe.at(r.screw.elongation_um.t[k]);
+        addDifference(r, a, b);
     }
     return r;
 }
@@ -351,25 +359,7 @@ DiagnosisRecording TestDiagnosisGrammar::withHousings(bool validation, double gF
     IdentificationResult without = with;
     without.nonlinearComponentValues = {0.0, 0.0};
     const FitStatistics a = id.predict(with, {r.screw}), b = id.predict(without, {r.screw});
-    TimeSeries probe;
-    int matched = 0;
-    for (size_t k = 0; k < a.points.size(); ++k) {
-        const double d = a.points[k].predicted_um - b.points[k].predicted_um;
-        if (a.points[k].elongation) {
-            probe.t.push_back(a.points[k].t_s);
-            probe.v.push_back(d);
-            continue;
-        }
-        for (PositioningErrorPoint &p : r.screw.interferometer)
-            if (!a.points[k].temperature && p.t_s == a.points[k].t_s && p.position_mm == a.points[k].position_mm) {
-                p.error_um += d;
-                ++matched;
-            }
-    }
-    if (matched == 0)
-        throw std::logic_error("no interferometer point simulated");
-    for (size_t k = 0; k < r.screw.elongation_um.size(); ++k)
-        r.screw.elongation_um.v[k] += probe.empty() ? 0.0 : probe.at(r.screw.elongation_um.t[k]);
+    addDifference(r, a, b);
     return r;
 }
 
