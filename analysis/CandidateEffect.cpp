@@ -37,6 +37,22 @@ double startOf(const DiagnosisRecording &r)
     return r.screw.drive.position_mm.empty() ? 0.0 : r.screw.drive.position_mm.t.front();
 }
 
+// The fixed-bearing and nut housings touching the screw: Q = G (a (T_housing - T_a) - (T_screw - T_a))
+// under each (ChannelHeatSource contact mode), bound to the recording's fixed_bearing / nut channels.
+CandidateModel housingContacts(const ParameterSpec &aBearing, const ParameterSpec &gBearing, const ParameterSpec &aNut,
+                               const ParameterSpec &gNut)
+{
+    auto bearing = std::make_shared<ChannelHeatSource>(aBearing, ChannelHeatSource::Location::FixedBearing, true, gBearing);
+    auto nut = std::make_shared<ChannelHeatSource>(aNut, ChannelHeatSource::Location::Nut, true, gNut);
+    CandidateModel m;
+    m.sources = {bearing, nut};
+    m.bind = [bearing, nut](const DiagnosisRecording &r) {
+        bearing->bind(roleSeries(r, "fixed_bearing"), ambientOf(r), startOf(r));
+        nut->bind(roleSeries(r, "nut"), ambientOf(r), startOf(r));
+    };
+    return m;
+}
+
 // The lag's housing contacts (nonlinear conductances; also named by the size rule).
 const ParameterSpec kBearingContact{"G_bearing_contact", "W/K", 2.0, 0.0, 100.0, 1.0};
 const ParameterSpec kNutContact{"G_nut_contact", "W/K", 2.0, 0.0, 100.0, 1.0};
@@ -161,22 +177,10 @@ std::vector<CandidateEffect> CandidateEffectLibrary::standard()
                    "feed (or roles fixed_bearing + nut)",
                    {},
                    [](const DiagnosisRecording &train, int start) {
-                       if (start == 3 && train.hasRole("fixed_bearing") && train.hasRole("nut")) {
+                       if (start == 3 && train.hasRole("fixed_bearing") && train.hasRole("nut"))
                            // Contact variant: each housing touches the screw through G (W/K).
-                           auto bearing = std::make_shared<ChannelHeatSource>(
-                               ParameterSpec{"a_bearing_housing", "1", 1.0, 0.0, 3.0, 1.0},
-                               ChannelHeatSource::Location::FixedBearing, true, kBearingContact);
-                           auto nut = std::make_shared<ChannelHeatSource>(
-                               ParameterSpec{"a_nut_housing", "1", 1.0, 0.0, 3.0, 1.0},
-                               ChannelHeatSource::Location::Nut, true, kNutContact);
-                           CandidateModel m;
-                           m.sources = {bearing, nut};
-                           m.bind = [bearing, nut](const DiagnosisRecording &r) {
-                               bearing->bind(roleSeries(r, "fixed_bearing"), ambientOf(r), startOf(r));
-                               nut->bind(roleSeries(r, "nut"), ambientOf(r), startOf(r));
-                           };
-                           return m;
-                       }
+                           return housingContacts({"a_bearing_housing", "1", 1.0, 0.0, 3.0, 1.0}, kBearingContact,
+                                                  {"a_nut_housing", "1", 1.0, 0.0, 3.0, 1.0}, kNutContact);
                        // Starts from a fast, a medium and a slow heat path (s).
                        static const double tau[] = {1500.0, 5000.0, 15000.0, 3000.0};
                        const double t = tau[std::clamp(start, 0, 3)];
@@ -373,6 +377,17 @@ std::vector<std::string> CandidateEffectLibrary::grammarCodes()
     for (const EffectGrammar::Member &m : EffectGrammar::members())
         c.push_back(m.code);
     return c;
+}
+
+CandidateModel CandidateEffectLibrary::asBuilt(const DiagnosisRecording &train, double maxContact_W_K)
+{
+    if (!(maxContact_W_K > 0.0) || !train.hasRole("fixed_bearing") || !train.hasRole("nut"))
+        return {};
+    const double g0 = 0.1 * maxContact_W_K;
+    return housingContacts({"a_fixed_housing_as_built", "1", 1.0, 0.0, 3.0, 1.0},
+                           {"G_fixed_housing_as_built", "W/K", g0, 0.0, maxContact_W_K, g0},
+                           {"a_nut_housing_as_built", "1", 1.0, 0.0, 3.0, 1.0},
+                           {"G_nut_housing_as_built", "W/K", g0, 0.0, maxContact_W_K, g0});
 }
 
 std::vector<std::string> CandidateEffectLibrary::codes()

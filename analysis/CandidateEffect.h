@@ -76,6 +76,11 @@ public:
     // A generated member's candidate: heat into the member's end cell with its time law.
     // Throws std::invalid_argument for a combination the seed model's components cannot carry.
     static CandidateEffect member(const EffectGrammar::Member &m);
+    // The machine as built (DiagnosisOptions::housingContactBaseline): the fixed-bearing and nut
+    // housings touching the screw through contact conductances in [0, maxContact_W_K] W/K (the
+    // clean rig's 0.03-0.08 W/K: its housings follow the ambient through ~15 min). Empty when
+    // the training recording has no fixed_bearing or no nut channel.
+    static CandidateModel asBuilt(const DiagnosisRecording &train, double maxContact_W_K);
     // The empirical terms the diagnosis tries once no library effect passes (issue 18, item
     // 3): per temperature channel (by role; not the screw's own surface, not ambient) of both
     // recordings, a heat input q'(x, t) = (a0 P0 + a1 P1 + a2 P2)(xi) (T_role - T_ambient)

@@ -183,6 +183,12 @@ CandidateFit DiagnosisEngine::evaluate(const std::vector<ForwardSelection::Choic
             if (more.bind)
                 binds.push_back(more.bind);
         }
+        if (m_options.housingContactBaseline) { // the machine as built: in every model, the baseline too
+            CandidateModel built = CandidateEffectLibrary::asBuilt(train, m_options.asBuiltContactMax_W_K);
+            m.sources.insert(m.sources.end(), built.sources.begin(), built.sources.end());
+            if (built.bind)
+                binds.push_back(built.bind);
+        }
         if (m.bind)
             binds.push_back(m.bind);
         if (!binds.empty())
@@ -265,7 +271,8 @@ CandidateFit DiagnosisEngine::evaluate(const std::vector<ForwardSelection::Choic
         return out;
     }
     if (!any) {
-        e.cvRms_um = crossValidate(nullptr, train, warm, &out.outOfFold);
+        const bool built = !model.sources.empty() || !model.terms.empty(); // the machine as built
+        e.cvRms_um = crossValidate(built ? &model : nullptr, train, warm, &out.outOfFold);
         return out;
     }
     // Candidates: deferred; the selection runs it for those with a chance of acceptance. The
@@ -354,6 +361,13 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
     {
         // First pass only to get the residual autocorrelation for the effective sample size.
         ScrewModelIdentifier id(m_geometry, opts);
+        const CandidateModel built = m_options.housingContactBaseline
+                                         ? CandidateEffectLibrary::asBuilt(train, m_options.asBuiltContactMax_W_K)
+                                         : CandidateModel{};
+        for (const auto &s : built.sources)
+            id.addHeatSource(s);
+        if (built.bind)
+            built.bind(train);
         const IdentificationResult first = id.fit({train.screw});
         effectiveN = std::max(10.0, ResidualLocator::effectiveSampleSize(first.fit.points));
         opts.initial = first.parameters; // later fits start here
@@ -445,6 +459,8 @@ void DiagnosisEngine::adviseTest(DiagnosisReport &report, const ForwardSelection
                     parts.push_back(candidate->create(train, f.start));
                 for (const ForwardSelection::Choice &c : before)
                     parts.push_back(c.effect->create(train, c.start));
+                if (m_options.housingContactBaseline)
+                    parts.push_back(CandidateEffectLibrary::asBuilt(train, m_options.asBuiltContactMax_W_K));
                 for (const CandidateModel &m : parts) {
                     for (const auto &s : m.sources)
                         id.addHeatSource(s);

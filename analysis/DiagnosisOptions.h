@@ -68,6 +68,13 @@ struct DiagnosisOptions {
     // fixedEndPriorSigma (when known), as penalty residuals (IdentificationOptions). Off by
     // default: not yet measured on the rig and othersim sweeps (docs/diagnosis.md).
     bool priors = false;
+    // The machine as built in the baseline (issue 36): where the fixed-bearing and nut housings'
+    // temperatures are recorded, the screw exchanges heat with each housing through a small
+    // contact conductance (ChannelHeatSource contact mode, G in [0, asBuiltContactMax_W_K]),
+    // identified with the baseline and kept in every candidate's refit. Off by default: see
+    // docs/diagnosis.md "The housings' contact as the machine as built".
+    bool housingContactBaseline = false;
+    double asBuiltContactMax_W_K = 0.5;
     double lambdaPriorSigma_W_mK = 15.0;
     double fixedEndPriorSigma_mm = 5.0;
     std::vector<std::string> effects;     // restrict the library (empty: all)

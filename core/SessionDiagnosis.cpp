@@ -78,6 +78,7 @@ SessionDiagnosis::SessionDiagnosis(const SessionStore &trainStore, const Diagnos
     m_options.priors = request.priors;
     m_options.checkMeasurementChain = request.checkMeasurementChain;
     m_options.tryTriples = request.tryTriples;
+    m_options.housingContactBaseline = request.housingContact;
     m_options.identification.simulator.grid.dt_s = request.dt_s;
     m_options.identification.simulator.driveSample_s = 1.0;
     m_options.identification.maxIterations = 60;

@@ -37,6 +37,7 @@ struct DiagnosisRequest {
     bool priors = false;              // lambda and P_f anchored by steel and the drawing (issue 36)
     bool checkMeasurementChain = false; // sensors checked against each other before the selection (opt-in)
     bool tryTriples = false;          // triples when no single and no pair passes (opt-in, issue 36 item 4)
+    bool housingContact = false;      // the housings' contact with the screw in the baseline (opt-in, issue 36)
 };
 
 class SessionDiagnosis {

@@ -81,7 +81,12 @@ int DiagnoseCommand::run(const QStringList &args)
     const QCommandLineOption withTriples(QStringLiteral("triples"),
                                          QStringLiteral("When no single effect and no pair passes, also try the best pair plus one "
                                                         "(issue 36; named wrong codes on the third simulator, see docs/diagnosis.md)."));
-    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures, withPriors, noPriors, withChain, noChain, withTriples, force});
+    const QCommandLineOption withHousingContact(
+        QStringLiteral("housing-contact"),
+        QStringLiteral("The machine as built in the baseline: the screw touches the recorded fixed-bearing and nut housings "
+                       "through contact conductances of at most 0.5 W/K (issue 36; opt-in, see docs/diagnosis.md)."));
+    p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures, withPriors, noPriors, withChain, noChain, withTriples,
+                  withHousingContact, force});
     if (!parse(p, args))
         return 0;
     if (!p.isSet(train) || !p.isSet(validate))
@@ -105,6 +110,7 @@ int DiagnoseCommand::run(const QStringList &args)
     request.priors = p.isSet(withPriors) || (defaults.priors && !p.isSet(noPriors));
     request.checkMeasurementChain = p.isSet(withChain) || (defaults.checkMeasurementChain && !p.isSet(noChain));
     request.tryTriples = p.isSet(withTriples);
+    request.housingContact = p.isSet(withHousingContact);
     for (const QString &e : p.value(effects).split(QLatin1Char(','), Qt::SkipEmptyParts))
         request.effects.push_back(e.trimmed().toStdString());
     request.trainLabel = p.value(train);

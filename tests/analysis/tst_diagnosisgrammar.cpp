@@ -8,6 +8,7 @@
 #include "CandidateEffect.h"
 #include "DiagnosisEngine.h"
 #include "DiagnosisTestRecording.h"
+#include "ChannelHeatSource.h"
 #include "EffectGrammar.h"
 #include "EndHeatSource.h"
 #include "HeldoutPredictionTest.h"
@@ -33,9 +34,12 @@ private slots:
     void thresholdTightensAsTheGrammarGrows();
     void findsLaggedFreeEndHeat();
     void saysWhyNothingWasSearched();
+    void housingContactIsTheMachineAsBuilt();
 
 private:
     static DiagnosisRecording make(bool validation, double kFree, double tau_s, bool standstill = true);
+    static DiagnosisRecording withHousings(bool validation, double gFixed_W_K, double gNut_W_K);
+    static void addDifference(DiagnosisRecording &r, const FitStatistics &a, const FitStatistics &b);
 };
 
 void TestDiagnosisGrammar::everyLibraryCodeIsAMember()
@@ -159,6 +163,31 @@ void TestDiagnosisGrammar::generatedMembers()
     QCOMPARE(CandidateEffectLibrary::member(housing).requiredRoles, std::vector<std::string>{"free_bearing"});
 }
 
+// Adds the difference of two predictions (with minus without the added physics) to the
+// recording's interferometer points and probe.
+void TestDiagnosisGrammar::addDifference(DiagnosisRecording &r, const FitStatistics &a, const FitStatistics &b)
+{
+    TimeSeries probe;
+    int matched = 0;
+    for (size_t k = 0; k < a.points.size(); ++k) {
+        const double d = a.points[k].predicted_um - b.points[k].predicted_um;
+        if (a.points[k].elongation) {
+            probe.t.push_back(a.points[k].t_s);
+            probe.v.push_back(d);
+            continue;
+        }
+        for (PositioningErrorPoint &p : r.screw.interferometer)
+            if (!a.points[k].temperature && p.t_s == a.points[k].t_s && p.position_mm == a.points[k].position_mm) {
+                p.error_um += d;
+                ++matched;
+            }
+    }
+    if (matched == 0)
+        throw std::logic_error("no interferometer point simulated");
+    for (size_t k = 0; k < r.screw.elongation_um.size(); ++k)
+        r.screw.elongation_um.v[k] += probe.empty() ? 0.0 : probe.at(r.screw.elongation_um.t[k]);
+}
+
 DiagnosisRecording TestDiagnosisGrammar::make(bool validation, double kFree, double tau_s, bool standstill)
 {
     // Seed 000 (explicit model, fine grid, lambda 45) plus heat k v at the free-end cell through a
@@ -180,25 +209,7 @@ DiagnosisRecording TestDiagnosisGrammar::make(bool validation, double kFree, dou
         IdentificationResult without = with;
         without.amplitudes.back() = 0.0;
         const FitStatistics a = id.predict(with, {r.screw}), b = id.predict(without, {r.screw});
-        TimeSeries probe;
-        int matched = 0;
-        for (size_t k = 0; k < a.points.size(); ++k) {
-            const double d = a.points[k].predicted_um - b.points[k].predicted_um;
-            if (a.points[k].elongation) {
-                probe.t.push_back(a.points[k].t_s);
-                probe.v.push_back(d);
-                continue;
-            }
-            for (PositioningErrorPoint &p : r.screw.interferometer)
-                if (!a.points[k].temperature && p.t_s == a.points[k].t_s && p.position_mm == a.points[k].position_mm) {
-                    p.error_um += d;
-                    ++matched;
-                }
-        }
-        if (matched == 0)
-            throw std::logic_error("no interferometer point simulated");
-        for (size_t k = 0; k < r.screw.elongation_um.size(); ++k)
-            r.screw.elongation_um.v[k] += probe.empty() ? 0.0 : probe.at(r.screw.elongation_um.t[k]);
+        addDifference(r, a, b);
     }
     return r;
 }
@@ -305,6 +316,87 @@ void TestDiagnosisGrammar::findsLaggedFreeEndHeat()
     QVERIFY2(r.steps.front().description.rfind("heat at the free-end bearing that follows the feed through a ", 0) == 0,
              r.steps.front().description.c_str());
     QVERIFY2(r.explanation.find("Searched: 3 of the grammar's 3 members") != std::string::npos, r.explanation.c_str());
+}
+
+DiagnosisRecording TestDiagnosisGrammar::withHousings(bool validation, double gFixed_W_K, double gNut_W_K)
+{
+    // The clean rig's ambient path (acquisition/ScrewTruthModel): housings of ~1000 J/K losing
+    // 1 W/K to the air follow the ambient (0.3 K drift) through a first-order lag of 1000 s and
+    // touch the screw under the fixed bearing and the nut through a small contact conductance.
+    // Seed 000 (explicit, fine grid) plus that contact's response, computed by the implicit
+    // model on a 2 s grid, Q = G (T_housing - T_screw).
+    DiagnosisRecording r = diagnosisTestRecording(diagnosisTestSpec(validation));
+    const TimeSeries &amb = r.screw.drive.ambient_C;
+    TimeSeries housing;
+    double T = amb.v.front();
+    for (size_t k = 0; k < amb.size(); ++k) {
+        if (k > 0)
+            T = amb.v[k] + (T - amb.v[k]) * std::exp(-(amb.t[k] - amb.t[k - 1]) / 1000.0);
+        housing.t.push_back(amb.t[k]);
+        housing.v.push_back(T);
+    }
+    r.channelsByRole["fixed_bearing"] = housing;
+    r.channelsByRole["nut"] = housing;
+    const FdmParameters truth = diagnosisTestTruth();
+    IdentificationOptions o;
+    o.simulator.grid = FdmSettings{0.01, 2.0};
+    o.simulator.elongationInterval_s = 1.0;
+    ScrewModelIdentifier id(ScrewGeometry{}, o);
+    const double t0 = r.screw.drive.position_mm.t.front();
+    auto fixed = std::make_shared<ChannelHeatSource>(ParameterSpec{"a_f", "1", 1.0, 0.0, 3.0, 1.0},
+                                                     ChannelHeatSource::Location::FixedBearing, true,
+                                                     ParameterSpec{"G_f", "W/K", 0.1, 0.0, 1.0, 0.1});
+    auto nut = std::make_shared<ChannelHeatSource>(ParameterSpec{"a_n", "1", 1.0, 0.0, 3.0, 1.0}, ChannelHeatSource::Location::Nut,
+                                                   true, ParameterSpec{"G_n", "W/K", 0.1, 0.0, 1.0, 0.1});
+    fixed->bind(&housing, &amb, t0);
+    nut->bind(&housing, &amb, t0);
+    id.addHeatSource(fixed);
+    id.addHeatSource(nut);
+    IdentificationResult with;
+    with.parameters = truth;
+    with.amplitudes = {truth.k3, truth.k4, 1.0, 1.0};
+    with.nonlinearComponentValues = {gFixed_W_K, gNut_W_K};
+    IdentificationResult without = with;
+    without.nonlinearComponentValues = {0.0, 0.0};
+    const FitStatistics a = id.predict(with, {r.screw}), b = id.predict(without, {r.screw});
+    addDifference(r, a, b);
+    return r;
+}
+
+void TestDiagnosisGrammar::housingContactIsTheMachineAsBuilt()
+{
+    // Not applicable without the housings' channels: nothing added.
+    const DiagnosisRecording plain = diagnosisTestRecording(diagnosisTestSpec(false));
+    QVERIFY(CandidateEffectLibrary::asBuilt(plain, 0.5).sources.empty());
+    // A clean machine whose housings touch the screw (0.3 and 0.2 W/K): with the contact in
+    // the baseline the answer is `none` and the conductances come back; the heat-path lag's
+    // contact variant (G >= 0.5 W/K to be named) and the structure terms stay unnamed.
+    const DiagnosisRecording a = withHousings(false, 0.3, 0.2), b = withHousings(true, 0.3, 0.2);
+    QCOMPARE(CandidateEffectLibrary::asBuilt(a, 0.5).sources.size(), size_t(2));
+    DiagnosisOptions o;
+    o.identification.simulator.grid.dt_s = 20.0;
+    o.identification.simulator.driveSample_s = 1.0;
+    o.identification.maxIterations = 60;
+    o.adviseTests = false;
+    o.empiricalTerms = false;
+    o.effects = {"heat_path_lag", "structure_offset"};
+    const DiagnosisReport without = DiagnosisEngine(ScrewGeometry{}, o).run(a, b);
+    o.housingContactBaseline = true;
+    const DiagnosisReport with = DiagnosisEngine(ScrewGeometry{}, o).run(a, b);
+    qInfo("held-out RMS of the baseline: %.3f um without the contact, %.3f um with it; answers %s / %s",
+          without.baseline.heldoutRms_um, with.baseline.heldoutRms_um, without.effect.c_str(), with.effect.c_str());
+    QCOMPARE(with.effect, std::string("none"));
+    double gf = -1.0, gn = -1.0;
+    for (const ParameterValue &p : with.baseline.parameters) {
+        if (p.name == "G_fixed_housing_as_built")
+            gf = p.value;
+        if (p.name == "G_nut_housing_as_built")
+            gn = p.value;
+    }
+    qInfo("G fixed-bearing housing %.3f W/K (truth 0.3), nut housing %.3f W/K (truth 0.2)", gf, gn);
+    QVERIFY2(gf > 0.15 && gf < 0.5, std::to_string(gf).c_str());
+    QVERIFY2(gn > 0.1 && gn < 0.4, std::to_string(gn).c_str());
+    QVERIFY(with.baseline.heldoutRms_um < without.baseline.heldoutRms_um);
 }
 
 QTEST_GUILESS_MAIN(TestDiagnosisGrammar)
