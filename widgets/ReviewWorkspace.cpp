@@ -1,7 +1,5 @@
 #include "ReviewWorkspace.h"
 
-#include "OverlayMarks.h"
-
 #include "ErrorSurface3D.h"
 #include "ErrorSurfacePlot.h"
 #include "InfraredPanel.h"
@@ -201,7 +199,7 @@ QVector<qint64> ReviewWorkspace::defaultChannels() const
     return shown;
 }
 
-QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, bool right, bool keep, Qt::PenStyle style)
+QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, bool right, bool keep)
 {
     // One query decides and draws (a 10-hour open spent most of its time in three per
     // channel: count, span, envelope): the whole channel's envelope at one bucket per pixel
@@ -212,8 +210,8 @@ QwtPlotCurve *ReviewWorkspace::addChannelCurve(qint64 id, const QString &title, 
     const int buckets = m_timeSeries->decimationBuckets();
     auto fetch = [store, id](double t0, double t1, int n) { return store->decimated(id, t0, t1, n); };
     auto draw = [&](const KeptCurve &k) {
-        return k.decimated ? m_timeSeries->addDecimatedCurve(title, fetch, k.envelope, right, style)
-                           : m_timeSeries->addCurve(title, k.envelope.x, k.envelope.y, right, TimeSeriesPlot::CurveStyle::Lines, style);
+        return k.decimated ? m_timeSeries->addDecimatedCurve(title, fetch, k.envelope, right)
+                           : m_timeSeries->addCurve(title, k.envelope.x, k.envelope.y, right);
     };
     auto cached = m_envelopes.constFind(id);
     if (cached != m_envelopes.cend() && cached->envelope.buckets <= buckets)
@@ -349,7 +347,7 @@ void ReviewWorkspace::showChannels(const QVector<qint64> &channelIds)
             if (id == 0)
                 continue;
             const QString name = m_overlay.isEmpty() ? c.key : QStringLiteral("#%1 %2").arg(session).arg(c.key);
-            QwtPlotCurve *curve = addChannelCurve(id, name, right, k == 0, Qt::SolidLine); // keeps this session's curves
+            QwtPlotCurve *curve = addChannelCurve(id, name, right, k == 0); // keeps this session's curves
             if (k > 0) {
                 auto *marks = new OverlayMarks(curve, k);
                 marks->attach(m_timeSeries);

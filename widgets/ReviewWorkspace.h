@@ -74,7 +74,7 @@ public:
 
 private:
     void clearMarks();
-    QwtPlotCurve *addChannelCurve(qint64 channelId, const QString &title, bool rightAxis, bool keep, Qt::PenStyle style);
+    QwtPlotCurve *addChannelCurve(qint64 channelId, const QString &title, bool rightAxis, bool keep);
     void updateTemperatureView();
     void updateProfiles();
     void ensure3D();

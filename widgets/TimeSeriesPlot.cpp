@@ -107,14 +107,14 @@ void TimeSeriesPlot::clearCurves()
 }
 
 QwtPlotCurve *TimeSeriesPlot::addCurve(const QString &title, const QVector<double> &t, const QVector<double> &v,
-                                       bool rightAxis, CurveStyle style, Qt::PenStyle penStyle)
+                                       bool rightAxis, CurveStyle style)
 {
     // Everything set before attach(): each later setPen() or setLegendAttribute() would
     // rebuild the curve's legend entry (the largest part of adding a curve after the data).
     auto *c = new QwtPlotCurve(title);
     const bool envelope = style == CurveStyle::Envelope;
     // Envelope: a cosmetic (0-width) 1-px pen, the fast raster path for thousands of segments.
-    c->setPen(curveColours().at(m_curves.size() % curveColours().size()), envelope ? 0.0 : 1.5, penStyle);
+    c->setPen(curveColours().at(m_curves.size() % curveColours().size()), envelope ? 0.0 : 1.5);
     c->setLegendAttribute(QwtPlotCurve::LegendShowLine, true);
     c->setLegendAttribute(QwtPlotCurve::LegendShowSymbol, true); // the legend shows the points' marker too
     c->setRenderHint(QwtPlotItem::RenderAntialiased, !envelope);
@@ -176,9 +176,9 @@ TimeSeriesPlot::Envelope TimeSeriesPlot::envelope(const DecimatedSeries &whole, 
 }
 
 QwtPlotCurve *TimeSeriesPlot::addDecimatedCurve(const QString &title, RangeFetcher fetch, const Envelope &whole,
-                                                bool rightAxis, Qt::PenStyle penStyle)
+                                                bool rightAxis)
 {
-    QwtPlotCurve *c = addCurve(title, whole.x, whole.y, rightAxis, CurveStyle::Envelope, penStyle);
+    QwtPlotCurve *c = addCurve(title, whole.x, whole.y, rightAxis, CurveStyle::Envelope);
     // Read over (-inf, inf) or over [tFirst, tLast]: the same entries, the same buckets.
     m_decimated.push_back({c, std::move(fetch), whole.tFirst, whole.tLast, whole.tFirst, whole.tLast, whole.requested});
     return c;

@@ -44,7 +44,7 @@ public:
     // Adds a curve; `rightAxis` puts it on the right y axis. Returns the curve. The curve is
     // complete when attached: its legend entry is made once.
     QwtPlotCurve *addCurve(const QString &title, const QVector<double> &t, const QVector<double> &v, bool rightAxis,
-                           CurveStyle style = CurveStyle::Lines, Qt::PenStyle penStyle = Qt::SolidLine);
+                           CurveStyle style = CurveStyle::Lines);
     // Min/max per pixel column, fetched for the visible time range whenever it changes
     // (PulseView style): a 36-million-sample channel draws as fast as a 2,000-point one.
     using RangeFetcher = std::function<DecimatedSeries(double t0, double t1, int buckets)>;
@@ -63,8 +63,7 @@ public:
     // (-inf, inf)): its first and last times are the channel's span, so opening costs one
     // query, not two, and the refetch after the x scale settles reads nothing while the
     // visible span and the canvas width are those it was read for.
-    QwtPlotCurve *addDecimatedCurve(const QString &title, RangeFetcher fetch, const Envelope &whole, bool rightAxis,
-                                    Qt::PenStyle penStyle = Qt::SolidLine);
+    QwtPlotCurve *addDecimatedCurve(const QString &title, RangeFetcher fetch, const Envelope &whole, bool rightAxis);
     // Buckets a decimated curve asks for: one per pixel column of the canvas (at least 200).
     int decimationBuckets() const;
     // Polyline through (t, min), (t, max) per bucket: its envelope holds every sample.

@@ -84,7 +84,8 @@ int DiagnoseCommand::run(const QStringList &args)
     const QCommandLineOption withHousingContact(
         QStringLiteral("housing-contact"),
         QStringLiteral("The machine as built in the baseline: the screw touches the recorded fixed-bearing and nut housings "
-                       "through contact conductances of at most 0.5 W/K (issue 36; opt-in, see docs/diagnosis.md)."));
+                       "through contact conductances of at most %1 W/K (issue 36; opt-in, see docs/diagnosis.md).")
+            .arg(DiagnosisOptions().asBuiltContactMax_W_K));
     p.addOptions({train, validate, json, predictions, db, effects, dt, fitTemperatures, withPriors, noPriors, withChain, noChain, withTriples,
                   withHousingContact, force});
     if (!parse(p, args))
