@@ -15,8 +15,10 @@
 // open, each time printed on stderr, the worst in the table). Prints markdown rows. With
 // BENCH_QUICK set, part 2 skips the read breakdown and the plain read (for perf runs). Each
 // review open also prints the GUI thread's CPU time, its page faults and the CPU of the
-// 150 ms of event loop after it (the first paint and any refetch run there).
+// 150 ms of event loop after it (the first paint and any refetch run there) with its page
+// faults. The process sets the GUI's heap policy (HeapPolicy) unless BENCH_GLIBC_DEFAULTS is set.
 
+#include "HeapPolicy.h"
 #include "LiveRecordingView.h"
 #include "ReviewWorkspace.h"
 #include "SessionStore.h"
@@ -92,6 +94,9 @@ void fill(int k, double rate, qint64 i0, qint64 i1, QVector<double> &t, QVector<
 
 int main(int argc, char **argv)
 {
+    // As the GUI's main() does; BENCH_GLIBC_DEFAULTS set leaves the C library's defaults.
+    if (!qEnvironmentVariableIsSet("BENCH_GLIBC_DEFAULTS"))
+        HeapPolicy::keepLargeBlocksInHeap();
     qputenv("QT_QPA_PLATFORM", "offscreen");
     QApplication app(argc, argv);
     const double seconds = argc > 1 ? std::atof(argv[1]) : 20.0;
@@ -295,11 +300,15 @@ int main(int argc, char **argv)
         {
             // What the GUI does next: its event loop runs the refetch the new x scale asked for.
             const double c0 = threadCpu_s();
+            rusage r0{};
+            getrusage(RUSAGE_THREAD, &r0);
             QEventLoop loop;
             QTimer::singleShot(150, &loop, &QEventLoop::quit);
             loop.exec();
+            rusage r1{};
+            getrusage(RUSAGE_THREAD, &r1);
             err << "  then the event loop (first paint, refetch if any): GUI thread CPU " << (threadCpu_s() - c0) * 1e3
-                << " ms in 150 ms\n";
+                << " ms in 150 ms, " << r1.ru_minflt - r0.ru_minflt << " page faults\n";
         }
         const double before = t2.nsecsElapsed() / 1e6 - setSessionMs; // the 150 ms above
         review.showChannels(longLayout.slow + longLayout.fast);

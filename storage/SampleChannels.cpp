@@ -203,8 +203,8 @@ void SampleChannels::forEachBlock(qint64 channelId,
     }
 }
 
-QVector<SampleMipmap::Entry> SampleChannels::levelEntries(qint64 channelId, int level, double t0, double t1,
-                                                          qint64 atMost) const
+void SampleChannels::levelEntries(qint64 channelId, int level, double t0, double t1, qint64 atMost,
+                                  QVector<SampleMipmap::Entry> &out) const
 {
     // Ordered by t_last alone, which the index (channel_id, level, t_last) gives: a second
     // key (seq) made SQLite copy every row's blob through a sorter. Rows of one level follow
@@ -218,12 +218,27 @@ QVector<SampleMipmap::Entry> SampleChannels::levelEntries(qint64 channelId, int 
     q.addBindValue(level);
     q.addBindValue(t0);
     SqlSupport::run(q, m_path, QStringLiteral("cannot read mipmap level %1 of channel %2").arg(level).arg(channelId));
+    out.clear(); // keeps the capacity (Qt >= 5.7)
+    // One allocation, not a doubling series: on a first open each new page costs a fault.
+    constexpr qint64 kMaxReserve = 1 << 16;
+    if (atMost > out.capacity())
+        out.reserve(static_cast<int>(std::min(atMost, kMaxReserve)));
+    // Rows are decoded as they come, not held until the end: holding every row's blob put each
+    // channel's copies on fresh pages (~430 page faults on a first open of 65 channels). Only
+    // rows with equal end times wait, to be put in seq order.
     struct StoredRow {
-        double tLast;
         qint64 seq;
         QByteArray data; // shares the driver's copy
     };
-    QVector<StoredRow> rows;
+    QVector<StoredRow> group; // rows ending at groupLast
+    double groupLast = 0.0;
+    auto flushGroup = [&] {
+        if (group.size() > 1)
+            std::sort(group.begin(), group.end(), [](const StoredRow &a, const StoredRow &b) { return a.seq < b.seq; });
+        for (const StoredRow &r : group)
+            SampleMipmap::appendEntries(r.data, t0, t1, out);
+        group.clear();
+    };
     bool past = false; // a row starting after t1 was seen: stop after the rows ending with it
     double pastLast = 0.0;
     while (q.next()) {
@@ -235,18 +250,12 @@ QVector<SampleMipmap::Entry> SampleChannels::levelEntries(qint64 channelId, int 
             pastLast = tLast;
             continue;
         }
-        rows.push_back({tLast, q.value(2).toLongLong(), q.value(3).toByteArray()});
+        if (!group.isEmpty() && tLast != groupLast)
+            flushGroup();
+        groupLast = tLast;
+        group.push_back({q.value(2).toLongLong(), q.value(3).toByteArray()});
     }
-    auto bySeq = [](const StoredRow &a, const StoredRow &b) { return a.tLast < b.tLast || (a.tLast == b.tLast && a.seq < b.seq); };
-    if (!std::is_sorted(rows.begin(), rows.end(), bySeq))
-        std::sort(rows.begin(), rows.end(), bySeq);
-    QVector<SampleMipmap::Entry> out;
-    // One allocation, not a doubling series: on a first open each new page costs a fault.
-    constexpr qint64 kMaxReserve = 1 << 16;
-    out.reserve(static_cast<int>(std::min(atMost, kMaxReserve)));
-    for (const StoredRow &r : rows)
-        SampleMipmap::appendEntries(r.data, t0, t1, out);
-    return out;
+    flushGroup();
 }
 
 DecimatedSeries SampleChannels::decimated(qint64 channelId, double t0, double t1, int maxPoints) const
@@ -260,7 +269,8 @@ DecimatedSeries SampleChannels::decimated(qint64 channelId, double t0, double t1
     // lies inside a level-L entry in the range: a level holds at most 16 times the entries of
     // the level above it. A level that bound puts under maxPoints cannot be the answer and is
     // not read (a 10 h, 10 Hz channel drawn 1,200 px wide reads levels 5 and 2, not 5, 4, 3, 2).
-    QVector<SampleMipmap::Entry> entries;
+    QVector<SampleMipmap::Entry> &entries = m_entries;
+    entries.clear();
     int level = SampleMipmap::kLevels;
     qint64 atMost = std::numeric_limits<qint64>::max(); // entries this level can hold in the range
     for (; level >= 1; --level) {
@@ -268,7 +278,7 @@ DecimatedSeries SampleChannels::decimated(qint64 channelId, double t0, double t1
             atMost *= SampleMipmap::kFactor;
             continue;
         }
-        entries = levelEntries(channelId, level, t0, t1, atMost == std::numeric_limits<qint64>::max() ? 0 : atMost);
+        levelEntries(channelId, level, t0, t1, atMost == std::numeric_limits<qint64>::max() ? 0 : atMost, entries);
         if (entries.size() >= maxPoints)
             break;
         atMost = static_cast<qint64>(entries.size()) * SampleMipmap::kFactor;

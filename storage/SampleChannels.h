@@ -49,13 +49,19 @@ private:
     void writeSamples(qint64 channelId, const double *t, const double *v, int n);
     void writeBlock(qint64 channelId, ChannelState &state, int n);
     void flushLevelRow(qint64 channelId, int level, SampleMipmap::Row &row);
-    // Entries of one level overlapping [t0, t1]; atMost (0: unknown) bounds their number.
-    QVector<SampleMipmap::Entry> levelEntries(qint64 channelId, int level, double t0, double t1, qint64 atMost) const;
+    // Entries of one level overlapping [t0, t1] into out (cleared first, its capacity kept);
+    // atMost (0: unknown) bounds their number.
+    void levelEntries(qint64 channelId, int level, double t0, double t1, qint64 atMost,
+                      QVector<SampleMipmap::Entry> &out) const;
 
     QSqlDatabase m_db;
     QString m_path;
     std::unique_ptr<SampleBackend> m_backend; // writes and block pages: QtSql or binary libpq
     QHash<qint64, ChannelState> m_state;
+    // decimated()'s entries, reused from call to call: a fresh buffer per channel put every
+    // channel's entries on new pages, ~900 page faults (~20 ms on a VM) when a process first
+    // opens a 65-channel session (docs/benchmarks.md, "Sixth look").
+    mutable QVector<SampleMipmap::Entry> m_entries;
 };
 
 } // namespace driftlab

@@ -5,6 +5,7 @@
 #include "AnalysisPanel.h"
 #include "DiagnosisPanel.h"
 #include "AcquisitionPanel.h"
+#include "HeapPolicy.h"
 #include "LiveRecordingView.h"
 #include "MainWindow.h"
 #include "ModelsPanel.h"
@@ -75,6 +76,7 @@ void showTall(MainWindow &window, const QString &dockName)
 
 int main(int argc, char **argv)
 {
+    HeapPolicy::keepLargeBlocksInHeap(); // a plot's first paint reuses pages instead of faulting new ones
     // Without a display Qt aborts; run offscreen instead, and refuse anything but a screenshot.
     const bool headless = qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY") &&
                           qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM");

@@ -240,6 +240,27 @@ private slots:
         QCOMPARE(s.samples(ch).v, V);
     }
 
+    void mipmapRowsWithEqualEndTimesKeepTheirOrder()
+    {
+        // Three full level-1 rows (256 entries of 16 samples) whose samples all share t = 5 s:
+        // their rows end at the same time, and only their order (seq) says which came first.
+        SessionStore s(db(QStringLiteral("equal.sqlite")));
+        qint64 ch = 0;
+        makeSession(s, &ch);
+        constexpr int kN = 3 * 256 * 16;
+        QVector<double> t(kN, 5.0), v(kN);
+        for (int i = 0; i < kN; ++i)
+            v[i] = i;
+        s.appendSamples(ch, t, v);
+        const DecimatedSeries d = s.decimated(ch, -1, 1e9, 3 * 256); // level 1, every entry as stored
+        QCOMPARE(d.level, 1);
+        QCOMPARE(d.max.size(), 3 * 256);
+        for (int k = 0; k < d.max.size(); ++k) {
+            QCOMPARE(d.min[k], 16.0 * k);
+            QCOMPARE(d.max[k], 16.0 * k + 15.0);
+        }
+    }
+
     void rollbackDropsSamplesAndKeepsMipmapConsistent()
     {
         SessionStore s(db(QStringLiteral("rb.sqlite")));
