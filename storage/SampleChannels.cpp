@@ -313,10 +313,12 @@ DecimatedSeries SampleChannels::decimated(qint64 channelId, double t0, double t1
     const double a = std::max(t0, entries.front().tFirst);
     const double b = std::min(t1, entries.back().tLast);
     const double width = (b - a) / maxPoints;
+    out.bucketStart = a;
+    out.bucketWidth = width;
+    out.bucketCount = maxPoints;
     int current = -1;
     for (const SampleMipmap::Entry &e : entries) {
-        int k = width > 0 ? static_cast<int>((e.tFirst - a) / width) : 0;
-        k = std::clamp(k, 0, maxPoints - 1);
+        const int k = DecimatedSeries::bucketIndex(e.tFirst, a, width, maxPoints);
         if (k != current) {
             out.tFirst.push_back(e.tFirst);
             out.tLast.push_back(e.tLast);

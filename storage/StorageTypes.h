@@ -5,6 +5,7 @@
 #include <QString>
 #include <QVector>
 
+#include <algorithm>
 #include <optional>
 
 namespace driftlab {
@@ -58,6 +59,24 @@ struct DecimatedSeries {
     QVector<double> min;
     QVector<double> max;
     int level = 0;
+    // The equal-width time grid the entries were merged on (bucket k spans bucketStart +
+    // [k, k + 1) * bucketWidth and holds the entries starting there); bucketWidth 0: the
+    // entries as stored, one per element.
+    double bucketStart = 0.0;
+    double bucketWidth = 0.0;
+    int bucketCount = 0;
+    // The grid cell of an entry starting at t (bucketWidth > 0); the cell's centre is where a
+    // plot draws the element, so buckets are evenly spaced (one per pixel column when the grid
+    // is the canvas's width).
+    static int bucketIndex(double t, double start, double width, int count)
+    {
+        const int k = width > 0 ? static_cast<int>((t - start) / width) : 0;
+        return std::clamp(k, 0, count - 1);
+    }
+    double bucketCentre(int i) const
+    {
+        return bucketStart + (bucketIndex(tFirst[i], bucketStart, bucketWidth, bucketCount) + 0.5) * bucketWidth;
+    }
 };
 
 // One infrared frame: 16-bit pixels, row-major, width * height values.

@@ -132,7 +132,9 @@ void TimeSeriesPlot::envelopePoints(const DecimatedSeries &d, QVector<double> &x
     x.reserve(2 * d.min.size());
     y.reserve(2 * d.min.size());
     for (int i = 0; i < d.min.size(); ++i) {
-        const double t = 0.5 * (d.tFirst[i] + d.tLast[i]);
+        // Bucketed: the grid cell's centre, evenly spaced (the mid of the entries merged into a
+        // bucket left some pixel columns without a bucket); else the entry's mid.
+        const double t = d.bucketWidth > 0 ? d.bucketCentre(i) : 0.5 * (d.tFirst[i] + d.tLast[i]);
         x.push_back(t);
         y.push_back(d.min[i]);
         if (d.max[i] != d.min[i]) {
