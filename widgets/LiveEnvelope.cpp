@@ -60,9 +60,19 @@ void LiveEnvelope::append(const QVector<double> &t, const QVector<double> &v)
         add(t[k], v[k], v[k]);
 }
 
-void LiveEnvelope::appendRange(double t, double min, double max)
+void LiveEnvelope::appendRange(double tFirst, double tLast, double min, double max)
 {
-    add(t, min, max);
+    if (std::isnan(tFirst) || std::isnan(tLast) || tLast < tFirst)
+        return;
+    add(tLast, min, max); // merges until the range's end fits: the width is final from here
+    if (std::isnan(min) || std::isnan(max))
+        return;
+    const int b0 = static_cast<int>(std::floor(std::max(0.0, tFirst) / m_width));
+    const int b1 = static_cast<int>(std::floor(std::max(0.0, tLast) / m_width));
+    for (int i = std::max(0, b0); i < b1 && i < m_capacity; ++i) {
+        m_min[i] = std::isnan(m_min[i]) ? min : std::min(m_min[i], min);
+        m_max[i] = std::isnan(m_max[i]) ? max : std::max(m_max[i], max);
+    }
 }
 
 void LiveEnvelope::points(QVector<double> &x, QVector<double> &y) const

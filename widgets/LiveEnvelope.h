@@ -15,9 +15,11 @@ public:
     void clear();
     // Samples in ascending time (t >= 0).
     void append(const QVector<double> &t, const QVector<double> &v);
-    // One bucket of an already decimated range (its time, min and max): seeds the envelope
-    // of a session that ran before the view opened.
-    void appendRange(double t, double min, double max);
+    // One bucket of an already decimated range (its first and last time, min and max): seeds
+    // the envelope of a session that ran before the view opened. Every bucket the range
+    // overlaps takes its min and max (put at the range's mid, coarser ranges left buckets
+    // empty: columns of the plot without a stick, like gaps in the data).
+    void appendRange(double tFirst, double tLast, double min, double max);
     // Polyline through (t, min), (t, max) per filled bucket (as TimeSeriesPlot::envelopePoints).
     void points(QVector<double> &x, QVector<double> &y) const;
     double width() const { return m_width; }

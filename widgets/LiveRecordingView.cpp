@@ -363,17 +363,18 @@ void LiveRecordingView::update(const SessionStore &reader, qint64 sessionId, dou
         const ChannelInfo &c = m_channels[r];
         Tracked &ch = m_tracked[c.key];
         double last = kNaN;
+        bool grew = false; // the envelope took samples this time
         if (!ch.seeded) {
             // The first look: what is stored so far, decimated (a session opened late, or long).
             ch.seeded = true;
             const DecimatedSeries d = reader.decimated(c.id, 0.0, std::max(1.0, now_s), ch.envelope.capacity() / 2);
             for (int i = 0; i < d.min.size(); ++i)
-                ch.envelope.appendRange(0.5 * (d.tFirst[i] + d.tLast[i]), d.min[i], d.max[i]);
+                ch.envelope.appendRange(d.tFirst[i], d.tLast[i], d.min[i], d.max[i]);
             if (!d.tLast.isEmpty()) {
                 ch.checked_t = d.tLast.last();
                 ch.lastSample_t = d.tLast.last();
                 last = d.max.last();
-                changed = true;
+                changed = grew = true;
             }
         }
         // Only what is new since the last look.
@@ -383,11 +384,13 @@ void LiveRecordingView::update(const SessionStore &reader, qint64 sessionId, dou
             ch.lastSample_t = std::isnan(ch.lastSample_t) ? fresh.t.last() : std::max(ch.lastSample_t, fresh.t.last());
             ch.envelope.append(fresh.t, fresh.v);
             last = fresh.v.last();
-            changed = true;
+            changed = grew = true;
         }
         if (m_monitor.limit(c.key).any())
             alarms += m_monitor.observe(c.key, fresh.t, fresh.v, ch.lastSample_t, now_s);
-        if (!fresh.t.isEmpty() || !ch.envelope.filled()) {
+        // A seeded envelope is drawn at once (a finished or paused session has no fresh samples
+        // to wait for; its curve used to appear only with the next new sample).
+        if (grew) {
             QTableWidgetItem *name = m_table->item(r, ColChannel);
             QwtPlotCurve *curve = m_plot->curve(c.key);
             QVector<double> x, y;
