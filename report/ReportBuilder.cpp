@@ -613,7 +613,7 @@ void ReportBuilder::diagnosisSection(ReportDocument &doc) const
             const QJsonObject t = v.toObject();
             tests.push_back({t.value(QStringLiteral("test")).toString(), t.value(QStringLiteral("description")).toString(),
                              jsonText(t.value(QStringLiteral("expected_chi2"))),
-                             jsonText(t.value(QStringLiteral("max_difference"))) + QLatin1Char(' ') + t.value(QStringLiteral("unit")).toString(),
+                             jsonText(t.value(QStringLiteral("max_difference"))) + QLatin1Char(' ') + UnitLabels::display(t.value(QStringLiteral("unit")).toString()),
                              QString::number(qRound(100.0 * t.value(QStringLiteral("expected_heldout_gain")).toDouble())) + QStringLiteral(" %")});
         }
         doc.table({QStringLiteral("Added test"), QStringLiteral("Programme"), QStringLiteral("Expected chi-square"),
