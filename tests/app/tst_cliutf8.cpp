@@ -5,13 +5,12 @@
 // (0xC2 0xB5 'm') after simulate and export-model, °C and µm in info's channel list (the
 // stored codes degC and um shown through UnitLabels, issue 33).
 
-#include <QDir>
-#include <QFile>
 #include <QProcessEnvironment>
 #include <QTemporaryDir>
 #include <QtTest>
 
 #include "../support/CliRunner.h"
+#include "../support/TestFiles.h"
 
 namespace {
 
@@ -45,19 +44,9 @@ private slots:
     void messagesAreUtf8();
 
 private:
-    QString write(const QString &name, const QByteArray &bytes);
     QTemporaryDir m_dir;
     QString m_db;
 };
-
-QString TestCliUtf8::write(const QString &name, const QByteArray &bytes)
-{
-    const QString path = m_dir.filePath(name);
-    QFile f(path);
-    if (f.open(QIODevice::WriteOnly))
-        f.write(bytes);
-    return path;
-}
 
 void TestCliUtf8::initTestCase()
 {
@@ -66,8 +55,8 @@ void TestCliUtf8::initTestCase()
     const clirunner::Result r = clirunner::run({QStringLiteral("import"), QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/bundles/example.bundle"),
                                                 QStringLiteral("--db"), m_db});
     QVERIFY2(r.code == 0, r.err.constData());
-    write(QStringLiteral("fdm.json"), kFdm);
-    write(QStringLiteral("synthetic.json"), kSynthetic);
+    testfiles::write(m_dir.path(), QStringLiteral("fdm.json"), kFdm);
+    testfiles::write(m_dir.path(), QStringLiteral("synthetic.json"), kSynthetic);
 }
 
 void TestCliUtf8::messagesAreUtf8_data()
