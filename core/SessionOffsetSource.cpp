@@ -1,6 +1,7 @@
 #include "SessionOffsetSource.h"
 
 #include "SessionStore.h"
+#include "UnitLabels.h"
 
 #include <QStringList>
 
@@ -90,7 +91,7 @@ QString SessionOffsetSource::failure(int i, double t) const
         if (v < c.trainingMin - m || v > c.trainingMax + m)
             return QStringLiteral("at %1 %2, outside its training range %3..%4 by more than %5")
                 .arg(v, 0, 'f', 2)
-                .arg(QString::fromStdString(c.unit))
+                .arg(UnitLabels::display(QString::fromStdString(c.unit)))
                 .arg(c.trainingMin, 0, 'f', 2)
                 .arg(c.trainingMax, 0, 'f', 2)
                 .arg(m, 0, 'f', 2);

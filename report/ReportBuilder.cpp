@@ -6,8 +6,7 @@
 #include "DataDrivenModelJson.h"
 #include "ExtrapolationWarning.h"
 #include "FdmModelJson.h"
-#include "SessionIso230.h"
-#include "Iso230View.h"
+#include "ReportIso230Section.h"
 #include "ReportTemplate.h"
 #include "ReviewWorkspace.h"
 #include "SessionAnalysis.h"
@@ -33,12 +32,8 @@ namespace driftlab {
 
 namespace {
 
-const QSizeF kFigure_mm(174, 100);
-
-QString num(double v, int digits = 5)
-{
-    return std::isfinite(v) ? QString::number(v, 'g', digits) : QStringLiteral("-");
-}
+constexpr auto num = &ReportDocument::number;
+constexpr auto hours = &ReportDocument::hours;
 
 QString jsonText(const QJsonValue &v)
 {
@@ -66,8 +61,6 @@ void flatten(const QJsonObject &o, const QString &prefix, QVector<QPair<QString,
     }
 }
 
-QString hours(double t_s) { return QString::number(t_s / 3600.0, 'f', 2); }
-
 // The figure size: taller when the legend wraps into many rows (about five entries a row),
 // so that the canvas keeps its height.
 QSizeF figureSize(const QwtPlot &plot)
@@ -76,7 +69,7 @@ QSizeF figureSize(const QwtPlot &plot)
     for (const QwtPlotItem *item : plot.itemList())
         entries += item->testItemAttribute(QwtPlotItem::Legend);
     const int rows = (entries + 4) / 5;
-    return QSizeF(kFigure_mm.width(), kFigure_mm.height() + 6.0 * std::max(0, rows - 2));
+    return QSizeF(ReportBuilder::kFigure_mm.width(), ReportBuilder::kFigure_mm.height() + 6.0 * std::max(0, rows - 2));
 }
 
 } // namespace
@@ -119,7 +112,7 @@ ReportDocument ReportBuilder::build(const Progress &progress) const
     stage(QStringLiteral("figures"));
     figureSection(doc);
     stage(QStringLiteral("ISO 230"));
-    iso230Section(doc);
+    ReportIso230Section::write(doc, m_store, m_session, m_look);
     stage(QStringLiteral("sensitive points"));
     sensitivePointSection(doc);
     stage(QStringLiteral("fitted models"));
@@ -240,112 +233,6 @@ void ReportBuilder::figureSection(ReportDocument &doc) const
         const QSizeF size = figureSize(*plot);
         doc.figure(QStringLiteral("%1 (session %2)").arg(heading).arg(m_session), svg(*plot, size), size);
     }
-}
-
-void ReportBuilder::iso230Section(ReportDocument &doc) const
-{
-    doc.heading(m_look.heading(QStringLiteral("iso230")));
-    // The result `iso230` or the ISO 230 view stored with the session; without one (or with
-    // one this version cannot read), evaluated here with the default request.
-    std::optional<Iso230Report> iso;
-    try {
-        iso = SessionIso230::stored(m_store, m_session);
-    } catch (const std::invalid_argument &e) {
-        doc.leftOut(QStringLiteral("the stored ISO 230 result was not used: %1").arg(QString::fromUtf8(e.what())));
-    }
-    const bool stored = iso.has_value();
-    if (!stored) {
-        try {
-            Iso230Request request;
-            request.session = m_session;
-            iso = SessionIso230(m_store, request).run();
-        } catch (const std::invalid_argument &e) {
-            doc.leftOut(QString::fromUtf8(e.what()));
-            return;
-        }
-    }
-    const Iso230Request &request = iso->request();
-    doc.paragraph(QStringLiteral("%1: %2 run(s) per test, targets within %3 mm, drift %4.")
-                      .arg(stored ? QStringLiteral("The result stored with the session") : QStringLiteral("Evaluated for this report (none stored)"))
-                      .arg(request.runsPerTest)
-                      .arg(request.targetTolerance_mm)
-                      .arg(request.temperatureChannel.isEmpty() ? QStringLiteral("without a temperature channel")
-                                                                : QStringLiteral("against %1").arg(request.temperatureChannel)));
-    QVector<QStringList> rows;
-    QSet<QString> notes;
-    for (const Iso230Test &t : iso->tests()) {
-        QStringList runs;
-        for (int r : t.runs)
-            runs << QString::number(r);
-        // One direction (or none recorded): the values of that direction, as Iso230Report::text.
-        const Iso230Axis &a = t.axis;
-        const bool both = t.bidirectional;
-        rows.push_back({runs.join(QLatin1Char(',')), hours(t.time_s), QString::number(t.targets.size()),
-                        both ? QStringLiteral("both") : t.directionRecorded ? QStringLiteral("one") : QStringLiteral("not recorded"),
-                        QString::number(t.minApproaches), num(both ? a.accuracy_um : a.accuracyUp_um, 4),
-                        num(both ? a.systematic_um : a.systematicUp_um, 4), num(a.meanRange_um, 4),
-                        num(both ? a.repeat_um : a.repeatUp_um, 4), num(a.reversal_um, 4)});
-        for (const std::string &n : t.notes)
-            notes.insert(QString::fromStdString(n));
-    }
-    doc.paragraph(QStringLiteral("ISO 230-2 axis values per interferometer test, in \u00b5m: A accuracy, E systematic "
-                                 "positioning error, M range of the mean positional deviation, R repeatability, "
-                                 "B reversal value; n = fewest approaches per target and direction."));
-    doc.table({QStringLiteral("Runs"), QStringLiteral("t (h)"), QStringLiteral("Targets"), QStringLiteral("Directions"),
-               QStringLiteral("n"), QStringLiteral("A"), QStringLiteral("E"), QStringLiteral("M"), QStringLiteral("R"), QStringLiteral("B")},
-              rows);
-    QStringList sorted = notes.values();
-    sorted.sort();
-    for (const QString &n : sorted)
-        doc.paragraph(QStringLiteral("Note: %1").arg(n));
-
-    // The reference test per target and direction, and the plots of the ISO 230 view (the
-    // same Iso230Report numbers the view and `iso230 --json` show).
-    const int reference = iso->referenceTest();
-    if (!iso->tests().empty()) {
-        const Iso230Test &ref = iso->tests()[static_cast<std::size_t>(reference)];
-        QVector<QStringList> targets;
-        for (const Iso230Target &t : ref.targets)
-            targets.push_back({num(t.position_mm, 6), QString::number(t.approachesUp), QString::number(t.approachesDown),
-                               num(t.meanUp_um, 4), num(t.meanDown_um, 4), num(t.reversal_um, 4), num(t.repeatUp_um, 4),
-                               num(t.repeatDown_um, 4), num(t.repeat_um, 4)});
-        doc.paragraph(QStringLiteral("ISO 230-2 per target and direction of the reference test (run %1), in \u00b5m: "
-                                     "mean positional deviation x up and down, reversal B, repeatability R up, down and "
-                                     "bidirectional.")
-                          .arg(iso->referenceRun()));
-        doc.table({QStringLiteral("Target (mm)"), QStringLiteral("n up"), QStringLiteral("n down"), QStringLiteral("x up"),
-                   QStringLiteral("x down"), QStringLiteral("B"), QStringLiteral("R up"), QStringLiteral("R down"),
-                   QStringLiteral("R")},
-                  targets);
-        Iso230View view;
-        view.resize(1100, 700);
-        view.showReport(*iso);
-        view.showTest(reference);
-        doc.figure(QStringLiteral("ISO 230-2 positional deviation of the reference test (session %1)").arg(m_session),
-                   svg(*view.positioningPlot(), kFigure_mm), kFigure_mm);
-        if (iso->tests().size() >= 2)
-            doc.figure(QStringLiteral("ISO 230-3 drift against the reference run (session %1)").arg(m_session),
-                       svg(*view.driftPlot(), kFigure_mm), kFigure_mm);
-    }
-    const Iso230DriftSummary &d = iso->drift();
-    if (iso->tests().size() < 2) {
-        doc.leftOut(QStringLiteral("ISO 230-3 drift: the session has a single positioning test, so there is no drift"));
-        return;
-    }
-    doc.paragraph(QStringLiteral("ISO 230-3 drift against the reference run %1: largest drift %2 \u00b5m at %3 mm (%4) in run %5, "
-                                 "%6 h after the start.")
-                      .arg(d.referenceRun)
-                      .arg(num(d.maxDrift_um, 4), num(d.maxDriftPosition_mm, 6),
-                           d.maxDriftDirection > 0 ? QStringLiteral("+") : d.maxDriftDirection < 0 ? QStringLiteral("-") : QStringLiteral("no direction"))
-                      .arg(d.maxDriftRun)
-                      .arg(hours(d.maxDriftTime_s)));
-    QVector<QStringList> drift;
-    for (const Iso230DriftSeries &s : d.series)
-        drift.push_back({num(s.position_mm, 6), s.direction > 0 ? QStringLiteral("+") : s.direction < 0 ? QStringLiteral("-") : QStringLiteral("?"),
-                         num(s.maxDrift_um, 4), hours(s.maxDriftTime_s), QString::number(s.maxDriftRun)});
-    doc.table({QStringLiteral("Target (mm)"), QStringLiteral("Direction"), QStringLiteral("Largest drift (\u00b5m)"),
-               QStringLiteral("at t (h)"), QStringLiteral("Run")},
-              drift);
 }
 
 void ReportBuilder::sensitivePointSection(ReportDocument &doc) const
@@ -613,7 +500,7 @@ void ReportBuilder::diagnosisSection(ReportDocument &doc) const
             const QJsonObject t = v.toObject();
             tests.push_back({t.value(QStringLiteral("test")).toString(), t.value(QStringLiteral("description")).toString(),
                              jsonText(t.value(QStringLiteral("expected_chi2"))),
-                             jsonText(t.value(QStringLiteral("max_difference"))) + QLatin1Char(' ') + t.value(QStringLiteral("unit")).toString(),
+                             jsonText(t.value(QStringLiteral("max_difference"))) + QLatin1Char(' ') + UnitLabels::display(t.value(QStringLiteral("unit")).toString()),
                              QString::number(qRound(100.0 * t.value(QStringLiteral("expected_heldout_gain")).toDouble())) + QStringLiteral(" %")});
         }
         doc.table({QStringLiteral("Added test"), QStringLiteral("Programme"), QStringLiteral("Expected chi-square"),

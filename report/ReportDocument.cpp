@@ -1,6 +1,18 @@
 #include "ReportDocument.h"
 
+#include <cmath>
+
 namespace driftlab {
+
+QString ReportDocument::number(double v, int digits)
+{
+    return std::isfinite(v) ? QString::number(v, 'g', digits) : QStringLiteral("-");
+}
+
+QString ReportDocument::hours(double t_s)
+{
+    return QString::number(t_s / 3600.0, 'f', 2);
+}
 
 void ReportDocument::paragraph(const QString &plainText)
 {

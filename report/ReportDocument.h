@@ -39,6 +39,11 @@ public:
     void table(const QStringList &header, const QVector<QStringList> &rows, int rowsPerBlock = 28);
     // Two-column "name: value" table.
     void keyValues(const QVector<QPair<QString, QString>> &pairs);
+
+    // How a report writes a number in a cell or sentence: `digits` significant digits, "-"
+    // when not finite; a time in seconds as hours with two decimals.
+    static QString number(double v, int digits);
+    static QString hours(double t_s);
 };
 
 } // namespace driftlab

@@ -7,6 +7,7 @@ session with scripts/thirdsim.py; `driftlab-cli diagnose` runs on the two bundle
 One diagnosis at a time, under nice (the machine is shared).
 
     scripts/thirdsim-sweep.py BUILD_DIR OUT_DIR [--only NAME] [--cases 17,18,1] [--sim othersim] [--cli-args "--priors ..."]
+    scripts/thirdsim-sweep.py --selftest     # the scoring rules on made-up answers (no CLI run)
 
 --sim othersim runs the same protocol on scripts/othersim.py --wide (the set the diagnosis may
 be tuned on): none x 2 and its four effects on spread machines.
@@ -18,6 +19,8 @@ Prints one line per case and the score per class:
   outside  right = `unexplained` and no library code; wrong = any library code named
   sensor   right = the JSON's `measurement_chain` names the faulty sensor and no library code is
            named; charged = a library code named (the fault charged to the machine)
+  any      failed = diagnose exited non-zero or wrote no JSON (answer "(exit N)" or "(no result)"):
+           never right, whatever the class; listed in each class's tally
 Raw rows go to OUT_DIR/sweep.csv.
 """
 
@@ -55,7 +58,14 @@ def codes(answer):
     return set(a for a in answer.split("+") if a and a != "none")
 
 
+def failed(answer):
+    """A run that gave no answer: "(exit N)" or "(no result)" (no diagnosis name starts with "(")."""
+    return answer.startswith("(")
+
+
 def score(kind, truth, answer, chain):
+    if failed(answer):
+        return "failed"
     named = codes(answer) & LIBRARY
     t = set(truth.split(",")) if truth != "none" else set()
     if kind == "clean":
@@ -77,7 +87,38 @@ def score(kind, truth, answer, chain):
     return "right" if any(want in json.dumps(c) for c in chain) else "missed"
 
 
+def selftest():
+    """The verdicts of score() on made-up answers, one per rule, and a failed run in every class."""
+    cases = [
+        ("clean", "none", "none", [], "right"),
+        ("clean", "none", "holding_heat", [], "wrong"),
+        ("clean", "none", "unexplained", [], "wrong"),
+        ("single", "holding_heat", "holding_heat", [], "right"),
+        ("single", "holding_heat", "none", [], "missed"),
+        ("single", "holding_heat", "screw_coolant", [], "wrong"),
+        ("pair", "heat_path_lag,screw_coolant", "heat_path_lag", [], "some"),
+        ("pair", "heat_path_lag,screw_coolant", "heat_path_lag+screw_coolant", [], "right"),
+        ("outside", "bed_bending", "unexplained", [], "right"),
+        ("outside", "bed_bending", "structure_linear+unexplained", [], "wrong"),
+        ("sensor", "ambient_pt100_step", "none", [{"channel": "ambient"}], "right"),
+        ("sensor", "ambient_pt100_step", "holding_heat", [{"channel": "ambient"}], "charged"),
+    ]
+    for kind, truth in sorted(set(CASES + OTHER_CASES)):
+        for answer in ("(exit 126)", "(exit 1)", "(no result)"):
+            cases.append((kind, truth, answer, [], "failed"))
+    ok = True
+    for kind, truth, answer, chain, want in cases:
+        got = score(kind, truth, answer, chain)
+        good = got == want
+        ok = ok and good
+        print("%-8s %-42s %-30s %-8s expected %-8s %s" % (kind, truth, answer, got, want, "ok" if good else "FAIL"))
+    print("selftest", "passed" if ok else "FAILED")
+    return 0 if ok else 1
+
+
 def main(argv):
+    if argv == ["--selftest"]:
+        return selftest()
     if len(argv) < 2:
         print(__doc__, file=sys.stderr)
         return 2
@@ -131,7 +172,8 @@ def main(argv):
             if p.returncode != 0:
                 open(js + ".stderr", "w").write(p.stderr)
             open(js + ".seconds", "w").write("%.1f" % secs)
-        answer, chain, bh, ch, note = "(exit %d)" % p.returncode, [], float("nan"), float("nan"), ""
+        answer = "(exit %d)" % p.returncode if p.returncode != 0 else "(no result)"
+        chain, bh, ch, note = [], float("nan"), float("nan"), ""
         if p.returncode == 0 and os.path.exists(js):
             d = json.load(open(js))
             answer = d.get("effect", "?")

@@ -9,6 +9,7 @@
 #include "DuplicateSessionError.h"
 #include "SessionDiagnosis.h"
 #include "SessionStore.h"
+#include "UnitLabels.h"
 
 #include <QCommandLineParser>
 #include <QDir>
@@ -213,7 +214,7 @@ int DiagnoseCommand::run(const QStringList &args)
                                      .arg(t.runs)
                                      .arg(t.observable == "interferometer" ? QStringLiteral("runs") : QStringLiteral("samples"))
                                      .arg(t.maxDifference, 0, 'f', 2)
-                                     .arg(QString::fromStdString(t.unit))
+                                     .arg(UnitLabels::display(QString::fromStdString(t.unit)))
                                      .arg(100.0 * t.expectedHeldoutGain, 0, 'f', 0));
     }
     return 0;

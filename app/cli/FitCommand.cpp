@@ -8,6 +8,7 @@
 #include "DataDrivenFitCommand.h"
 #include "ScrewModelFit.h"
 #include "SessionStore.h"
+#include "UnitLabels.h"
 
 #include <QCommandLineParser>
 #include <QJsonDocument>
@@ -137,7 +138,7 @@ int FitCommand::run(const QStringList &args)
                 mark += QStringLiteral("  POORLY IDENTIFIED");
             o << "  " << QString::fromStdString(e.name).leftJustified(8) << QString::number(e.value, 'g', 6).rightJustified(12)
               << (e.fitted ? QStringLiteral(" +- %1").arg(e.standardError, 0, 'g', 3) : QStringLiteral(" (held)"))
-              << ' ' << QString::fromStdString(e.unit) << mark << '\n';
+              << ' ' << UnitLabels::display(QString::fromStdString(e.unit)) << mark << '\n';
         }
         for (const auto *flags : {&implausible, &poorlyIdentified})
             for (const PlausibilityFlag &f : *flags)

@@ -4,6 +4,7 @@
 #include "CliOptions.h"
 #include "OutputTarget.h"
 #include "SessionStore.h"
+#include "UnitLabels.h"
 
 #include <QCommandLineParser>
 #include <QJsonArray>
@@ -57,7 +58,7 @@ int InfoCommand::run(const QStringList &args)
                                         {QStringLiteral("t_last_s"), t1}});
             if (!p.isSet(json))
                 out << QStringLiteral("  %1 [%2] %3: %4 samples, %5 .. %6 s\n")
-                           .arg(c.key, c.unit, c.role)
+                           .arg(c.key, UnitLabels::display(c.unit), c.role)
                            .arg(n)
                            .arg(t0)
                            .arg(t1);

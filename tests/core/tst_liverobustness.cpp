@@ -292,7 +292,7 @@ void TestLiveRobustness::outOfRangeWithoutReducedModelHolds()
     QCOMPARE(run.events.size(), 2);
     QCOMPARE(run.events[0].t_s, 3600.0);
     QCOMPARE(run.events[0].text,
-             QStringLiteral("input 'T2' at 40.00 degC, outside its training range 18.00..32.00 by more than 1.40, no model "
+             QStringLiteral("input 'T2' at 40.00 \u00b0C, outside its training range 18.00..32.00 by more than 1.40, no model "
                             "without it: holding %1 \u00b5m")
                  .arg(safe, 0, 'f', 1));
     QCOMPARE(run.events[1].t_s, 5400.0);

@@ -1,6 +1,8 @@
 #pragma once
-// One notation for units on screen: the bundle's ASCII units (degC, um, mm/min, W/(m^2 K))
-// shown as °C, µm, mm/min, W/(m² K). CSV headers and the CLI keep ASCII.
+// One notation for units wherever a person reads them (the GUI, the report, CLI messages,
+// stored session events): the stored ASCII unit codes (degC, um, mm/min, W/(m^2 K)) shown as
+// °C, µm, mm/min, W/(m² K). The codes themselves stay ASCII in storage, JSON and CSV headers
+// (docs/glossary.md). In core/ (QtCore only) so core/'s events and app/cli reach it too.
 
 #include <QString>
 
