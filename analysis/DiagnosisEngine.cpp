@@ -314,6 +314,13 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
 {
     const auto start = std::chrono::steady_clock::now();
     DiagnosisReport report;
+    report.switches = {m_options.priors,
+                       m_options.checkMeasurementChain,
+                       m_options.tryTriples,
+                       m_options.housingContactBaseline,
+                       m_options.fitScrewTemperatures,
+                       m_options.identification.simulator.grid.dt_s,
+                       m_options.effects};
     // Interferometer points outside a drive's time span are left out with a note (issue 36).
     DiagnosisRecording validate = validateInput;
     RecordingSpan::trimToDrive(validate, report.notes, m_options.identification.simulator.grid.dt_s);
