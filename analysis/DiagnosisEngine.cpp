@@ -169,35 +169,34 @@ std::vector<ObservationFit> DiagnosisEngine::predictTemperatures(ScrewModelIdent
     }
 }
 
+CandidateModel DiagnosisEngine::assemble(CandidateModel own, const std::vector<ForwardSelection::Choice> &accepted,
+                                         const DiagnosisRecording &train) const
+{
+    std::vector<std::function<void(const DiagnosisRecording &)>> binds;
+    auto add = [&](const CandidateModel &more) {
+        own.sources.insert(own.sources.end(), more.sources.begin(), more.sources.end());
+        own.terms.insert(own.terms.end(), more.terms.begin(), more.terms.end());
+        if (more.bind)
+            binds.push_back(more.bind);
+    };
+    for (const ForwardSelection::Choice &a : accepted)
+        add(a.effect->create(train, a.start));
+    if (m_options.housingContactBaseline) // the machine as built: in every model, the baseline too
+        add(CandidateEffectLibrary::asBuilt(train, m_options.asBuiltContactMax_W_K));
+    if (own.bind)
+        binds.push_back(own.bind);
+    if (!binds.empty())
+        own.bind = [binds](const DiagnosisRecording &r) {
+            for (const auto &b : binds)
+                b(r);
+        };
+    return own;
+}
+
 CandidateFit DiagnosisEngine::evaluate(const std::vector<ForwardSelection::Choice> &accepted, const CandidateEffect *candidate,
                                        const DiagnosisRecording &train, const DiagnosisRecording &validate,
                                        const IdentificationOptions &options, double effectiveN)
 {
-    // The accepted effects' components (fresh ones: a fit changes its components' state).
-    auto extended = [&](CandidateModel m) {
-        std::vector<std::function<void(const DiagnosisRecording &)>> binds;
-        for (const ForwardSelection::Choice &a : accepted) {
-            CandidateModel more = a.effect->create(train, a.start);
-            m.sources.insert(m.sources.end(), more.sources.begin(), more.sources.end());
-            m.terms.insert(m.terms.end(), more.terms.begin(), more.terms.end());
-            if (more.bind)
-                binds.push_back(more.bind);
-        }
-        if (m_options.housingContactBaseline) { // the machine as built: in every model, the baseline too
-            CandidateModel built = CandidateEffectLibrary::asBuilt(train, m_options.asBuiltContactMax_W_K);
-            m.sources.insert(m.sources.end(), built.sources.begin(), built.sources.end());
-            if (built.bind)
-                binds.push_back(built.bind);
-        }
-        if (m.bind)
-            binds.push_back(m.bind);
-        if (!binds.empty())
-            m.bind = [binds](const DiagnosisRecording &r) {
-                for (const auto &b : binds)
-                    b(r);
-            };
-        return m;
-    };
     CandidateFit out;
     CandidateModel model;
     std::unique_ptr<ScrewModelIdentifier> best;
@@ -218,7 +217,7 @@ CandidateFit DiagnosisEngine::evaluate(const std::vector<ForwardSelection::Choic
             amplitudes.push_back(s->amplitude().name);
         if (!own.terms.empty()) // the first error term is the candidate's main one
             amplitudes.push_back(own.terms.front()->amplitude().name);
-        CandidateModel m = extended(std::move(own));
+        CandidateModel m = assemble(std::move(own), accepted, train);
         auto id = std::make_unique<ScrewModelIdentifier>(m_geometry, options);
         for (const auto &s : m.sources)
             id->addHeatSource(s);
@@ -314,6 +313,13 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
 {
     const auto start = std::chrono::steady_clock::now();
     DiagnosisReport report;
+    report.switches = {m_options.priors,
+                       m_options.checkMeasurementChain,
+                       m_options.tryTriples,
+                       m_options.housingContactBaseline,
+                       m_options.fitScrewTemperatures,
+                       m_options.identification.simulator.grid.dt_s,
+                       m_options.effects};
     // Interferometer points outside a drive's time span are left out with a note (issue 36).
     DiagnosisRecording validate = validateInput;
     RecordingSpan::trimToDrive(validate, report.notes, m_options.identification.simulator.grid.dt_s);
@@ -361,9 +367,7 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
     {
         // First pass only to get the residual autocorrelation for the effective sample size.
         ScrewModelIdentifier id(m_geometry, opts);
-        const CandidateModel built = m_options.housingContactBaseline
-                                         ? CandidateEffectLibrary::asBuilt(train, m_options.asBuiltContactMax_W_K)
-                                         : CandidateModel{};
+        const CandidateModel built = assemble({}, {}, train); // the machine as built, when asked for
         for (const auto &s : built.sources)
             id.addHeatSource(s);
         if (built.bind)
@@ -454,22 +458,13 @@ void DiagnosisEngine::adviseTest(DiagnosisReport &report, const ForwardSelection
         auto predictor = [&](const CandidateEffect *candidate, const CandidateFit &f) -> DecisiveTestPlanner::Predictor {
             return [this, &train, &opts, &before, candidate, &f](const DiagnosisRecording &rec) {
                 ScrewModelIdentifier id(m_geometry, opts);
-                std::vector<CandidateModel> parts;
-                if (candidate)
-                    parts.push_back(candidate->create(train, f.start));
-                for (const ForwardSelection::Choice &c : before)
-                    parts.push_back(c.effect->create(train, c.start));
-                if (m_options.housingContactBaseline)
-                    parts.push_back(CandidateEffectLibrary::asBuilt(train, m_options.asBuiltContactMax_W_K));
-                for (const CandidateModel &m : parts) {
-                    for (const auto &s : m.sources)
-                        id.addHeatSource(s);
-                    for (const auto &t : m.terms)
-                        id.addErrorTerm(t);
-                }
-                for (const CandidateModel &m : parts)
-                    if (m.bind)
-                        m.bind(rec);
+                const CandidateModel m = assemble(candidate ? candidate->create(train, f.start) : CandidateModel{}, before, train);
+                for (const auto &s : m.sources)
+                    id.addHeatSource(s);
+                for (const auto &t : m.terms)
+                    id.addErrorTerm(t);
+                if (m.bind)
+                    m.bind(rec);
                 return id.predict(f.fit, {rec.screw});
             };
         };

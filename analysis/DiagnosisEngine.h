@@ -50,6 +50,14 @@ private:
     CandidateFit evaluate(const std::vector<ForwardSelection::Choice> &accepted, const CandidateEffect *candidate,
                           const DiagnosisRecording &train, const DiagnosisRecording &validate,
                           const IdentificationOptions &options, double effectiveN);
+    // One model of the diagnosis: `own` (a candidate's components; none for the baseline), then
+    // the accepted effects' (fresh ones: a fit changes its components' state) and, with
+    // housingContactBaseline, the machine as built (CandidateEffectLibrary::asBuilt). The one
+    // place the as-built contacts enter a model: the baseline, every refit and the decisive
+    // test's predictions carry the same components in the same order (the order a fit's
+    // parameters are read back in).
+    CandidateModel assemble(CandidateModel own, const std::vector<ForwardSelection::Choice> &accepted,
+                            const DiagnosisRecording &train) const;
     IdentificationOptions baselineOptions(const DiagnosisRecording &train) const;
     // Which added measurement would decide between the two closest explanations
     // (DecisiveTestPlanner::rivals): both refitted, simulated on the proposed programmes.

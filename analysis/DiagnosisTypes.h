@@ -222,6 +222,18 @@ struct DecisiveTestAdvice {
     std::string summary;       // in words
 };
 
+// The switches a diagnosis ran with (DiagnosisOptions), recorded with its answer so that a
+// stored result says how it was reached ("options" of DiagnosisResultJson).
+struct DiagnosisSwitches {
+    bool priors = false;
+    bool checkMeasurementChain = false;
+    bool tryTriples = false;
+    bool housingContact = false;
+    bool fitScrewTemperatures = false;
+    double dt_s = 0.0;                // implicit time step of the fits
+    std::vector<std::string> effects; // the candidate codes asked for; empty: all
+};
+
 struct DiagnosisReport {
     // Accepted effect codes joined by '+' in the order of acceptance, "none" when none was,
     // "unexplained" for a located discrepancy no candidate explains.
@@ -249,6 +261,7 @@ struct DiagnosisReport {
     // their inputs exist), the count the first round's false-discovery threshold takes.
     int grammarMembers = 0;
     int candidatesSearched = 0;
+    DiagnosisSwitches switches;
     double wallTime_s = 0.0;
     bool cancelled = false;
 };

@@ -228,7 +228,20 @@ QJsonObject DiagnosisResultJson::document(const DiagnosisReport &r)
                              {QStringLiteral("model_b"), QString::fromStdString(ad.modelB)},
                              {QStringLiteral("summary"), QString::fromStdString(ad.summary)},
                              {QStringLiteral("tests"), tests}};
+    // The switches the diagnosis ran with, named as `diagnose`'s options (both faces set them).
+    const DiagnosisSwitches &sw = r.switches;
+    QJsonArray effectsAsked;
+    for (const std::string &e : sw.effects)
+        effectsAsked.append(QString::fromStdString(e));
+    const QJsonObject options{{QStringLiteral("priors"), sw.priors},
+                              {QStringLiteral("measurement_chain"), sw.checkMeasurementChain},
+                              {QStringLiteral("triples"), sw.tryTriples},
+                              {QStringLiteral("housing_contact"), sw.housingContact},
+                              {QStringLiteral("fit_screw_temperatures"), sw.fitScrewTemperatures},
+                              {QStringLiteral("dt_s"), sw.dt_s},
+                              {QStringLiteral("effects"), effectsAsked}};
     return QJsonObject{{QStringLiteral("schema_version"), kSchemaVersion},
+                       {QStringLiteral("options"), options},
                        {QStringLiteral("decisive_test"), advice},
                        {QStringLiteral("effect"), QString::fromStdString(r.effect)},
                        {QStringLiteral("measurement_chain"), chain},

@@ -16,7 +16,9 @@ public:
     static constexpr int kSchemaVersion = 1;
 
     // The whole answer: effect(s), explanation, location, candidates, selection rounds,
-    // baseline and corrected models, wall time.
+    // baseline and corrected models, wall time, and "options": the switches it ran with
+    // (priors, measurement_chain, triples, housing_contact, fit_screw_temperatures, dt_s,
+    // effects; added 2026-11-28, absent from older records: readers take them as unknown).
     static QJsonObject document(const DiagnosisReport &report);
     // The stored record: document() without the wall time (the same bytes whichever face ran
     // the diagnosis) plus "validate", the validation recording as the user named it.

@@ -7,6 +7,7 @@
 #include "SessionStore.h"
 #include "Workbench.h"
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QFormLayout>
 #include <QGridLayout>
@@ -28,6 +29,10 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
     : QWidget(parent),
       m_train(new QComboBox(this)),
       m_validate(new QComboBox(this)),
+      m_priors(new QCheckBox(tr("Priors"), this)),
+      m_chain(new QCheckBox(tr("Measurement chain"), this)),
+      m_triples(new QCheckBox(tr("Triples"), this)),
+      m_housingContact(new QCheckBox(tr("Housing contact"), this)),
       m_run(new QPushButton(tr("Diagnose"), this)),
       m_cancel(new QPushButton(tr("Cancel"), this)),
       m_progress(new QProgressBar(this)),
@@ -37,12 +42,42 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
       m_before(new ErrorSurfacePlot(this)),
       m_after(new ErrorSurfacePlot(this))
 {
-    // The controls take three rows: the dock is about 190 px high at 1366 x 768, and the
+    // The controls take four rows: the dock is about 190 px high at 1366 x 768, and the
     // progress bar once lay below its fold (tst_diagnosisdock).
     auto *left = new QVBoxLayout();
     auto *sessions = new QFormLayout();
     sessions->addRow(tr("Training session"), m_train);
     sessions->addRow(tr("Validation session"), m_validate);
+    // The opt-in switches of `driftlab-cli diagnose`, as a default request has them.
+    const DiagnosisRequest defaults;
+    const DiagnosisOptions engine;
+    m_priors->setChecked(defaults.priors);
+    m_priors->setToolTip(tr("Anchor the screw's conductivity λ and the fixed-end position P_f by priors from steel "
+                            "(%1 ± %2 W/(m K)) and the drawing (± %3 mm).")
+                             .arg(engine.steelConductivity_W_mK)
+                             .arg(engine.lambdaPriorSigma_W_mK)
+                             .arg(engine.fixedEndPriorSigma_mm));
+    m_chain->setChecked(defaults.checkMeasurementChain);
+    m_chain->setToolTip(tr("Check the sensors against each other first (PT100 steps, interferometer against the air "
+                           "temperature, screw-end probe against interferometer): a faulty sensor is named and corrected, "
+                           "not charged to the machine."));
+    m_triples->setChecked(defaults.tryTriples);
+    m_triples->setToolTip(tr("When no single effect and no pair passes, also try the best pair plus one "
+                             "(named wrong effects on the third simulator, see docs/diagnosis.md)."));
+    m_housingContact->setChecked(defaults.housingContact);
+    m_housingContact->setToolTip(tr("The machine as built in the baseline: the screw touches the recorded fixed-bearing "
+                                    "and nut housings through contact conductances of at most %1 W/K (needs the "
+                                    "fixed_bearing and nut channels).")
+                                     .arg(engine.asBuiltContactMax_W_K));
+    m_priors->setObjectName(QStringLiteral("diagnosisPriors"));
+    m_chain->setObjectName(QStringLiteral("diagnosisMeasurementChain"));
+    m_triples->setObjectName(QStringLiteral("diagnosisTriples"));
+    m_housingContact->setObjectName(QStringLiteral("diagnosisHousingContact"));
+    auto *options = new QHBoxLayout();
+    for (QCheckBox *box : {m_priors, m_chain, m_triples, m_housingContact})
+        options->addWidget(box);
+    options->addStretch(1);
+    sessions->addRow(tr("Options"), options);
     left->addLayout(sessions);
     auto *buttons = new QHBoxLayout();
     buttons->addWidget(m_run);
@@ -186,6 +221,10 @@ bool DiagnosisPanel::start(qint64 trainSession, qint64 validationSession)
     request.validate = validationSession;
     request.trainLabel = QStringLiteral("#%1").arg(trainSession);
     request.validateLabel = QString::number(validationSession); // stored as `diagnose --validate ID` stores it
+    request.priors = m_priors->isChecked();
+    request.checkMeasurementChain = m_chain->isChecked();
+    request.tryTriples = m_triples->isChecked();
+    request.housingContact = m_housingContact->isChecked();
     std::shared_ptr<const SessionDiagnosis> diagnosis;
     try {
         SessionDiagnosis::checkWritable(*m_store);
@@ -295,6 +334,11 @@ void DiagnosisPanel::finish(bool ok, const QString &error)
                           .arg(r.corrected.heldoutRms_um, 0, 'f', 2)
                           .arg(r.wallTime_s, 0, 'f', 1)
                           .arg(text(r.location.summary).toHtmlEscaped()));
+    // The switches the diagnosis ran with, as the engine recorded them (stored with the answer).
+    const auto onOff = [this](bool on) { return on ? tr("on") : tr("off"); };
+    m_resultText += tr("<br>Options: priors %1, measurement chain %2, triples %3, housing contact %4.")
+                        .arg(onOff(r.switches.priors), onOff(r.switches.checkMeasurementChain), onOff(r.switches.tryTriples),
+                             onOff(r.switches.housingContact));
     if (r.advice.given) {
         // Which added measurement would decide (issue 36 item 5): the summary and the ranking.
         QString tests;

@@ -4,7 +4,9 @@
 // explanation and location, every candidate's evidence, the held-out RMS before and after,
 // and the validation residual maps of the baseline and the corrected model. The diagnosis is
 // core/SessionDiagnosis (the one `driftlab-cli diagnose` runs): its answer is stored with the
-// training session, where the test report finds it.
+// training session, where the test report finds it. The diagnosis's opt-in switches (priors,
+// measurement chain, triples, housing contact; `diagnose --priors` etc.) are check boxes that
+// start as a default DiagnosisRequest has them; the result says which were on.
 
 #include "DiagnosisTypes.h"
 
@@ -13,6 +15,7 @@
 #include <QWidget>
 
 
+class QCheckBox;
 class QComboBox;
 class QLabel;
 class QProgressBar;
@@ -69,6 +72,10 @@ private:
     const SessionStore *m_store = nullptr;
     QComboBox *m_train;
     QComboBox *m_validate;
+    QCheckBox *m_priors;
+    QCheckBox *m_chain;
+    QCheckBox *m_triples;
+    QCheckBox *m_housingContact;
     QPushButton *m_run;
     QPushButton *m_cancel;
     QProgressBar *m_progress;

@@ -1,15 +1,21 @@
 // The Diagnosis workspace runs the diagnosis in the background on two stored rig sessions
 // with a concealed structure drift, names it, shows the validation residual shrink, and can
-// be cancelled.
+// be cancelled. Its option boxes reach the engine: each ticked box is a switch the diagnosis
+// ran with (recorded in its report), unticked boxes are a default request's switches.
 
+#include "AnalysisResultKind.h"
 #include "DiagnosisPanel.h"
+#include "DiagnosisResultJson.h"
 #include "ErrorSurfacePlot.h"
+#include "SessionDiagnosis.h"
 #include "SessionStore.h"
 #include "UnitLabels.h"
 
 #include "../support/WidgetTestSetup.h"
 
+#include <QCheckBox>
 #include <QComboBox>
+#include <QJsonObject>
 #include <QLabel>
 #include <QSignalSpy>
 #include <QTableWidget>
@@ -26,6 +32,7 @@ private slots:
     void initTestCase();
     void namesTheConcealedEffect();
     void cancelStops();
+    void optionBoxesReachTheEngine();
     void refusesSameSession();
 
 private:
@@ -77,6 +84,20 @@ void TestDiagnosisPanel::namesTheConcealedEffect()
     const QRegularExpression asciiUm(QStringLiteral("\\bum\\b"));
     const QString answer = panel.findChild<QLabel *>(QStringLiteral("diagnosisAnswer"))->text();
     QVERIFY2(answer.contains(QStringLiteral("µm")) && !answer.contains(asciiUm), qPrintable(answer));
+    // The switches it ran with (a default request's): in the answer and in the stored record.
+    const DiagnosisRequest defaults;
+    const auto onOff = [](bool on) { return on ? QStringLiteral("on") : QStringLiteral("off"); };
+    const QString options = QStringLiteral("Options: priors %1, measurement chain %2, triples %3, housing contact %4.")
+                                .arg(onOff(defaults.priors), onOff(defaults.checkMeasurementChain), onOff(defaults.tryTriples),
+                                     onOff(defaults.housingContact));
+    QVERIFY2(answer.contains(options), qPrintable(answer));
+    const QJsonObject stored =
+        m_store->latestAnalysisResult(m_train, AnalysisResultKind::diagnosis()).value(QStringLiteral("options")).toObject();
+    QCOMPARE(stored.value(QStringLiteral("priors")).toBool(true), defaults.priors);
+    QCOMPARE(stored.value(QStringLiteral("measurement_chain")).toBool(true), defaults.checkMeasurementChain);
+    QCOMPARE(stored.value(QStringLiteral("triples")).toBool(true), defaults.tryTriples);
+    QCOMPARE(stored.value(QStringLiteral("housing_contact")).toBool(true), defaults.housingContact);
+    QCOMPARE(stored.value(QStringLiteral("dt_s")).toDouble(), defaults.dt_s);
     for (int i = 0; i < panel.candidateTable()->rowCount(); ++i)
         QVERIFY2(!panel.candidateTable()->item(i, 5)->text().contains(asciiUm), qPrintable(panel.candidateTable()->item(i, 5)->text()));
     QCOMPARE(UnitLabels::inText(QStringLiteral("RMS 0.68 um; 2.70 um/K at 20 mm; 1.2 degC; umbrella, sum")),
@@ -119,6 +140,79 @@ void TestDiagnosisPanel::cancelStops()
     QVERIFY(done.wait(300000));
     QCOMPARE(done.last().at(0).toBool(), false);
     QVERIFY(panel.lastError().contains(QStringLiteral("Cancelled")));
+}
+
+namespace {
+// The four opt-in switches in the order of the panel's boxes.
+std::vector<bool> switchesOf(const DiagnosisSwitches &s)
+{
+    return {s.priors, s.checkMeasurementChain, s.tryTriples, s.housingContact};
+}
+
+// As the result's JSON (its one owner) records them.
+std::vector<bool> switchesOf(const QJsonObject &result)
+{
+    const QJsonObject o = result.value(QStringLiteral("options")).toObject();
+    std::vector<bool> v;
+    for (const char *key : {"priors", "measurement_chain", "triples", "housing_contact"})
+        v.push_back(o.value(QLatin1String(key)).toBool());
+    return v;
+}
+
+std::vector<bool> switchesOf(const DiagnosisRequest &r)
+{
+    return {r.priors, r.checkMeasurementChain, r.tryTriples, r.housingContact};
+}
+
+QString text(const std::vector<bool> &v)
+{
+    QString s;
+    for (bool b : v)
+        s += b ? QLatin1Char('1') : QLatin1Char('0');
+    return s;
+}
+} // namespace
+
+void TestDiagnosisPanel::optionBoxesReachTheEngine()
+{
+    DiagnosisPanel panel;
+    panel.setStore(m_store.get());
+    const QStringList names{QStringLiteral("diagnosisPriors"), QStringLiteral("diagnosisMeasurementChain"),
+                            QStringLiteral("diagnosisTriples"), QStringLiteral("diagnosisHousingContact")};
+    std::vector<QCheckBox *> boxes;
+    for (const QString &n : names) {
+        boxes.push_back(panel.findChild<QCheckBox *>(n));
+        QVERIFY2(boxes.back(), qPrintable(n));
+        QVERIFY2(!boxes.back()->toolTip().isEmpty(), qPrintable(n));
+    }
+    const std::vector<bool> defaults = switchesOf(DiagnosisRequest());
+    // What the engine ran with: started and cancelled at once (the report of a cancelled run
+    // carries its switches too); the result's JSON must say the same.
+    auto ranWith = [&]() -> std::vector<bool> {
+        QSignalSpy done(&panel, &DiagnosisPanel::finished);
+        if (!panel.start(m_train, m_validate))
+            return {};
+        panel.cancel();
+        if (!done.wait(300000))
+            return {};
+        const std::vector<bool> engine = switchesOf(panel.report().switches);
+        if (switchesOf(DiagnosisResultJson::document(panel.report())) != engine)
+            return {};
+        return engine;
+    };
+    for (size_t k = 0; k < boxes.size(); ++k)
+        QCOMPARE(boxes[k]->isChecked(), bool(defaults[k]));
+    QCOMPARE(text(ranWith()), text(defaults));
+    for (size_t k = 0; k < boxes.size(); ++k) {
+        boxes[k]->setChecked(!defaults[k]);
+        std::vector<bool> expected = defaults;
+        expected[k] = !defaults[k];
+        const QString got = text(ranWith());
+        // (priors, chain, triples, housing; empty: no run, or the JSON's options disagree)
+        const QString message = QStringLiteral("%1 ticked: ran with %2, expected %3").arg(names[int(k)], got, text(expected));
+        QVERIFY2(got == text(expected), qPrintable(message));
+        boxes[k]->setChecked(defaults[k]);
+    }
 }
 
 void TestDiagnosisPanel::refusesSameSession()
