@@ -12,6 +12,7 @@
 #include "SimulatedRig.h"
 #include "TimeSeriesPlot.h"
 
+#include "../support/DenseEnvelope.h"
 #include "../support/OneChannelSession.h"
 
 #include <QJsonArray>
@@ -26,6 +27,21 @@
 #include <utility>
 
 using namespace driftlab;
+
+namespace {
+// The workspace at 1366 x 700 showing the session, after the refetch the settled x scale
+// asked for; its time series plot (null if the window never showed).
+TimeSeriesPlot *shown(ReviewWorkspace &review, SessionStore &store, qint64 session)
+{
+    review.resize(1366, 700);
+    review.show();
+    if (!QTest::qWaitForWindowExposed(&review))
+        return nullptr;
+    review.setSession(&store, session);
+    QTest::qWait(200);
+    return review.timeSeriesPlot();
+}
+} // namespace
 
 namespace {
 constexpr double kPf = -141.0; // fixed-end axis coordinate (mm)
@@ -268,12 +284,8 @@ void TestReviewWorkspace::longChannelsDrawTheirStoredEnvelopes()
         store.appendSamples(known.back().id, t, v);
     }
     ReviewWorkspace review;
-    review.resize(1366, 700);
-    review.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&review));
-    review.setSession(&store, session);
-    QTest::qWait(200); // the refetch after the x scale settled
-    TimeSeriesPlot *plot = review.timeSeriesPlot();
+    TimeSeriesPlot *plot = shown(review, store, session);
+    QVERIFY(plot);
     const QwtScaleMap map = plot->canvasMap(QwtPlot::xBottom);
     const QwtScaleDiv &div = plot->axisScaleDiv(QwtPlot::xBottom);
     // Per pixel column: the lowest and highest value drawn there.
@@ -347,45 +359,22 @@ void TestReviewWorkspace::openingBuildsEachLegendEntryOnce()
 
 void TestReviewWorkspace::aDenseEnvelopeHasAStickInEveryPixelColumn()
 {
-    // A 10 h channel at 10 Hz whose noise fills its band in every bucket. Its envelope is
-    // drawn as one polyline (min, max of each bucket at one x). When the buckets' x followed
-    // the times of the mipmap entries merged into them (1 or 2 entries of 25.6 s per 43 s
-    // bucket), some pixel columns got no bucket: only the diagonal from one bucket's max to
-    // the next one's min crossed them, and a long recording showed dashed white columns that
-    // looked like gaps in the data (seen at 1366x768 on the 10 h bench session).
+    // The envelope is drawn as one polyline (min, max of each bucket at one x). When the
+    // buckets' x followed the times of the mipmap entries merged into them (1 or 2 entries of
+    // 25.6 s per 43 s bucket), some pixel columns got no bucket (seen at 1366x768 on the 10 h
+    // bench session).
     SessionStore store(m_dir.filePath(QStringLiteral("dense.sqlite")));
-    const qint64 session = teststore::emptySession(store, QStringLiteral("dense"), QStringLiteral("2026-11-28T00:00:00Z"));
-    const qint64 id = store.addChannel(session, teststore::channelInfo(QStringLiteral("T1"), QStringLiteral("temperature"),
-                                                                        QStringLiteral("degC"), QStringLiteral("ambient")));
-    constexpr int kN = 360000;
-    QVector<double> t(kN), v(kN);
-    for (int i = 0; i < kN; ++i) {
-        t[i] = i * 0.1;
-        v[i] = 20.0 + 5.0 * (1.0 - std::exp(-t[i] / 3600.0)) + 0.05 * std::sin(t[i] * 7.0);
-    }
-    store.appendSamples(id, t, v);
+    const qint64 session = teststore::denseTenHourSession(store);
     ReviewWorkspace review;
-    review.resize(1366, 700);
-    review.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&review));
-    review.setSession(&store, session);
-    QTest::qWait(200); // the refetch after the x scale settled
-    TimeSeriesPlot *plot = review.timeSeriesPlot();
+    TimeSeriesPlot *plot = shown(review, store, session);
     QwtPlotCurve *curve = plot->curve(QStringLiteral("T1"));
     QVERIFY(curve);
     QVERIFY(curve->dataSize() > 1000); // an envelope, not every sample
-    const QwtScaleMap map = plot->canvasMap(QwtPlot::xBottom);
-    std::map<int, int> sticks; // pixel column -> points drawn there
-    for (size_t i = 0; i < curve->dataSize(); ++i)
-        ++sticks[static_cast<int>(std::floor(map.transform(curve->sample(i).x())))];
-    const int first = sticks.begin()->first, last = sticks.rbegin()->first;
-    QVERIFY2(last - first > 0.8 * plot->canvas()->width(), qPrintable(QStringLiteral("%1..%2").arg(first).arg(last)));
-    QStringList missing;
-    for (int col = first; col <= last; ++col)
-        if (sticks.find(col) == sticks.end())
-            missing << QString::number(col);
+    int span = 0;
+    const QStringList missing = teststore::columnsWithoutABucket(*curve, plot->canvasMap(QwtPlot::xBottom), span);
+    QVERIFY2(span > 0.8 * plot->canvas()->width(), qPrintable(QString::number(span)));
     QVERIFY2(missing.isEmpty(), qPrintable(QStringLiteral("%1 of %2 pixel columns without a bucket: %3")
-                                                .arg(missing.size()).arg(last - first + 1).arg(missing.mid(0, 12).join(QLatin1Char(' ')))));
+                                                .arg(missing.size()).arg(span).arg(missing.mid(0, 12).join(QLatin1Char(' ')))));
 }
 
 QTEST_MAIN(TestReviewWorkspace)
