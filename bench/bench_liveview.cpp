@@ -9,7 +9,7 @@
 // (first update) and in the review time view (ReviewWorkspace::setSession), against reading
 // the channels' samples plainly.
 //
-// Usage: [BENCH_LIVE_OFFSET_H=H] bench_liveview [SECONDS] [HOURS] [LONG_DB] [OPENS] (default 20, 10, a temporary
+// Usage: [BENCH_LIVE_OFFSET_H=H] [BENCH_LIVE_WANDER=1] [BENCH_LIVE_GRAB=PNG] bench_liveview [SECONDS] [HOURS] [LONG_DB] [OPENS] (default 20, 10, a temporary
 // file, 1; SECONDS 0 skips part 1; LONG_DB keeps the long session's database there and
 // reuses it when it exists, the 10 h one takes 1-3 min to write; OPENS repeats the review
 // open, each time printed on stderr, the worst in the table). Prints markdown rows. With
@@ -79,6 +79,11 @@ Layout makeSession(SessionStore &store, qint64 &session, int fastChannels)
     return l;
 }
 
+// BENCH_LIVE_WANDER set: every channel also climbs a 5 K sawtooth every 30 s, so that some
+// curve's newest column moves by a pixel or more at every refresh (the live view's worst case:
+// it redraws the plot at each refresh, as it did at every refresh before 2026-11-28).
+const bool kWander = qEnvironmentVariableIsSet("BENCH_LIVE_WANDER");
+
 // Samples of channel k (rate r) with index in [i0, i1).
 void fill(int k, double rate, qint64 i0, qint64 i1, QVector<double> &t, QVector<double> &v)
 {
@@ -87,7 +92,8 @@ void fill(int k, double rate, qint64 i0, qint64 i1, QVector<double> &t, QVector<
     for (qint64 i = i0; i < i1; ++i) {
         const double ti = i / rate;
         t[static_cast<int>(i - i0)] = ti;
-        v[static_cast<int>(i - i0)] = 20.0 + k * 0.1 + 5.0 * (1.0 - std::exp(-ti / 3600.0)) + 0.05 * std::sin(ti * 7.0 + k);
+        v[static_cast<int>(i - i0)] = 20.0 + k * 0.1 + 5.0 * (1.0 - std::exp(-ti / 3600.0)) + 0.05 * std::sin(ti * 7.0 + k)
+                                      + (kWander ? 5.0 * std::fmod(ti + 3.0 * k, 30.0) / 30.0 : 0.0);
     }
 }
 } // namespace
@@ -217,12 +223,15 @@ int main(int argc, char **argv)
         err << "live view for " << seconds << " s...\n";
         err.flush();
         const auto [liveCpu, liveN] = run([&] { view.update(reader, session, sessionTime()); });
+        if (qEnvironmentVariableIsSet("BENCH_LIVE_GRAB")) // the view as it was at the end, to look at
+            view.grab().save(qEnvironmentVariable("BENCH_LIVE_GRAB"));
         stop = true;
         writer.join();
         const qint64 fastSamples = reader.sampleCount(layout.fast.front());
         out << "| live view, 64 ch at 10 Hz + 4 at 1 kHz, limits on all, 1366 x 700, " << seconds << " s"
             << (offset_s > 0 ? QStringLiteral(" from hour %1").arg(offset_s / 3600.0) : QString()) << " | "
-            << QString::number(100.0 * liveCpu, 'f', 1) << " % of one core (" << liveN << " refreshes) | plain re-read + redraw "
+            << QString::number(100.0 * liveCpu, 'f', 1) << " % of one core (" << liveN << " refreshes, " << view.draws()
+            << " redrew the plot) | plain re-read + redraw "
             << QString::number(100.0 * refCpu, 'f', 1) << " % (" << refN << " refreshes) | "
             << (refN > 0 ? QString::number(refCpu / liveCpu, 'f', 1) + QLatin1Char('x') : QStringLiteral("- (skipped)")) << " | 1 kHz channel at the end: " << fastSamples << " samples, alarms "
             << view.monitor().activeAlarms().size() << " |\n";

@@ -75,20 +75,58 @@ void LiveEnvelope::appendRange(double tFirst, double tLast, double min, double m
     }
 }
 
-void LiveEnvelope::points(QVector<double> &x, QVector<double> &y) const
+double LiveEnvelope::points(QVector<double> &x, QVector<double> &y, int columns) const
 {
     x.clear();
     y.clear();
-    for (int i = 0; i < m_capacity; ++i) {
+    int last = m_capacity - 1;
+    while (last >= 0 && std::isnan(m_min[last]))
+        --last;
+    if (last < 0)
+        return 0.0;
+    const int spanned = last + 1;
+    const bool resample = columns > 0 && spanned > columns;
+    const double width = resample ? spanned * m_width / columns : m_width;
+    int column = -1;
+    double lo = kNaN, hi = kNaN;
+    auto flush = [&] {
+        if (column < 0 || std::isnan(lo))
+            return;
+        const double t = (column + 0.5) * width;
+        x.push_back(t);
+        y.push_back(lo);
+        if (hi != lo) {
+            x.push_back(t);
+            y.push_back(hi);
+        }
+    };
+    for (int i = 0; i <= last; ++i) {
         if (std::isnan(m_min[i]))
             continue;
-        const double t = (i + 0.5) * m_width;
-        x.push_back(t);
-        y.push_back(m_min[i]);
-        if (m_max[i] != m_min[i]) {
-            x.push_back(t);
-            y.push_back(m_max[i]);
+        const int c = resample ? std::min(columns - 1, static_cast<int>(std::floor((i + 0.5) * m_width / width))) : i;
+        if (c != column) {
+            flush();
+            column = c;
+            lo = m_min[i];
+            hi = m_max[i];
+        } else {
+            lo = std::min(lo, m_min[i]);
+            hi = std::max(hi, m_max[i]);
         }
+    }
+    flush();
+    return width;
+}
+
+void LiveEnvelope::rangeFrom(double t, double &min, double &max) const
+{
+    min = max = kNaN;
+    const int first = std::max(0, static_cast<int>(std::ceil(t / m_width - 0.5)));
+    for (int i = first; i < m_capacity; ++i) {
+        if (std::isnan(m_min[i]))
+            continue;
+        min = std::isnan(min) ? m_min[i] : std::min(min, m_min[i]);
+        max = std::isnan(max) ? m_max[i] : std::max(max, m_max[i]);
     }
 }
 

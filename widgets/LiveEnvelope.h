@@ -11,7 +11,9 @@ namespace driftlab {
 
 class LiveEnvelope {
 public:
-    explicit LiveEnvelope(int capacity = 2048, double width_s = 0.05);
+    // 4,096 buckets: after a merge at least 2,048 are filled, more than the pixel columns of a
+    // plot on a 1920-pixel screen (with 1,024 a plot that wide had columns without a stick).
+    explicit LiveEnvelope(int capacity = 4096, double width_s = 0.05);
     void clear();
     // Samples in ascending time (t >= 0).
     void append(const QVector<double> &t, const QVector<double> &v);
@@ -21,7 +23,14 @@ public:
     // empty: columns of the plot without a stick, like gaps in the data).
     void appendRange(double tFirst, double tLast, double min, double max);
     // Polyline through (t, min), (t, max) per filled bucket (as TimeSeriesPlot::envelopePoints).
-    void points(QVector<double> &x, QVector<double> &y) const;
+    // With `columns` > 0 and more buckets than that between 0 and the last filled one, neighbouring
+    // buckets share one of `columns` equal columns over that span (its min and max, drawn at its
+    // centre): a plot `columns` pixels wide draws one stick per pixel column, none without one, and
+    // the drawing costs the same at hour 10 as at minute 1. Returns the width of a column (the
+    // bucket width when not resampled; 0 when empty).
+    double points(QVector<double> &x, QVector<double> &y, int columns = 0) const;
+    // The lowest and highest value in the buckets whose centre lies at or after t (NaN: none).
+    void rangeFrom(double t, double &min, double &max) const;
     double width() const { return m_width; }
     int capacity() const { return m_capacity; }
     int filled() const;

@@ -6,6 +6,7 @@
 #include "UnitLabels.h"
 
 #include <QDoubleSpinBox>
+#include <QEvent>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -18,12 +19,17 @@
 #include <QSettings>
 #include <QSplitter>
 #include <QTableWidget>
+#include <QTimer>
 #include <QVBoxLayout>
 
+#include <qwt_plot_canvas.h>
 #include <qwt_plot_curve.h>
+#include <qwt_scale_map.h>
 #include <qwt_scale_widget.h>
 
+#include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <limits>
 
 namespace driftlab {
@@ -117,6 +123,16 @@ LiveRecordingView::LiveRecordingView(QWidget *parent) : QWidget(parent)
     m_plot->setAxisScale(QwtPlot::yLeft, 15.0, 35.0);
     m_plot->setAxisScale(QwtPlot::yRight, -5.0, 50.0);
     m_plot->setAxisScale(QwtPlot::xBottom, 0.0, 60.0);
+    m_plot->canvas()->installEventFilter(this);
+    // The canvas paints inside replot(), so that drawCurves() measures what drawing costs.
+    if (auto *canvas = qobject_cast<QwtPlotCanvas *>(m_plot->canvas()))
+        canvas->setPaintAttribute(QwtPlotCanvas::ImmediatePaint, true);
+    m_drawLater = new QTimer(this);
+    m_drawLater->setSingleShot(true);
+    connect(m_drawLater, &QTimer::timeout, this, [this] {
+        if (std::any_of(m_tracked.cbegin(), m_tracked.cend(), [](const Tracked &t) { return t.dirty; }))
+            drawCurves(m_waitingNow_s);
+    });
 
     auto *top = new QHBoxLayout;
     top->addWidget(m_title, 1);
@@ -156,7 +172,10 @@ LiveRecordingView::LiveRecordingView(QWidget *parent) : QWidget(parent)
             const QString key = item->data(Qt::UserRole).toString();
             if (QwtPlotCurve *c = m_plot->curve(key)) {
                 c->setVisible(item->checkState() == Qt::Checked);
-                m_plot->replot();
+                if (m_tracked.value(key).dirty) // samples it took while hidden, not drawn yet
+                    drawCurves(m_drawnAt_s);
+                else
+                    m_plot->replot();
             }
         } else if (item->column() == ColLow || item->column() == ColHigh) {
             readLimitsFromTable(item->row());
@@ -187,6 +206,12 @@ void LiveRecordingView::begin(const QString &title, const QString &rig, double e
         i->clearZoomHistory();
     m_channels.clear();
     m_tracked.clear();
+    m_drawnAt_s = -std::numeric_limits<double>::infinity();
+    m_drawnColumn_s = 0.0;
+    m_drawnColumns = 0;
+    m_draws = 0;
+    m_drawCost_ns = 0;
+    m_drawLater->stop();
     m_filling = true;
     m_table->setRowCount(0);
     m_filling = false;
@@ -358,7 +383,7 @@ void LiveRecordingView::update(const SessionStore &reader, qint64 sessionId, dou
         stateLimits(); // the limits this recording starts with, stored with it
     }
     QVector<LiveLimitMonitor::Alarm> alarms;
-    bool changed = false;
+    bool force = false;
     for (int r = 0; r < m_channels.size(); ++r) {
         const ChannelInfo &c = m_channels[r];
         Tracked &ch = m_tracked[c.key];
@@ -374,7 +399,7 @@ void LiveRecordingView::update(const SessionStore &reader, qint64 sessionId, dou
                 ch.checked_t = d.tLast.last();
                 ch.lastSample_t = d.tLast.last();
                 last = d.max.last();
-                changed = grew = true;
+                grew = true;
             }
         }
         // Only what is new since the last look.
@@ -384,26 +409,15 @@ void LiveRecordingView::update(const SessionStore &reader, qint64 sessionId, dou
             ch.lastSample_t = std::isnan(ch.lastSample_t) ? fresh.t.last() : std::max(ch.lastSample_t, fresh.t.last());
             ch.envelope.append(fresh.t, fresh.v);
             last = fresh.v.last();
-            changed = grew = true;
+            grew = true;
         }
         if (m_monitor.limit(c.key).any())
             alarms += m_monitor.observe(c.key, fresh.t, fresh.v, ch.lastSample_t, now_s);
-        // A seeded envelope is drawn at once (a finished or paused session has no fresh samples
-        // to wait for; its curve used to appear only with the next new sample).
         if (grew) {
-            QTableWidgetItem *name = m_table->item(r, ColChannel);
-            QwtPlotCurve *curve = m_plot->curve(c.key);
-            QVector<double> x, y;
-            ch.envelope.points(x, y);
-            if (curve) {
-                curve->setSamples(x, y);
-            } else if (!x.isEmpty()) {
-                curve = m_plot->addCurve(c.key, x, y, !ch.temperature, TimeSeriesPlot::CurveStyle::Envelope);
-                curve->setVisible(name->checkState() == Qt::Checked);
-                m_filling = true;
-                name->setForeground(curve->pen().color());
-                m_filling = false;
-            }
+            ch.dirty = true;
+            // A new curve (a seeded one too: a finished or paused session has no fresh samples
+            // to wait for) is drawn at once.
+            force = force || !m_plot->curve(c.key);
         }
         // The table repaints only what changed.
         const QString text = std::isnan(last) ? ch.shownValue : QLocale().toString(last, 'f', 2);
@@ -417,12 +431,104 @@ void LiveRecordingView::update(const SessionStore &reader, qint64 sessionId, dou
             ch.shownAlarm = alarm;
         }
     }
-    if (changed)
-        m_plot->replot();
+    if (drawDue(now_s, force) && !drawWaits(now_s))
+        drawCurves(now_s);
     ++m_refreshes;
     for (const LiveLimitMonitor::Alarm &a : alarms)
         emit alarmRaised(a.label);
     showAlarms();
+}
+
+bool LiveRecordingView::drawDue(double now_s, bool force) const
+{
+    if (std::none_of(m_tracked.cbegin(), m_tracked.cend(), [](const Tracked &t) { return t.dirty; }))
+        return false;
+    if (force || m_plot->decimationBuckets() != m_drawnColumns || !(now_s - m_drawnAt_s < m_drawnColumn_s))
+        return true;
+    for (const ChannelInfo &c : m_channels) {
+        const Tracked &ch = *m_tracked.constFind(c.key);
+        const QwtPlotCurve *curve = m_plot->curve(c.key);
+        if (!ch.dirty || !curve || !curve->isVisible())
+            continue;
+        double lo = kNaN, hi = kNaN;
+        ch.envelope.rangeFrom(ch.drawnTail_t, lo, hi);
+        const QwtScaleMap map = m_plot->canvasMap(curve->yAxis());
+        auto moved = [&map](double now, double drawn) {
+            return std::isnan(drawn) ? !std::isnan(now) : std::abs(map.transform(now) - map.transform(drawn)) >= 1.0;
+        };
+        if (moved(lo, ch.drawnTailMin) || moved(hi, ch.drawnTailMax))
+            return true;
+    }
+    return false;
+}
+
+bool LiveRecordingView::drawWaits(double now_s)
+{
+    if (m_drawCost_ns <= 10'000'000 || !m_sinceDraw.isValid())
+        return false;
+    const qint64 wait_ms = static_cast<qint64>(m_drawCost_ns / kDrawBudget / 1e6) - m_sinceDraw.elapsed();
+    if (wait_ms <= 0)
+        return false;
+    m_waitingNow_s = now_s;
+    if (!m_drawLater->isActive())
+        m_drawLater->start(static_cast<int>(wait_ms));
+    return true;
+}
+
+void LiveRecordingView::drawCurves(double now_s)
+{
+    m_drawLater->stop();
+    timespec cpu0{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &cpu0);
+    const int columns = m_plot->decimationBuckets();
+    const bool all = columns != m_drawnColumns;
+    double columnWidth = 0.0;
+    QVector<double> x, y;
+    for (int r = 0; r < m_channels.size(); ++r) {
+        const ChannelInfo &c = m_channels[r];
+        Tracked &ch = m_tracked[c.key];
+        if (!ch.dirty && !all)
+            continue;
+        ch.dirty = false;
+        const double width = ch.envelope.points(x, y, columns);
+        if (x.isEmpty())
+            continue;
+        columnWidth = std::max(columnWidth, width);
+        ch.drawnTail_t = x.last() - 0.5 * width;
+        ch.envelope.rangeFrom(ch.drawnTail_t, ch.drawnTailMin, ch.drawnTailMax);
+        if (QwtPlotCurve *curve = m_plot->curve(c.key)) {
+            curve->setSamples(x, y);
+        } else {
+            curve = m_plot->addCurve(c.key, x, y, !ch.temperature, TimeSeriesPlot::CurveStyle::Envelope);
+            QTableWidgetItem *name = m_table->item(r, ColChannel);
+            curve->setVisible(name->checkState() == Qt::Checked);
+            m_filling = true;
+            name->setForeground(curve->pen().color());
+            m_filling = false;
+        }
+    }
+    m_drawnColumns = columns;
+    m_drawnAt_s = now_s;
+    if (columnWidth > 0.0)
+        m_drawnColumn_s = columnWidth;
+    m_plot->replot();
+    ++m_draws;
+    timespec cpu1{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &cpu1);
+    m_drawCost_ns = (cpu1.tv_sec - cpu0.tv_sec) * 1'000'000'000LL + (cpu1.tv_nsec - cpu0.tv_nsec);
+    m_sinceDraw.start();
+}
+
+bool LiveRecordingView::eventFilter(QObject *watched, QEvent *event)
+{
+    // A wider or narrower canvas: the envelopes again at its new pixel columns (once the
+    // resize has settled; a running recording would do it at its next refresh anyway).
+    if (watched == m_plot->canvas() && event->type() == QEvent::Resize && !m_channels.isEmpty())
+        QTimer::singleShot(0, this, [this] {
+            if (m_plot->decimationBuckets() != m_drawnColumns)
+                drawCurves(m_drawnAt_s);
+        });
+    return QWidget::eventFilter(watched, event);
 }
 
 void LiveRecordingView::showAlarms()

@@ -14,6 +14,7 @@
 #include "LiveLimitMonitor.h"
 #include "StorageTypes.h"
 
+#include <QElapsedTimer>
 #include <QHash>
 #include <QString>
 #include <QWidget>
@@ -26,6 +27,7 @@ class QLabel;
 class QPushButton;
 class QSplitter;
 class QTableWidget;
+class QTimer;
 
 namespace driftlab {
 
@@ -66,6 +68,7 @@ public:
     QString alarmText() const; // "" when no alarm is active
     bool alarmVisible() const;
     int refreshes() const { return m_refreshes; }
+    int draws() const { return m_draws; } // refreshes that redrew the plot
     bool active() const { return m_active; }
 
 signals:
@@ -82,6 +85,21 @@ private:
     void saveLimits();
     void stateLimits();
     void showAlarms();
+    // Whether drawing the curves again would change what the plot shows: a new curve, a column
+    // of time passed since the last drawing, the canvas resized, or a visible curve's last column
+    // grown by a pixel or more. Late in a long recording a column spans tens of seconds, so most
+    // refreshes change only the table (a redraw of 68 curves cost 36 % of a core at hour 7).
+    bool drawDue(double now_s, bool force) const;
+    // Each curve that took samples (every curve when the canvas width changed) gets its envelope
+    // at one stick per pixel column; then the plot is redrawn.
+    void drawCurves(double now_s);
+    bool eventFilter(QObject *watched, QEvent *event) override;
+    // Drawing a plot of tall sticks (68 channels each swinging over much of its axis within a
+    // pixel column) costs ~80 ms of CPU: after a drawing that cost more than 10 ms, the next
+    // waits until drawing has taken at most kDrawBudget of the GUI thread (the table, the alarms
+    // and the events never wait); what waits is drawn when the wait ends.
+    static constexpr double kDrawBudget = 0.15;
+    bool drawWaits(double now_s);
 
     QLabel *m_title;
     QLabel *m_clock;
@@ -99,6 +117,14 @@ private:
     bool m_filling = false;
     QString m_statedLimits; // the limits last stated to the session
     int m_refreshes = 0;
+    int m_draws = 0;
+    double m_drawnAt_s = -std::numeric_limits<double>::infinity(); // session time of the last drawing
+    double m_drawnColumn_s = 0.0;                                   // the time a pixel column spanned then
+    int m_drawnColumns = 0;                                         // the canvas's pixel columns then
+    QElapsedTimer m_sinceDraw;  // wall time since the last drawing
+    qint64 m_drawCost_ns = 0;   // its GUI-thread CPU time
+    QTimer *m_drawLater = nullptr;
+    double m_waitingNow_s = 0.0; // the session time a waiting drawing is for
     struct Tracked {
         qint64 id = 0;
         QString unit;
@@ -107,6 +133,11 @@ private:
         double lastSample_t = std::numeric_limits<double>::quiet_NaN(); // NaN: none yet
         bool seeded = false; // what was stored before the view's first look is in the envelope
         LiveEnvelope envelope;
+        bool dirty = false; // took samples since its curve was last drawn
+        // Its last drawn column: from when, its min and max (what the next refresh compares with).
+        double drawnTail_t = 0.0;
+        double drawnTailMin = std::numeric_limits<double>::quiet_NaN();
+        double drawnTailMax = std::numeric_limits<double>::quiet_NaN();
         QString shownValue;
         bool shownAlarm = false;
     };

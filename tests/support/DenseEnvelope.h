@@ -16,20 +16,26 @@
 
 namespace teststore {
 
-// The session's id; one channel "T1" (°C): a 1-h warm-up of 5 K plus +-0.05 K at 1.1 Hz.
-inline qint64 denseTenHourSession(driftlab::SessionStore &store)
+// The session's id; one channel "T1" (°C) at 10 Hz for `seconds`: a 1-h warm-up of 5 K plus
+// +-0.05 K at 1.1 Hz.
+inline qint64 denseSession(driftlab::SessionStore &store, double seconds)
 {
     const qint64 session = emptySession(store, QStringLiteral("dense"), QStringLiteral("2026-11-28T00:00:00Z"));
     const qint64 id = store.addChannel(session, channelInfo(QStringLiteral("T1"), QStringLiteral("temperature"),
                                                             QStringLiteral("degC"), QStringLiteral("ambient")));
-    constexpr int kN = 360000;
-    QVector<double> t(kN), v(kN);
-    for (int i = 0; i < kN; ++i) {
+    const int n = static_cast<int>(seconds * 10.0);
+    QVector<double> t(n), v(n);
+    for (int i = 0; i < n; ++i) {
         t[i] = i * 0.1;
         v[i] = 20.0 + 5.0 * (1.0 - std::exp(-t[i] / 3600.0)) + 0.05 * std::sin(t[i] * 7.0);
     }
     store.appendSamples(id, t, v);
     return session;
+}
+
+inline qint64 denseTenHourSession(driftlab::SessionStore &store)
+{
+    return denseSession(store, 36000.0);
 }
 
 // Pixel columns between the curve's first and last point that hold none of its points; the
