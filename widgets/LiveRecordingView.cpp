@@ -392,7 +392,7 @@ void LiveRecordingView::update(const SessionStore &reader, qint64 sessionId, dou
         if (!ch.seeded) {
             // The first look: what is stored so far, decimated (a session opened late, or long).
             ch.seeded = true;
-            const DecimatedSeries d = reader.decimated(c.id, 0.0, std::max(1.0, now_s), ch.envelope.capacity() / 2);
+            const DecimatedSeries d = reader.decimated(c.id, 0.0, std::max(1.0, now_s), ch.envelope.capacity() / 4);
             for (int i = 0; i < d.min.size(); ++i)
                 ch.envelope.appendRange(d.tFirst[i], d.tLast[i], d.min[i], d.max[i]);
             if (!d.tLast.isEmpty()) {
