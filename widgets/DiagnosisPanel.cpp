@@ -1,5 +1,6 @@
 #include "DiagnosisPanel.h"
 
+#include "DiagnosisSwitchLabels.h"
 #include "SessionDiagnosis.h"
 #include "ErrorSurfacePlot.h"
 #include "ModelsPanel.h"
@@ -29,10 +30,10 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
     : QWidget(parent),
       m_train(new QComboBox(this)),
       m_validate(new QComboBox(this)),
-      m_priors(new QCheckBox(tr("Priors"), this)),
-      m_chain(new QCheckBox(tr("Measurement chain"), this)),
-      m_triples(new QCheckBox(tr("Triples"), this)),
-      m_housingContact(new QCheckBox(tr("Housing contact"), this)),
+      m_priors(new QCheckBox(DiagnosisSwitchLabels::priors(), this)),
+      m_chain(new QCheckBox(DiagnosisSwitchLabels::measurementChain(), this)),
+      m_triples(new QCheckBox(DiagnosisSwitchLabels::triples(), this)),
+      m_housingContact(new QCheckBox(DiagnosisSwitchLabels::housingContact(), this)),
       m_run(new QPushButton(tr("Diagnose"), this)),
       m_cancel(new QPushButton(tr("Cancel"), this)),
       m_progress(new QProgressBar(this)),
@@ -335,10 +336,7 @@ void DiagnosisPanel::finish(bool ok, const QString &error)
                           .arg(r.wallTime_s, 0, 'f', 1)
                           .arg(text(r.location.summary).toHtmlEscaped()));
     // The switches the diagnosis ran with, as the engine recorded them (stored with the answer).
-    const auto onOff = [this](bool on) { return on ? tr("on") : tr("off"); };
-    m_resultText += tr("<br>Options: priors %1, measurement chain %2, triples %3, housing contact %4.")
-                        .arg(onOff(r.switches.priors), onOff(r.switches.checkMeasurementChain), onOff(r.switches.tryTriples),
-                             onOff(r.switches.housingContact));
+    m_resultText += tr("<br>Options: %1.").arg(DiagnosisSwitchLabels::summary(r.switches).toHtmlEscaped());
     if (r.advice.given) {
         // Which added measurement would decide (issue 36 item 5): the summary and the ranking.
         QString tests;

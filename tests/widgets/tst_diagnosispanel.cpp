@@ -87,9 +87,10 @@ void TestDiagnosisPanel::namesTheConcealedEffect()
     // The switches it ran with (a default request's): in the answer and in the stored record.
     const DiagnosisRequest defaults;
     const auto onOff = [](bool on) { return on ? QStringLiteral("on") : QStringLiteral("off"); };
-    const QString options = QStringLiteral("Options: priors %1, measurement chain %2, triples %3, housing contact %4.")
-                                .arg(onOff(defaults.priors), onOff(defaults.checkMeasurementChain), onOff(defaults.tryTriples),
-                                     onOff(defaults.housingContact));
+    const QString options =
+        QStringLiteral("Options: Priors %1, Measurement chain %2, Triples %3, Housing contact %4, Screw temperatures fitted %5.")
+            .arg(onOff(defaults.priors), onOff(defaults.checkMeasurementChain), onOff(defaults.tryTriples),
+                 onOff(defaults.housingContact), onOff(defaults.fitScrewTemperatures));
     QVERIFY2(answer.contains(options), qPrintable(answer));
     const QJsonObject stored =
         m_store->latestAnalysisResult(m_train, AnalysisResultKind::diagnosis()).value(QStringLiteral("options")).toObject();
