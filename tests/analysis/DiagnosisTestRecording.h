@@ -6,6 +6,7 @@
 // same pair on a machine whose housings touch the screw (the rig's clean machine as built).
 
 #include "ChannelHeatSource.h"
+#include "DiagnosisOptions.h"
 #include "DiagnosisTypes.h"
 #include "ScrewModelIdentifier.h"
 #include "SyntheticScrewTest.h"
@@ -13,6 +14,8 @@
 #include <cmath>
 #include <memory>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace driftlab {
@@ -28,6 +31,33 @@ inline SyntheticTestSpec diagnosisTestSpec(bool validation, double standstillFee
     spec.interferometerInterval_s = 900.0;
     spec.targets_mm = {20, 100, 180, 260, 340, 420, 500};
     return spec;
+}
+
+// The diagnosis's settings in these tests: fits on a 20 s step, the drive sampled every second,
+// 60 iterations, no test advice; the candidates `effects` only.
+inline DiagnosisOptions diagnosisTestOptions(std::vector<std::string> effects)
+{
+    DiagnosisOptions o;
+    o.identification.simulator.grid.dt_s = 20.0;
+    o.identification.simulator.driveSample_s = 1.0;
+    o.identification.maxIterations = 60;
+    o.adviseTests = false;
+    o.effects = std::move(effects);
+    return o;
+}
+
+// `in` through a first-order lag of time constant tau_s, starting at its first value.
+inline TimeSeries firstOrderLag(const TimeSeries &in, double tau_s)
+{
+    TimeSeries out;
+    double y = in.v.empty() ? 0.0 : in.v.front();
+    for (size_t k = 0; k < in.size(); ++k) {
+        if (k > 0)
+            y = in.v[k] + (y - in.v[k]) * std::exp(-(in.t[k] - in.t[k - 1]) / tau_s);
+        out.t.push_back(in.t[k]);
+        out.v.push_back(y);
+    }
+    return out;
 }
 
 inline FdmParameters diagnosisTestTruth()
@@ -84,14 +114,7 @@ inline DiagnosisRecording diagnosisTestWithHousings(bool validation, double gFix
     spec.ambientAmplitude_K = ambientAmplitude_K;
     DiagnosisRecording r = diagnosisTestRecording(spec);
     const TimeSeries &amb = r.screw.drive.ambient_C;
-    TimeSeries housing;
-    double T = amb.v.front();
-    for (size_t k = 0; k < amb.size(); ++k) {
-        if (k > 0)
-            T = amb.v[k] + (T - amb.v[k]) * std::exp(-(amb.t[k] - amb.t[k - 1]) / 1000.0);
-        housing.t.push_back(amb.t[k]);
-        housing.v.push_back(T);
-    }
+    const TimeSeries housing = firstOrderLag(amb, 1000.0);
     r.channelsByRole["fixed_bearing"] = housing;
     r.channelsByRole["nut"] = housing;
     const FdmParameters truth = diagnosisTestTruth();

@@ -241,12 +241,7 @@ void TestDiagnosisGrammar::saysWhyNothingWasSearched()
     // Only a standstill law asked for, and the training recording never stands still: nothing
     // is refitted, and the answer still lists the candidate with the reason (it listed none).
     const DiagnosisRecording a = make(false, 0.0, 1.0, false), b = make(true, 0.0, 1.0, false);
-    DiagnosisOptions o;
-    o.identification.simulator.grid.dt_s = 20.0;
-    o.identification.simulator.driveSample_s = 1.0;
-    o.identification.maxIterations = 60;
-    o.adviseTests = false;
-    o.effects = {"holding_heat"};
+    const DiagnosisOptions o = diagnosisTestOptions({"holding_heat"});
     const DiagnosisReport r = DiagnosisEngine(ScrewGeometry{}, o).run(a, b);
     QCOMPARE(r.effect, std::string("none"));
     QCOMPARE(r.candidatesSearched, 0);
@@ -263,12 +258,7 @@ void TestDiagnosisGrammar::findsLaggedFreeEndHeat()
     // lag. Searched among the library's plain free-end heat and holding heat: the generated
     // member is named, with its lag, and the test counts the three candidates.
     const DiagnosisRecording a = make(false, 1e-3, 2400.0), b = make(true, 1e-3, 2400.0);
-    DiagnosisOptions o;
-    o.identification.simulator.grid.dt_s = 20.0;
-    o.identification.simulator.driveSample_s = 1.0;
-    o.identification.maxIterations = 60;
-    o.adviseTests = false;
-    o.effects = {"free_end_bearing_heat", "holding_heat", "heat:free_end:feed_lagged"};
+    const DiagnosisOptions o = diagnosisTestOptions({"free_end_bearing_heat", "holding_heat", "heat:free_end:feed_lagged"});
     const DiagnosisReport r = DiagnosisEngine(ScrewGeometry{}, o).run(a, b);
     QCOMPARE(r.effect, std::string("heat:free_end:feed_lagged"));
     QCOMPARE(r.grammarMembers, 3);
@@ -301,13 +291,8 @@ void TestDiagnosisGrammar::housingContactIsTheMachineAsBuilt()
     // contact variant (G >= 0.5 W/K to be named) and the structure terms stay unnamed.
     const DiagnosisRecording a = diagnosisTestWithHousings(false, 0.3, 0.2), b = diagnosisTestWithHousings(true, 0.3, 0.2);
     QCOMPARE(CandidateEffectLibrary::asBuilt(a, 0.5).sources.size(), size_t(2));
-    DiagnosisOptions o;
-    o.identification.simulator.grid.dt_s = 20.0;
-    o.identification.simulator.driveSample_s = 1.0;
-    o.identification.maxIterations = 60;
-    o.adviseTests = false;
+    DiagnosisOptions o = diagnosisTestOptions({"heat_path_lag", "structure_offset"});
     o.empiricalTerms = false;
-    o.effects = {"heat_path_lag", "structure_offset"};
     const DiagnosisReport without = DiagnosisEngine(ScrewGeometry{}, o).run(a, b);
     o.housingContactBaseline = true;
     const DiagnosisReport with = DiagnosisEngine(ScrewGeometry{}, o).run(a, b);

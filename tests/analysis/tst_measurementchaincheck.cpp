@@ -353,28 +353,17 @@ void TestMeasurementChainCheck::judgedAgainstTheMachineAsBuilt()
     constexpr double kProbe_um_K = 3.0;
     auto faulty = [](bool validation) {
         DiagnosisRecording r = diagnosisTestWithHousings(validation, 0.3, 0.2, 1.0);
-        const TimeSeries &air = r.screw.drive.ambient_C;
-        TimeSeries bed;
-        double lagged = air.v.front();
-        for (size_t k = 0; k < air.size(); ++k) {
-            if (k > 0)
-                lagged = air.v[k] + (lagged - air.v[k]) * std::exp(-(air.t[k] - air.t[k - 1]) / 3000.0);
-            bed.t.push_back(air.t[k]);
-            bed.v.push_back(lagged + 0.8 * (1.0 - std::exp(-(air.t[k] - air.t.front()) / 5000.0)));
-        }
+        TimeSeries bed = firstOrderLag(r.screw.drive.ambient_C, 3000.0);
+        for (size_t k = 0; k < bed.size(); ++k)
+            bed.v[k] += 0.8 * (1.0 - std::exp(-(bed.t[k] - bed.t.front()) / 5000.0));
         r.channelsByRole["structure"] = bed;
         for (size_t k = 0; k < r.screw.elongation_um.size(); ++k)
             r.screw.elongation_um.v[k] += kProbe_um_K * (bed.at(r.screw.elongation_um.t[k]) - bed.v.front());
         return r;
     };
     const DiagnosisRecording a = faulty(false), b = faulty(true);
-    DiagnosisOptions o;
-    o.identification.simulator.grid.dt_s = 20.0;
-    o.identification.simulator.driveSample_s = 1.0;
-    o.identification.maxIterations = 60;
-    o.adviseTests = false;
+    DiagnosisOptions o = diagnosisTestOptions({"heat_path_lag", "structure_offset", "structure_linear"});
     o.empiricalTerms = false;
-    o.effects = {"heat_path_lag", "structure_offset", "structure_linear"};
     o.checkMeasurementChain = true;
     o.housingContactBaseline = true;
     const DiagnosisReport r = DiagnosisEngine(ScrewGeometry{}, o).run(a, b);
