@@ -7,6 +7,7 @@
 #include "EndHeatSource.h"
 #include "FeedLawHeatSource.h"
 #include "FixedText.h"
+#include "ScrewModelIdentifier.h"
 
 #include <cmath>
 
@@ -377,6 +378,14 @@ std::vector<std::string> CandidateEffectLibrary::grammarCodes()
     for (const EffectGrammar::Member &m : EffectGrammar::members())
         c.push_back(m.code);
     return c;
+}
+
+void CandidateModel::addTo(ScrewModelIdentifier &id) const
+{
+    for (const auto &s : sources)
+        id.addHeatSource(s);
+    for (const auto &t : terms)
+        id.addErrorTerm(t);
 }
 
 CandidateModel CandidateEffectLibrary::asBuilt(const DiagnosisRecording &train, double maxContact_W_K)

@@ -18,10 +18,22 @@
 
 namespace driftlab {
 
+class ScrewModelIdentifier;
+
 struct CandidateModel {
     std::vector<std::shared_ptr<HeatSourceComponent>> sources;
     std::vector<std::shared_ptr<ErrorTermComponent>> terms;
     std::function<void(const DiagnosisRecording &)> bind; // may be empty (feed/time drivers)
+
+    // Adds the sources, then the terms, to an identifier (the order its parameters are read
+    // back in).
+    void addTo(ScrewModelIdentifier &id) const;
+    // Points the drivers at one recording's channels (nothing to do without a bind).
+    void bindTo(const DiagnosisRecording &r) const
+    {
+        if (bind)
+            bind(r);
+    }
 };
 
 struct CandidateEffect {

@@ -108,12 +108,8 @@ double DiagnosisEngine::crossValidate(const CandidateModel *model, const Diagnos
             continue;
         ScrewModelIdentifier id(m_geometry, o);
         if (model) {
-            for (const auto &s : model->sources)
-                id.addHeatSource(s);
-            for (const auto &t : model->terms)
-                id.addErrorTerm(t);
-            if (model->bind)
-                model->bind(train);
+            model->addTo(id);
+            model->bindTo(train);
         }
         try {
             const IdentificationResult r = id.fit({fitRec});
@@ -152,8 +148,7 @@ std::vector<ObservationFit> DiagnosisEngine::predictTemperatures(ScrewModelIdent
         recs.push_back(std::move(r));
     }
     try {
-        if (model.bind)
-            model.bind(train);
+        model.bindTo(train);
         std::vector<ObservationFit> out;
         for (size_t k = 0; k < recs.size(); ++k) {
             if (recs[k].screwTemperatures.empty())
@@ -219,12 +214,8 @@ CandidateFit DiagnosisEngine::evaluate(const std::vector<ForwardSelection::Choic
             amplitudes.push_back(own.terms.front()->amplitude().name);
         CandidateModel m = assemble(std::move(own), accepted, train);
         auto id = std::make_unique<ScrewModelIdentifier>(m_geometry, options);
-        for (const auto &s : m.sources)
-            id->addHeatSource(s);
-        for (const auto &t : m.terms)
-            id->addErrorTerm(t);
-        if (m.bind)
-            m.bind(train);
+        m.addTo(*id);
+        m.bindTo(train);
         IdentificationResult fit = id->fit({train.screw});
         if (!best || fit.weightedRms < out.fit.weightedRms) {
             out.fit = std::move(fit);
@@ -235,8 +226,7 @@ CandidateFit DiagnosisEngine::evaluate(const std::vector<ForwardSelection::Choic
         }
     }
     ScrewModelIdentifier &id = *best;
-    if (model.bind)
-        model.bind(validate);
+    model.bindTo(validate);
     out.heldout = id.predict(out.fit, {validate.screw});
     out.temperatures = predictTemperatures(id, out.fit, model, train);
 
@@ -368,18 +358,19 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
         // First pass only to get the residual autocorrelation for the effective sample size.
         ScrewModelIdentifier id(m_geometry, opts);
         const CandidateModel built = assemble({}, {}, train); // the machine as built, when asked for
-        for (const auto &s : built.sources)
-            id.addHeatSource(s);
-        if (built.bind)
-            built.bind(train);
+        built.addTo(id);
+        built.bindTo(train);
         const IdentificationResult first = id.fit({train.screw});
         effectiveN = std::max(10.0, ResidualLocator::effectiveSampleSize(first.fit.points));
         opts.initial = first.parameters; // later fits start here
     }
     CandidateFit base = evaluate({}, nullptr, train, validate, opts, effectiveN);
     if (m_options.checkMeasurementChain) { // a faulty sensor is corrected, not charged to the machine
+        // Its refits judge the sensors against the same machine as the rest (the as-built
+        // contacts when asked for), in fresh components per refit.
         const std::vector<SensorFinding> chain =
-            MeasurementChainCheck::examine(train, validate, m_geometry, opts, base.fit.fit.points, base.heldout.points);
+            MeasurementChainCheck::examine(train, validate, m_geometry, opts, base.fit.fit.points, base.heldout.points,
+                                           [this, &train] { return assemble({}, {}, train); });
         report.measurementChain.insert(report.measurementChain.end(), chain.begin(), chain.end());
         if (!chain.empty())
             base = evaluate({}, nullptr, train, validate, opts, effectiveN);
@@ -459,12 +450,8 @@ void DiagnosisEngine::adviseTest(DiagnosisReport &report, const ForwardSelection
             return [this, &train, &opts, &before, candidate, &f](const DiagnosisRecording &rec) {
                 ScrewModelIdentifier id(m_geometry, opts);
                 const CandidateModel m = assemble(candidate ? candidate->create(train, f.start) : CandidateModel{}, before, train);
-                for (const auto &s : m.sources)
-                    id.addHeatSource(s);
-                for (const auto &t : m.terms)
-                    id.addErrorTerm(t);
-                if (m.bind)
-                    m.bind(rec);
+                m.addTo(id);
+                m.bindTo(rec);
                 return id.predict(f.fit, {rec.screw});
             };
         };

@@ -202,7 +202,7 @@ struct AirJoint {
 };
 
 AirJoint airJoint(const DiagnosisRecording &fitOn, const DiagnosisRecording *predictOn, const ScrewGeometry &geometry,
-                  const IdentificationOptions &options)
+                  const IdentificationOptions &options, const MeasurementChainCheck::Machine &machine)
 {
     AirJoint a;
     const TimeSeries *air = channel(fitOn, "ambient");
@@ -215,6 +215,9 @@ AirJoint airJoint(const DiagnosisRecording &fitOn, const DiagnosisRecording *pre
         slope->bind(air, fitOn.screw);
         offset->bind(air, fitOn.screw);
         ScrewModelIdentifier id(geometry, options);
+        const CandidateModel built = machine ? machine() : CandidateModel{};
+        built.addTo(id);
+        built.bindTo(fitOn);
         id.addErrorTerm(slope);
         id.addErrorTerm(offset);
         const IdentificationResult fit = id.fit({fitOn.screw});
@@ -239,6 +242,7 @@ AirJoint airJoint(const DiagnosisRecording &fitOn, const DiagnosisRecording *pre
         if (predictOn) {
             slope->bind(airP, predictOn->screw);
             offset->bind(airP, predictOn->screw);
+            built.bindTo(*predictOn);
             a.heldoutRms = id.predict(fit, {predictOn->screw}).interferometerRms_um;
         }
         a.ok = a.se > 0 && std::isfinite(a.k);
@@ -264,12 +268,13 @@ double rmsOf(const std::vector<ObservationFit> &pts)
 
 std::vector<SensorFinding> MeasurementChainCheck::airByJointFit(const DiagnosisRecording &train, const DiagnosisRecording &validate,
                                                                 const ScrewGeometry &geometry, const IdentificationOptions &options,
-                                                                const std::vector<ObservationFit> &validateFit, const Options &o)
+                                                                const std::vector<ObservationFit> &validateFit, const Options &o,
+                                                                const Machine &machine)
 {
     std::vector<SensorFinding> out;
     if (train.screw.elongation_um.size() <= 20) // nothing the air does not reach to anchor the screw
         return out;
-    const AirJoint a = airJoint(train, &validate, geometry, options);
+    const AirJoint a = airJoint(train, &validate, geometry, options, machine);
     if (!a.ok)
         return out;
     const double baseHeldout = rmsOf(validateFit);
@@ -277,7 +282,7 @@ std::vector<SensorFinding> MeasurementChainCheck::airByJointFit(const DiagnosisR
     const bool significant = std::fabs(a.t()) >= o.airJointMinT;
     AirJoint b;
     if (inRange && significant)
-        b = airJoint(validate, nullptr, geometry, options);
+        b = airJoint(validate, nullptr, geometry, options, machine);
     const bool confirmed = b.ok && b.k * a.k > 0 && std::fabs(b.t()) >= o.confirmT;
     const bool predicts = a.heldoutRms < baseHeldout;
     if (!(inRange && significant && confirmed && predicts))
@@ -556,16 +561,21 @@ std::vector<SensorFinding> MeasurementChainCheck::correctSteps(DiagnosisRecordin
 std::vector<SensorFinding> MeasurementChainCheck::examine(DiagnosisRecording &train, DiagnosisRecording &validate,
                                                           const ScrewGeometry &geometry, const IdentificationOptions &options,
                                                           const std::vector<ObservationFit> &trainFit,
-                                                          const std::vector<ObservationFit> &validateFit)
+                                                          const std::vector<ObservationFit> &validateFit, const Machine &machine)
 {
     std::vector<ObservationFit> trainIO, validateIO;
     if (train.screw.elongation_um.size() > 20 && validate.screw.elongation_um.size() > 20) {
         try {
-            ScrewRecording io = train.screw;
-            io.elongation_um = TimeSeries{};
+            DiagnosisRecording io = train;
+            io.screw.elongation_um = TimeSeries{};
             ScrewModelIdentifier id(geometry, options);
-            const IdentificationResult fit = id.fit({io});
+            const CandidateModel built = machine ? machine() : CandidateModel{};
+            built.addTo(id);
+            built.bindTo(io);
+            const IdentificationResult fit = id.fit({io.screw});
+            built.bindTo(train);
             trainIO = id.predict(fit, {train.screw}).points;
+            built.bindTo(validate);
             validateIO = id.predict(fit, {validate.screw}).points;
         } catch (const std::exception &) {
             trainIO.clear(); // no probe cross-check when the interferometer alone cannot be fitted
@@ -583,7 +593,8 @@ std::vector<SensorFinding> MeasurementChainCheck::examine(DiagnosisRecording &tr
             correct(trainProbe, f);
             correct(validateProbe, f);
         }
-    const std::vector<SensorFinding> joint = airByJointFit(trainProbe, validateProbe, geometry, options, validateFit, Options{});
+    const std::vector<SensorFinding> joint =
+        airByJointFit(trainProbe, validateProbe, geometry, options, validateFit, Options{}, machine);
     if (!joint.empty()) {
         found.erase(std::remove_if(found.begin(), found.end(), [](const SensorFinding &f) { return f.kind == "air"; }), found.end());
         found.insert(found.begin(), joint.begin(), joint.end());

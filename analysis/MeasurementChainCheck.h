@@ -16,9 +16,11 @@
 // A finding names the sensor and its law; DiagnosisEngine corrects the reading (or leaves the
 // sensor out) and does not charge it to the machine. No Qt.
 
+#include "CandidateEffect.h"
 #include "DiagnosisTypes.h"
 #include "ScrewModelIdentifier.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,12 @@ namespace driftlab {
 
 class MeasurementChainCheck {
 public:
+    // Fresh components of the machine the diagnosis judges (DiagnosisEngine::assemble: with
+    // housingContactBaseline the as-built housing contacts), added to every refit of the check
+    // so that the sensors are judged against that machine, not the bare seed-000 model. Empty
+    // (or returning no components): the seed-000 model alone.
+    using Machine = std::function<CandidateModel()>;
+
     struct Options {
         double minT = 5.0;                  // |coefficient| / SE (SE scaled by the effective n)
         double confirmT = 3.0;              // the same law on the validation recording
@@ -67,7 +75,8 @@ public:
     // the validation interferometer better than the baseline (validateFit). Needs a probe.
     static std::vector<SensorFinding> airByJointFit(const DiagnosisRecording &train, const DiagnosisRecording &validate,
                                                     const ScrewGeometry &geometry, const IdentificationOptions &options,
-                                                    const std::vector<ObservationFit> &validateFit, const Options &chainOptions);
+                                                    const std::vector<ObservationFit> &validateFit, const Options &chainOptions,
+                                                    const Machine &machine = {});
 
     // Level steps in one recording's temperature channels (see above).
     static std::vector<SensorFinding> steps(const DiagnosisRecording &r, const Options &options);
@@ -78,11 +87,12 @@ public:
     static void correct(DiagnosisRecording &r, const SensorFinding &finding);
 
     // The whole check as the diagnosis runs it: fits a baseline to the interferometer alone
-    // when there is a probe, runs check() and corrects both recordings by every finding.
+    // when there is a probe, runs check() and corrects both recordings by every finding. Every
+    // refit (the interferometer-only baseline, the air law's joint fits) carries `machine`.
     static std::vector<SensorFinding> examine(DiagnosisRecording &train, DiagnosisRecording &validate,
                                               const ScrewGeometry &geometry, const IdentificationOptions &options,
                                               const std::vector<ObservationFit> &trainFit,
-                                              const std::vector<ObservationFit> &validateFit);
+                                              const std::vector<ObservationFit> &validateFit, const Machine &machine = {});
     // steps() on a recording, each corrected; the findings.
     static std::vector<SensorFinding> correctSteps(DiagnosisRecording &r);
 

@@ -3,6 +3,7 @@
 #include <QJsonArray>
 
 #include <cmath>
+#include <utility>
 
 namespace driftlab {
 
@@ -265,6 +266,25 @@ QJsonObject DiagnosisResultJson::storedResult(const DiagnosisReport &report, con
     stored.remove(QStringLiteral("wall_time_s")); // the same record whichever face ran it, however fast
     stored.insert(QStringLiteral("validate"), validate);
     return stored;
+}
+
+bool DiagnosisResultJson::switches(const QJsonObject &document, DiagnosisSwitches &out)
+{
+    const QJsonValue v = document.value(QStringLiteral("options"));
+    if (!v.isObject())
+        return false;
+    const QJsonObject o = v.toObject();
+    DiagnosisSwitches s;
+    s.priors = o.value(QStringLiteral("priors")).toBool();
+    s.checkMeasurementChain = o.value(QStringLiteral("measurement_chain")).toBool();
+    s.tryTriples = o.value(QStringLiteral("triples")).toBool();
+    s.housingContact = o.value(QStringLiteral("housing_contact")).toBool();
+    s.fitScrewTemperatures = o.value(QStringLiteral("fit_screw_temperatures")).toBool();
+    s.dt_s = o.value(QStringLiteral("dt_s")).toDouble();
+    for (const QJsonValue &e : o.value(QStringLiteral("effects")).toArray())
+        s.effects.push_back(e.toString().toStdString());
+    out = std::move(s);
+    return true;
 }
 
 } // namespace driftlab

@@ -23,6 +23,9 @@ public:
     // The stored record: document() without the wall time (the same bytes whichever face ran
     // the diagnosis) plus "validate", the validation recording as the user named it.
     static QJsonObject storedResult(const DiagnosisReport &report, const QString &validate);
+    // The switches of a document() or storedResult() ("options"); false (and `out` untouched)
+    // for a record written before they were recorded.
+    static bool switches(const QJsonObject &document, DiagnosisSwitches &out);
 };
 
 } // namespace driftlab

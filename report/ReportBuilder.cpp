@@ -4,6 +4,8 @@
 #include "AnalysisResultKind.h"
 #include "DataDrivenFit.h"
 #include "DataDrivenModelJson.h"
+#include "DiagnosisResultJson.h"
+#include "DiagnosisSwitchLabels.h"
 #include "ExtrapolationWarning.h"
 #include "FdmModelJson.h"
 #include "ReportIso230Section.h"
@@ -476,6 +478,11 @@ void ReportBuilder::diagnosisSection(ReportDocument &doc) const
     const QString where = d.value(QStringLiteral("location")).toObject().value(QStringLiteral("summary")).toString();
     if (!where.isEmpty())
         doc.paragraph(QStringLiteral("Where: %1").arg(where));
+    // The switches it ran with, in the words of the Diagnosis dock's check boxes.
+    DiagnosisSwitches switches;
+    doc.paragraph(DiagnosisResultJson::switches(d, switches)
+                      ? QStringLiteral("Options: %1.").arg(DiagnosisSwitchLabels::summary(switches))
+                      : QStringLiteral("Options: not recorded (a diagnosis stored before 2026-11-28)."));
     const QJsonObject base = d.value(QStringLiteral("baseline")).toObject(), corr = d.value(QStringLiteral("corrected")).toObject();
     doc.table({QStringLiteral("Residual RMS (\u00b5m)"), QStringLiteral("before (model as fitted)"), QStringLiteral("after (with the effect)")},
               {{QStringLiteral("training"), jsonText(base.value(QStringLiteral("train_rms_um"))), jsonText(corr.value(QStringLiteral("train_rms_um")))},

@@ -1,5 +1,6 @@
 #include "DiagnosisPanel.h"
 
+#include "DiagnosisSwitchLabels.h"
 #include "SessionDiagnosis.h"
 #include "ErrorSurfacePlot.h"
 #include "ModelsPanel.h"
@@ -16,6 +17,7 @@
 #include <QLabel>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QSplitter>
 #include <QSignalBlocker>
 #include <QTableWidget>
@@ -29,10 +31,10 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
     : QWidget(parent),
       m_train(new QComboBox(this)),
       m_validate(new QComboBox(this)),
-      m_priors(new QCheckBox(tr("Priors"), this)),
-      m_chain(new QCheckBox(tr("Measurement chain"), this)),
-      m_triples(new QCheckBox(tr("Triples"), this)),
-      m_housingContact(new QCheckBox(tr("Housing contact"), this)),
+      m_priors(new QCheckBox(DiagnosisSwitchLabels::priors(), this)),
+      m_chain(new QCheckBox(DiagnosisSwitchLabels::measurementChain(), this)),
+      m_triples(new QCheckBox(DiagnosisSwitchLabels::triples(), this)),
+      m_housingContact(new QCheckBox(DiagnosisSwitchLabels::housingContact(), this)),
       m_run(new QPushButton(tr("Diagnose"), this)),
       m_cancel(new QPushButton(tr("Cancel"), this)),
       m_progress(new QProgressBar(this)),
@@ -43,8 +45,12 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
       m_after(new ErrorSurfacePlot(this))
 {
     // The controls take four rows: the dock is about 190 px high at 1366 x 768, and the
-    // progress bar once lay below its fold (tst_diagnosisdock).
-    auto *left = new QVBoxLayout();
+    // progress bar once lay below its fold (tst_diagnosisdock). The answer stands beside them,
+    // above the candidates' detail, in its own vertical scroll area: below the controls it lay
+    // under the fold at 1366 x 768 (tst_diagnosispanel answerInViewAt1366).
+    auto *controls = new QWidget(this);
+    auto *left = new QVBoxLayout(controls);
+    left->setContentsMargins(0, 0, 0, 0);
     auto *sessions = new QFormLayout();
     sessions->addRow(tr("Training session"), m_train);
     sessions->addRow(tr("Validation session"), m_validate);
@@ -73,10 +79,15 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
     m_chain->setObjectName(QStringLiteral("diagnosisMeasurementChain"));
     m_triples->setObjectName(QStringLiteral("diagnosisTriples"));
     m_housingContact->setObjectName(QStringLiteral("diagnosisHousingContact"));
-    auto *options = new QHBoxLayout();
-    for (QCheckBox *box : {m_priors, m_chain, m_triples, m_housingContact})
-        options->addWidget(box);
-    options->addStretch(1);
+    // Two by two: in one row they made the controls 690 px wide and left the answer beside
+    // them 180 px at 1366 x 768.
+    auto *options = new QGridLayout();
+    int k = 0;
+    for (QCheckBox *box : {m_priors, m_chain, m_triples, m_housingContact}) {
+        options->addWidget(box, k / 2, k % 2);
+        ++k;
+    }
+    options->setColumnStretch(2, 1);
     sessions->addRow(tr("Options"), options);
     left->addLayout(sessions);
     auto *buttons = new QHBoxLayout();
@@ -85,16 +96,43 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
     buttons->addWidget(m_progress, 1);
     left->addLayout(buttons);
     left->addWidget(m_stage);
+    left->addStretch(1);
+    m_stage->setWordWrap(true);
+
     m_answer->setObjectName(QStringLiteral("diagnosisAnswer"));
     m_answer->setWordWrap(true);
+    m_answer->setAlignment(Qt::AlignLeft | Qt::AlignTop);
     m_answer->setTextInteractionFlags(Qt::TextSelectableByMouse);
-    left->addWidget(m_answer);
+    m_answer->setMinimumWidth(1); // wraps to the area, however narrow (no sideways scrolling)
+    m_answerArea = new QScrollArea(this);
+    m_answerArea->setObjectName(QStringLiteral("diagnosisAnswerArea"));
+    m_answerArea->setWidgetResizable(true);
+    m_answerArea->setFrameShape(QFrame::NoFrame);
+    m_answerArea->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff); // wrapped, never read sideways
+    m_answerArea->setWidget(m_answer);
+    m_answerArea->setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Ignored);
     m_candidates->setHorizontalHeaderLabels(
         {tr("effect"), tr("accepted"), tr("score"), tr("held-out RMS (µm)"), tr("ΔAICc"), tr("evidence")});
     m_candidates->horizontalHeader()->setStretchLastSection(true);
     m_candidates->verticalHeader()->hide();
-    left->addWidget(m_candidates, 1);
-    m_stage->setWordWrap(true);
+    // The controls as wide as they need (the session boxes at 20 characters), the answer the
+    // rest, a splitter between them; the answer as high as the controls (its own scroll bar).
+    for (QComboBox *box : {m_train, m_validate}) {
+        box->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+        box->setMinimumContentsLength(20);
+    }
+    auto *work = new QSplitter(Qt::Horizontal, this);
+    work->setObjectName(QStringLiteral("diagnosisWork"));
+    work->addWidget(controls);
+    work->addWidget(m_answerArea);
+    work->setStretchFactor(0, 0);
+    work->setStretchFactor(1, 1);
+    work->setChildrenCollapsible(false);
+    // The candidates' detail below, at the full width (its six columns did not fit beside the
+    // controls) and with any height the dock has beyond the controls'.
+    auto *column = new QVBoxLayout();
+    column->addWidget(work, 0);
+    column->addWidget(m_candidates, 1);
 
     m_before->setTitle(tr("Validation residual, baseline"));
     m_after->setTitle(tr("Validation residual, corrected model"));
@@ -104,8 +142,12 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
     m_results->addWidget(m_after);
     m_results->setChildrenCollapsible(false);
     auto *layout = new QHBoxLayout(this);
-    layout->addLayout(left, 1);
+    layout->addLayout(column, 1);
     layout->addWidget(m_results, 1);
+    // 3 px above and below (with the style's 9-11 px the controls, and the answer beside them,
+    // were 200 px high in a dock whose viewport is 194 px at 1366 x 768).
+    const QMargins m = layout->contentsMargins();
+    layout->setContentsMargins(m.left(), 3, m.right(), 3);
 
     m_progress->setRange(0, 100);
     m_progress->setValue(0);
@@ -335,10 +377,7 @@ void DiagnosisPanel::finish(bool ok, const QString &error)
                           .arg(r.wallTime_s, 0, 'f', 1)
                           .arg(text(r.location.summary).toHtmlEscaped()));
     // The switches the diagnosis ran with, as the engine recorded them (stored with the answer).
-    const auto onOff = [this](bool on) { return on ? tr("on") : tr("off"); };
-    m_resultText += tr("<br>Options: priors %1, measurement chain %2, triples %3, housing contact %4.")
-                        .arg(onOff(r.switches.priors), onOff(r.switches.checkMeasurementChain), onOff(r.switches.tryTriples),
-                             onOff(r.switches.housingContact));
+    m_resultText += tr("<br>Options: %1.").arg(DiagnosisSwitchLabels::summary(r.switches).toHtmlEscaped());
     if (r.advice.given) {
         // Which added measurement would decide (issue 36 item 5): the summary and the ranking.
         QString tests;

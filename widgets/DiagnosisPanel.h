@@ -20,6 +20,7 @@ class QComboBox;
 class QLabel;
 class QProgressBar;
 class QPushButton;
+class QScrollArea;
 class QSplitter;
 class QTableWidget;
 
@@ -81,6 +82,7 @@ private:
     QProgressBar *m_progress;
     QLabel *m_stage;
     QLabel *m_answer;
+    QScrollArea *m_answerArea; // the answer beside the controls, scrolled vertically only
     qint64 m_runTrain = 0, m_runValidate = 0;       // the pair being diagnosed
     qint64 m_resultTrain = 0, m_resultValidate = 0; // the pair the result belongs to
     QString m_resultText, m_heading;

@@ -38,8 +38,6 @@ private slots:
 
 private:
     static DiagnosisRecording make(bool validation, double kFree, double tau_s, bool standstill = true);
-    static DiagnosisRecording withHousings(bool validation, double gFixed_W_K, double gNut_W_K);
-    static void addDifference(DiagnosisRecording &r, const FitStatistics &a, const FitStatistics &b);
 };
 
 void TestDiagnosisGrammar::everyLibraryCodeIsAMember()
@@ -163,31 +161,6 @@ void TestDiagnosisGrammar::generatedMembers()
     QCOMPARE(CandidateEffectLibrary::member(housing).requiredRoles, std::vector<std::string>{"free_bearing"});
 }
 
-// Adds the difference of two predictions (with minus without the added physics) to the
-// recording's interferometer points and probe.
-void TestDiagnosisGrammar::addDifference(DiagnosisRecording &r, const FitStatistics &a, const FitStatistics &b)
-{
-    TimeSeries probe;
-    int matched = 0;
-    for (size_t k = 0; k < a.points.size(); ++k) {
-        const double d = a.points[k].predicted_um - b.points[k].predicted_um;
-        if (a.points[k].elongation) {
-            probe.t.push_back(a.points[k].t_s);
-            probe.v.push_back(d);
-            continue;
-        }
-        for (PositioningErrorPoint &p : r.screw.interferometer)
-            if (!a.points[k].temperature && p.t_s == a.points[k].t_s && p.position_mm == a.points[k].position_mm) {
-                p.error_um += d;
-                ++matched;
-            }
-    }
-    if (matched == 0)
-        throw std::logic_error("no interferometer point simulated");
-    for (size_t k = 0; k < r.screw.elongation_um.size(); ++k)
-        r.screw.elongation_um.v[k] += probe.empty() ? 0.0 : probe.at(r.screw.elongation_um.t[k]);
-}
-
 DiagnosisRecording TestDiagnosisGrammar::make(bool validation, double kFree, double tau_s, bool standstill)
 {
     // Seed 000 (explicit model, fine grid, lambda 45) plus heat k v at the free-end cell through a
@@ -209,7 +182,7 @@ DiagnosisRecording TestDiagnosisGrammar::make(bool validation, double kFree, dou
         IdentificationResult without = with;
         without.amplitudes.back() = 0.0;
         const FitStatistics a = id.predict(with, {r.screw}), b = id.predict(without, {r.screw});
-        addDifference(r, a, b);
+        addPredictionDifference(r, a, b);
     }
     return r;
 }
@@ -268,12 +241,7 @@ void TestDiagnosisGrammar::saysWhyNothingWasSearched()
     // Only a standstill law asked for, and the training recording never stands still: nothing
     // is refitted, and the answer still lists the candidate with the reason (it listed none).
     const DiagnosisRecording a = make(false, 0.0, 1.0, false), b = make(true, 0.0, 1.0, false);
-    DiagnosisOptions o;
-    o.identification.simulator.grid.dt_s = 20.0;
-    o.identification.simulator.driveSample_s = 1.0;
-    o.identification.maxIterations = 60;
-    o.adviseTests = false;
-    o.effects = {"holding_heat"};
+    const DiagnosisOptions o = diagnosisTestOptions({"holding_heat"});
     const DiagnosisReport r = DiagnosisEngine(ScrewGeometry{}, o).run(a, b);
     QCOMPARE(r.effect, std::string("none"));
     QCOMPARE(r.candidatesSearched, 0);
@@ -290,12 +258,7 @@ void TestDiagnosisGrammar::findsLaggedFreeEndHeat()
     // lag. Searched among the library's plain free-end heat and holding heat: the generated
     // member is named, with its lag, and the test counts the three candidates.
     const DiagnosisRecording a = make(false, 1e-3, 2400.0), b = make(true, 1e-3, 2400.0);
-    DiagnosisOptions o;
-    o.identification.simulator.grid.dt_s = 20.0;
-    o.identification.simulator.driveSample_s = 1.0;
-    o.identification.maxIterations = 60;
-    o.adviseTests = false;
-    o.effects = {"free_end_bearing_heat", "holding_heat", "heat:free_end:feed_lagged"};
+    const DiagnosisOptions o = diagnosisTestOptions({"free_end_bearing_heat", "holding_heat", "heat:free_end:feed_lagged"});
     const DiagnosisReport r = DiagnosisEngine(ScrewGeometry{}, o).run(a, b);
     QCOMPARE(r.effect, std::string("heat:free_end:feed_lagged"));
     QCOMPARE(r.grammarMembers, 3);
@@ -318,51 +281,6 @@ void TestDiagnosisGrammar::findsLaggedFreeEndHeat()
     QVERIFY2(r.explanation.find("Searched: 3 of the grammar's 3 members") != std::string::npos, r.explanation.c_str());
 }
 
-DiagnosisRecording TestDiagnosisGrammar::withHousings(bool validation, double gFixed_W_K, double gNut_W_K)
-{
-    // The clean rig's ambient path (acquisition/ScrewTruthModel): housings of ~1000 J/K losing
-    // 1 W/K to the air follow the ambient (0.3 K drift) through a first-order lag of 1000 s and
-    // touch the screw under the fixed bearing and the nut through a small contact conductance.
-    // Seed 000 (explicit, fine grid) plus that contact's response, computed by the implicit
-    // model on a 2 s grid, Q = G (T_housing - T_screw).
-    DiagnosisRecording r = diagnosisTestRecording(diagnosisTestSpec(validation));
-    const TimeSeries &amb = r.screw.drive.ambient_C;
-    TimeSeries housing;
-    double T = amb.v.front();
-    for (size_t k = 0; k < amb.size(); ++k) {
-        if (k > 0)
-            T = amb.v[k] + (T - amb.v[k]) * std::exp(-(amb.t[k] - amb.t[k - 1]) / 1000.0);
-        housing.t.push_back(amb.t[k]);
-        housing.v.push_back(T);
-    }
-    r.channelsByRole["fixed_bearing"] = housing;
-    r.channelsByRole["nut"] = housing;
-    const FdmParameters truth = diagnosisTestTruth();
-    IdentificationOptions o;
-    o.simulator.grid = FdmSettings{0.01, 2.0};
-    o.simulator.elongationInterval_s = 1.0;
-    ScrewModelIdentifier id(ScrewGeometry{}, o);
-    const double t0 = r.screw.drive.position_mm.t.front();
-    auto fixed = std::make_shared<ChannelHeatSource>(ParameterSpec{"a_f", "1", 1.0, 0.0, 3.0, 1.0},
-                                                     ChannelHeatSource::Location::FixedBearing, true,
-                                                     ParameterSpec{"G_f", "W/K", 0.1, 0.0, 1.0, 0.1});
-    auto nut = std::make_shared<ChannelHeatSource>(ParameterSpec{"a_n", "1", 1.0, 0.0, 3.0, 1.0}, ChannelHeatSource::Location::Nut,
-                                                   true, ParameterSpec{"G_n", "W/K", 0.1, 0.0, 1.0, 0.1});
-    fixed->bind(&housing, &amb, t0);
-    nut->bind(&housing, &amb, t0);
-    id.addHeatSource(fixed);
-    id.addHeatSource(nut);
-    IdentificationResult with;
-    with.parameters = truth;
-    with.amplitudes = {truth.k3, truth.k4, 1.0, 1.0};
-    with.nonlinearComponentValues = {gFixed_W_K, gNut_W_K};
-    IdentificationResult without = with;
-    without.nonlinearComponentValues = {0.0, 0.0};
-    const FitStatistics a = id.predict(with, {r.screw}), b = id.predict(without, {r.screw});
-    addDifference(r, a, b);
-    return r;
-}
-
 void TestDiagnosisGrammar::housingContactIsTheMachineAsBuilt()
 {
     // Not applicable without the housings' channels: nothing added.
@@ -371,15 +289,10 @@ void TestDiagnosisGrammar::housingContactIsTheMachineAsBuilt()
     // A clean machine whose housings touch the screw (0.3 and 0.2 W/K): with the contact in
     // the baseline the answer is `none` and the conductances come back; the heat-path lag's
     // contact variant (G >= 0.5 W/K to be named) and the structure terms stay unnamed.
-    const DiagnosisRecording a = withHousings(false, 0.3, 0.2), b = withHousings(true, 0.3, 0.2);
+    const DiagnosisRecording a = diagnosisTestWithHousings(false, 0.3, 0.2), b = diagnosisTestWithHousings(true, 0.3, 0.2);
     QCOMPARE(CandidateEffectLibrary::asBuilt(a, 0.5).sources.size(), size_t(2));
-    DiagnosisOptions o;
-    o.identification.simulator.grid.dt_s = 20.0;
-    o.identification.simulator.driveSample_s = 1.0;
-    o.identification.maxIterations = 60;
-    o.adviseTests = false;
+    DiagnosisOptions o = diagnosisTestOptions({"heat_path_lag", "structure_offset"});
     o.empiricalTerms = false;
-    o.effects = {"heat_path_lag", "structure_offset"};
     const DiagnosisReport without = DiagnosisEngine(ScrewGeometry{}, o).run(a, b);
     o.housingContactBaseline = true;
     const DiagnosisReport with = DiagnosisEngine(ScrewGeometry{}, o).run(a, b);

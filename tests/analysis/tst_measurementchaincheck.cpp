@@ -3,6 +3,8 @@
 // whose holder follows the bed. Each has a control with the same signal charged to the
 // machine (both sensors see it, or another channel drives it), where no sensor may be named.
 
+#include "DiagnosisEngine.h"
+#include "DiagnosisTestRecording.h"
 #include "MeasurementChainCheck.h"
 #include "ScrewModelIdentifier.h"
 #include "SyntheticScrewTest.h"
@@ -92,6 +94,7 @@ private slots:
     void probeAndInterferometerAgreeingIsTheMachine();
     void airLawThroughTheWholeCheck_data();
     void airLawThroughTheWholeCheck();
+    void judgedAgainstTheMachineAsBuilt();
 };
 
 void TestMeasurementChainCheck::namesAJumpingPt100AndUndoesIt()
@@ -336,6 +339,43 @@ void TestMeasurementChainCheck::airLawThroughTheWholeCheck()
     const DiagnosisRecording clean = airRecording(true, 0.0);
     for (size_t i = 0; i < b.screw.interferometer.size(); ++i)
         QVERIFY(std::fabs(b.screw.interferometer[i].error_um - clean.screw.interferometer[i].error_um) < 0.5);
+}
+
+// The chain check inside the diagnosis judges the sensors against the diagnosis's own machine
+// (issue 36; DiagnosisOptions::housingContactBaseline): seed 000 with housings that follow a
+// 1 K air drift through 1000 s and touch the screw at 0.3 / 0.2 W/K (the machine as built),
+// and a probe whose holder follows the bed at 3 um/K (the bed: the air through 3000 s plus its
+// own 0.8 K warm-up). With the contacts in the check's interferometer-only refit the
+// interferometer's own residual is white and the probe alone follows the bed: named, left out,
+// and the machine is answered `none`.
+void TestMeasurementChainCheck::judgedAgainstTheMachineAsBuilt()
+{
+    constexpr double kProbe_um_K = 3.0;
+    auto faulty = [](bool validation) {
+        DiagnosisRecording r = diagnosisTestWithHousings(validation, 0.3, 0.2, 1.0);
+        TimeSeries bed = firstOrderLag(r.screw.drive.ambient_C, 3000.0);
+        for (size_t k = 0; k < bed.size(); ++k)
+            bed.v[k] += 0.8 * (1.0 - std::exp(-(bed.t[k] - bed.t.front()) / 5000.0));
+        r.channelsByRole["structure"] = bed;
+        for (size_t k = 0; k < r.screw.elongation_um.size(); ++k)
+            r.screw.elongation_um.v[k] += kProbe_um_K * (bed.at(r.screw.elongation_um.t[k]) - bed.v.front());
+        return r;
+    };
+    const DiagnosisRecording a = faulty(false), b = faulty(true);
+    DiagnosisOptions o = diagnosisTestOptions({"heat_path_lag", "structure_offset", "structure_linear"});
+    o.empiricalTerms = false;
+    o.checkMeasurementChain = true;
+    o.housingContactBaseline = true;
+    const DiagnosisReport r = DiagnosisEngine(ScrewGeometry{}, o).run(a, b);
+    for (const SensorFinding &f : r.measurementChain)
+        qInfo("finding: %s", f.law.c_str());
+    qInfo("answer %s, held-out RMS of the baseline %.3f um", r.effect.c_str(), r.baseline.heldoutRms_um);
+    QCOMPARE(r.measurementChain.size(), size_t(1));
+    QCOMPARE(r.measurementChain.front().role, std::string("screw_elongation"));
+    QCOMPARE(r.measurementChain.front().driver, std::string("structure"));
+    QVERIFY2(std::fabs(r.measurementChain.front().coefficient - kProbe_um_K) < 0.3,
+             std::to_string(r.measurementChain.front().coefficient).c_str());
+    QCOMPARE(r.effect, std::string("none"));
 }
 
 QTEST_GUILESS_MAIN(TestMeasurementChainCheck)

@@ -62,8 +62,11 @@ QString TestReportCli::pdfText(const QString &pdf)
                  r.err.left(300).constData());
         return QString();
     }
-    // pdftotext turns "fi"/"fl" into ligature characters.
-    return QString::fromUtf8(r.out).replace(QChar(0xFB01), QLatin1String("fi")).replace(QChar(0xFB02), QLatin1String("fl"));
+    // pdftotext turns "ff"/"fi"/"fl" into ligature characters.
+    return QString::fromUtf8(r.out)
+        .replace(QChar(0xFB00), QLatin1String("ff"))
+        .replace(QChar(0xFB01), QLatin1String("fi"))
+        .replace(QChar(0xFB02), QLatin1String("fl"));
 }
 
 void TestReportCli::initTestCase()
@@ -110,7 +113,15 @@ void TestReportCli::initTestCase()
                                             {QStringLiteral("explanation"), QStringLiteral("heat from the motor enters the fixed end")},
                                             {QStringLiteral("location"), QJsonObject{{QStringLiteral("summary"), QStringLiteral("largest near the fixed end while moving")}}},
                                             {QStringLiteral("baseline"), QJsonObject{{QStringLiteral("heldout_rms_um"), 4.25}}},
-                                            {QStringLiteral("corrected"), QJsonObject{{QStringLiteral("heldout_rms_um"), 1.375}}}});
+                                            {QStringLiteral("corrected"), QJsonObject{{QStringLiteral("heldout_rms_um"), 1.375}}},
+                                            // run with --priors --housing-contact
+                                            {QStringLiteral("options"), QJsonObject{{QStringLiteral("priors"), true},
+                                                                                    {QStringLiteral("measurement_chain"), false},
+                                                                                    {QStringLiteral("triples"), false},
+                                                                                    {QStringLiteral("housing_contact"), true},
+                                                                                    {QStringLiteral("fit_screw_temperatures"), false},
+                                                                                    {QStringLiteral("dt_s"), 20.0},
+                                                                                    {QStringLiteral("effects"), QJsonArray{}}}}});
     }
     m_pdf = m_dir.filePath(QStringLiteral("report.pdf"));
     m_html = m_dir.filePath(QStringLiteral("report.html"));
@@ -208,6 +219,11 @@ void TestReportCli::pdfCarriesTheSessionsResults()
     QVERIFY(m_text.contains(QStringLiteral("motor_heat")));
     QVERIFY(m_text.contains(QStringLiteral("4.25")));
     QVERIFY(m_text.contains(QStringLiteral("1.375")));
+    // The switches it ran with, in the words of the Diagnosis dock's check boxes (the line may
+    // wrap in the PDF).
+    const QString options = QStringLiteral("Options: Priors on, Measurement chain off, Triples off, Housing contact on, "
+                                           "Screw temperatures fitted off.");
+    QVERIFY2(QString(m_text).replace(QLatin1Char('\n'), QLatin1Char(' ')).contains(options), qPrintable(m_text.mid(m_text.indexOf(QStringLiteral("motor_heat")), 400)));
     // What the session lacks is left out with a reason, not shown empty.
     QVERIFY(m_text.contains(QStringLiteral("Left out: no compensation loop was run on this session")));
     QVERIFY(!m_text.contains(QStringLiteral("Left out: no model")));
@@ -386,6 +402,8 @@ void TestReportCli::combinedDiagnosisListsItsSteps()
     QVERIFY(text.contains(QStringLiteral("3.5 -&gt; 1.75")));
     QVERIFY(text.contains(QStringLiteral("1.75 -&gt; 0.625")));
     QVERIFY(text.contains(QStringLiteral("64 %")));
+    // Stored without its switches (before 2026-11-28): said so, not shown as all off.
+    QVERIFY(text.contains(QStringLiteral("Options: not recorded (a diagnosis stored before 2026-11-28).")));
 }
 
 QTEST_GUILESS_MAIN(TestReportCli)

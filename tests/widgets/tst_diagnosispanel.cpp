@@ -1,22 +1,30 @@
 // The Diagnosis workspace runs the diagnosis in the background on two stored rig sessions
 // with a concealed structure drift, names it, shows the validation residual shrink, and can
 // be cancelled. Its option boxes reach the engine: each ticked box is a switch the diagnosis
-// ran with (recorded in its report), unticked boxes are a default request's switches.
+// ran with (recorded in its report), unticked boxes are a default request's switches. In the
+// main window maximised at 1366 x 768 the answer's first lines are in view after a diagnosis,
+// wrapped to the dock's width.
 
 #include "AnalysisResultKind.h"
 #include "DiagnosisPanel.h"
 #include "DiagnosisResultJson.h"
 #include "ErrorSurfacePlot.h"
+#include "MainWindow.h"
+#include "ScreenFit.h"
 #include "SessionDiagnosis.h"
 #include "SessionStore.h"
 #include "UnitLabels.h"
+#include "Workbench.h"
 
 #include "../support/WidgetTestSetup.h"
 
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDockWidget>
 #include <QJsonObject>
 #include <QLabel>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QSignalSpy>
 #include <QTableWidget>
 #include <QTemporaryDir>
@@ -34,6 +42,8 @@ private slots:
     void cancelStops();
     void optionBoxesReachTheEngine();
     void refusesSameSession();
+    void answerInViewAt1366();
+    void cleanupTestCase() { ScreenFit::simulateScreen(QSize()); }
 
 private:
     QTemporaryDir m_dir;
@@ -43,6 +53,7 @@ private:
 
 void TestDiagnosisPanel::initTestCase()
 {
+    widgettest::privateSettings(m_dir); // the main window of answerInViewAt1366 keeps its layout there
     m_store = std::make_unique<SessionStore>(m_dir.filePath(QStringLiteral("diag.sqlite")));
     m_train = widgettest::record(*m_store, widgettest::structureOffsetRig(6000.0), QStringLiteral("train"), 4 * 3600.0);
     m_validate = widgettest::record(*m_store, widgettest::structureOffsetRig(8000.0, 1), QStringLiteral("validate"), 3 * 3600.0);
@@ -87,9 +98,10 @@ void TestDiagnosisPanel::namesTheConcealedEffect()
     // The switches it ran with (a default request's): in the answer and in the stored record.
     const DiagnosisRequest defaults;
     const auto onOff = [](bool on) { return on ? QStringLiteral("on") : QStringLiteral("off"); };
-    const QString options = QStringLiteral("Options: priors %1, measurement chain %2, triples %3, housing contact %4.")
-                                .arg(onOff(defaults.priors), onOff(defaults.checkMeasurementChain), onOff(defaults.tryTriples),
-                                     onOff(defaults.housingContact));
+    const QString options =
+        QStringLiteral("Options: Priors %1, Measurement chain %2, Triples %3, Housing contact %4, Screw temperatures fitted %5.")
+            .arg(onOff(defaults.priors), onOff(defaults.checkMeasurementChain), onOff(defaults.tryTriples),
+                 onOff(defaults.housingContact), onOff(defaults.fitScrewTemperatures));
     QVERIFY2(answer.contains(options), qPrintable(answer));
     const QJsonObject stored =
         m_store->latestAnalysisResult(m_train, AnalysisResultKind::diagnosis()).value(QStringLiteral("options")).toObject();
@@ -221,6 +233,57 @@ void TestDiagnosisPanel::refusesSameSession()
     panel.setStore(m_store.get());
     QVERIFY(!panel.start(m_train, m_train));
     QVERIFY(panel.lastError().contains(QStringLiteral("different")));
+}
+
+// Issue 36: at 1366 x 768 the answer was cut at the dock's fold (it lay below the four rows of
+// controls, 180 px down a dock whose viewport is about 215 px high). The main window as a user
+// has it, the Diagnosis dock raised, a diagnosis run: the answer's area lies in the dock's
+// viewport with at least its first three lines, the answer starts at its top, and nothing
+// scrolls sideways (the dock, or the answer, which wraps).
+void TestDiagnosisPanel::answerInViewAt1366()
+{
+    const QSize screen(1366, 768);
+    ScreenFit::simulateScreen(screen);
+    MainWindow window;
+    QVERIFY(window.workbench()->openDatabase(m_store->path()));
+    window.resize(screen);
+    window.move(0, 0);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QScrollArea *dock = widgettest::raiseDock(window.dock(QStringLiteral("DiagnosisDock")));
+    QVERIFY(dock);
+    DiagnosisPanel *panel = window.diagnosis();
+    QSignalSpy done(panel, &DiagnosisPanel::finished);
+    QVERIFY2(panel->start(m_train, m_validate), qPrintable(panel->lastError()));
+    QVERIFY(done.wait(300000));
+    QVERIFY2(done.last().at(0).toBool(), qPrintable(panel->lastError()));
+    QTest::qWait(100);
+    auto *answer = panel->findChild<QLabel *>(QStringLiteral("diagnosisAnswer"));
+    auto *area = panel->findChild<QScrollArea *>(QStringLiteral("diagnosisAnswerArea"));
+    QVERIFY(answer && area && answer->isVisible());
+    QVERIFY(answer->text().contains(QStringLiteral("structure_offset")));
+    const int line = answer->fontMetrics().lineSpacing();
+    const QRect inDock(area->viewport()->mapTo(dock->viewport(), QPoint(0, 0)), area->viewport()->size());
+    const QString where = QStringLiteral("answer's area at x %1..%2, y %3..%4 in a dock viewport of %5 x %6; %7 px a line")
+                              .arg(inDock.left())
+                              .arg(inDock.right())
+                              .arg(inDock.top())
+                              .arg(inDock.bottom())
+                              .arg(dock->viewport()->width())
+                              .arg(dock->viewport()->height())
+                              .arg(line);
+    qInfo("%s", qPrintable(where));
+    // Its first three lines inside the dock's viewport, the whole width too.
+    QVERIFY2(inDock.top() >= 0 && inDock.top() + 3 * line <= dock->viewport()->height(), qPrintable(where));
+    QVERIFY2(inDock.left() >= 0 && inDock.right() < dock->viewport()->width(), qPrintable(where));
+    QVERIFY2(area->viewport()->height() >= 3 * line, qPrintable(where));
+    QVERIFY2(area->viewport()->width() >= 300, qPrintable(where)); // room for a sentence's words (it was 182 px)
+    // Not scrolled down, and the answer wrapped to the area's width (nothing to scroll sideways).
+    QCOMPARE(answer->mapTo(area->viewport(), QPoint(0, 0)).y(), 0);
+    QVERIFY2(answer->width() <= area->viewport()->width(), qPrintable(QStringLiteral("answer %1 px wide in %2 px")
+                                                                          .arg(answer->width())
+                                                                          .arg(area->viewport()->width())));
+    QCOMPARE(dock->horizontalScrollBar()->maximum(), 0);
 }
 
 QTEST_MAIN(TestDiagnosisPanel)
