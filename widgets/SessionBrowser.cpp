@@ -225,9 +225,13 @@ void SessionBrowser::fitColumns()
     // before any column after them is shown.
     const int width = m_table->viewport()->width();
     int need[Columns];
-    for (int c = 0; c < Columns; ++c)
+    for (int c = 0; c < Columns; ++c) {
+        // A hidden section's size hint is 1 px: on an empty table (no cells to measure) every
+        // column then "fitted" and the first start's table scrolled sideways by 293 px.
+        m_table->setColumnHidden(c, false);
         need[c] = std::max(static_cast<const QAbstractItemView *>(m_table)->sizeHintForColumn(c),
                            m_table->horizontalHeader()->sectionSizeHint(c));
+    }
     const int nameReserve = std::max(120, std::min(need[Name], width - need[State] - need[Started]));
     int used = 0;
     for (const Column c : kPriority) {
