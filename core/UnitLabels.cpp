@@ -1,5 +1,6 @@
 #include "UnitLabels.h"
 
+#include <QDateTime>
 #include <QRegularExpression>
 
 namespace driftlab {
@@ -37,6 +38,12 @@ QString UnitLabels::quantity(const QString &kind)
     if (kind == QLatin1String("interferometer") || kind == QLatin1String("deviation"))
         return QStringLiteral("thermal error");
     return kind;
+}
+
+QString UnitLabels::startTime(const QString &iso)
+{
+    const QDateTime t = QDateTime::fromString(iso, Qt::ISODate);
+    return t.isValid() ? t.toUTC().toString(QStringLiteral("yyyy-MM-dd HH:mm")) : iso;
 }
 
 } // namespace driftlab

@@ -144,7 +144,6 @@ void SessionBrowser::setSessions(const QVector<SessionInfo> &sessions, const Ses
     m_complete.clear();
     const bool durations = store && !store->isCentralStore();
     for (const SessionInfo &s : sessions) {
-        const QDateTime started = QDateTime::fromString(s.started, Qt::ISODate);
         double last = -1.0;
         if (durations) {
             try {
@@ -163,7 +162,7 @@ void SessionBrowser::setSessions(const QVector<SessionInfo> &sessions, const Ses
         };
         add(QString::number(s.id), s.id);
         add(s.name, s.name.toLower());
-        add(started.isValid() ? started.toUTC().toString(QStringLiteral("yyyy-MM-dd HH:mm")) : s.started, s.started);
+        add(UnitLabels::startTime(s.started), s.started);
         add(last >= 0 ? hms(last) : QStringLiteral("-"), last);
         add(s.operatorName, s.operatorName.toLower());
         add(rig, rig.toLower());
