@@ -14,6 +14,7 @@
 #include <QAction>
 #include <QComboBox>
 #include <QDateTimeEdit>
+#include <QHeaderView>
 #include <QJsonDocument>
 #include <QLineEdit>
 #include <QSettings>
@@ -251,6 +252,14 @@ void TestCsvImportDialog::loggerFilesGuessedRight()
     QCOMPARE(d.preview()->rowCount(), std::min(rows, 20)); // the preview shows the first 20 rows
     QCOMPARE(d.columnTable()->rowCount(), d.preview()->columnCount() - 1);
     QCOMPARE(ticked(d), d.columnTable()->rowCount()); // every column but the time is imported
+    // The preview shows each header and date whole (at 100 px a column read "T Lager [°C",
+    // "01.03.20..." until 2026-11-28).
+    QTableWidget *p = d.preview();
+    for (int c = 0; c < p->columnCount(); ++c) {
+        const int need = std::max(static_cast<const QAbstractItemView *>(p)->sizeHintForColumn(c), p->horizontalHeader()->sectionSizeHint(c));
+        QVERIFY2(p->columnWidth(c) >= need, qPrintable(QStringLiteral("column '%1': %2 px, needs %3")
+                                                          .arg(p->horizontalHeaderItem(c)->text()).arg(p->columnWidth(c)).arg(need)));
+    }
     QVERIFY(d.errorText().isEmpty());
     QSignalSpy imported(&d, &CsvImportDialog::imported);
     QSignalSpy finished(&d, &CsvImportDialog::importFinished);

@@ -24,6 +24,7 @@
 
 #include <QAbstractButton>
 #include <QComboBox>
+#include <QDir>
 #include <QDockWidget>
 #include <QHeaderView>
 #include <QLabel>
@@ -161,6 +162,10 @@ void checkDialog(QWidget *dialog)
     dialog->move(0, 0);
     QVERIFY(QTest::qWaitForWindowExposed(dialog));
     QTest::qWait(30);
+    // DRIFTLAB_GRAB_DIR=DIR: each dialog as checked, DIR/<class>.png (to look at them).
+    if (const QString dir = qEnvironmentVariable("DRIFTLAB_GRAB_DIR"); !dir.isEmpty())
+        dialog->grab().save(QDir(dir).filePath(QString::fromLatin1(dialog->metaObject()->className()).section(QLatin1Char(':'), -1) +
+                                               QStringLiteral(".png")));
     const QStringList p = problems(dialog);
     QVERIFY2(p.isEmpty(), qPrintable(QStringLiteral("%1:\n  ").arg(dialog->metaObject()->className()) + p.join(QStringLiteral("\n  "))));
     dialog->hide();
