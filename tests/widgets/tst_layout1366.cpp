@@ -156,6 +156,15 @@ void showOnTheScreen(MainWindow &window, const QString &db)
     QVERIFY(QTest::qWaitForWindowExposed(&window));
 }
 
+// Shows dock `name` of `window` in front of the docks it is tabbed with.
+void raiseDock(MainWindow &window, const QString &name)
+{
+    QDockWidget *d = window.dock(name);
+    QVERIFY(d);
+    d->show();
+    d->raise();
+}
+
 void checkDialog(QWidget *dialog)
 {
     dialog->show();
@@ -327,9 +336,7 @@ void TestLayout1366::deviceTableFitsWhileRecording()
     showOnTheScreen(window, m_db);
     if (QTest::currentTestFailed())
         return;
-    QDockWidget *d = window.dock(QStringLiteral("AcquisitionDock"));
-    d->show();
-    d->raise();
+    raiseDock(window, QStringLiteral("AcquisitionDock"));
     AcquisitionPanel *panel = window.acquisition();
     const QString db = m_dir.filePath(QStringLiteral("recording.sqlite"));
     QVERIFY2(panel->startRecording(QStringLiteral("baseline"), db, 600.0), qPrintable(panel->lastError()));
@@ -390,9 +397,7 @@ void TestLayout1366::analysisResultsFit()
     showOnTheScreen(window, db);
     if (QTest::currentTestFailed())
         return;
-    QDockWidget *d = window.dock(QStringLiteral("AnalysisDock"));
-    d->show();
-    d->raise();
+    raiseDock(window, QStringLiteral("AnalysisDock"));
     QSignalSpy done(window.analysis(), &AnalysisPanel::workflowFinished);
     QVERIFY2(window.analysis()->startWorkflow(1, QStringLiteral("S1"), 1.5, false), qPrintable(window.analysis()->lastError()));
     QVERIFY(done.wait(120000));
