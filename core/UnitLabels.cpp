@@ -3,6 +3,9 @@
 #include <QDateTime>
 #include <QRegularExpression>
 
+#include <algorithm>
+#include <cmath>
+
 namespace driftlab {
 
 QString UnitLabels::display(const QString &unit)
@@ -44,6 +47,12 @@ QString UnitLabels::startTime(const QString &iso)
 {
     const QDateTime t = QDateTime::fromString(iso, Qt::ISODate);
     return t.isValid() ? t.toUTC().toString(QStringLiteral("yyyy-MM-dd HH:mm")) : iso;
+}
+
+QString UnitLabels::clock(double seconds)
+{
+    const qint64 s = static_cast<qint64>(std::floor(std::max(0.0, seconds)));
+    return QStringLiteral("%1:%2:%3").arg(s / 3600).arg(s / 60 % 60, 2, 10, QLatin1Char('0')).arg(s % 60, 2, 10, QLatin1Char('0'));
 }
 
 } // namespace driftlab

@@ -21,6 +21,9 @@ public:
     // A session's stored start (ISO 8601, "2026-11-27T19:33:28Z") as every screen shows it:
     // "2026-11-27 19:33" in UTC; text that is not a date as it is.
     static QString startTime(const QString &iso);
+    // Elapsed time in whole seconds (floored; below zero as 0) as h:mm:ss, as the CLI and the
+    // ISO 230 summary print it (the plots' axes: widgets/ElapsedTimeAxis).
+    static QString clock(double seconds);
 };
 
 } // namespace driftlab
