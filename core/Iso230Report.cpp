@@ -1,5 +1,6 @@
 #include "Iso230Report.h"
 
+#include "UnitLabels.h"
 
 #include <QJsonArray>
 #include <QStringList>
@@ -341,9 +342,9 @@ QString Iso230Report::text() const
                                          : ref->directionRecorded ? QStringLiteral("one direction") : QStringLiteral("direction not recorded"))
                  .arg(ref->minApproaches);
     const Iso230Axis &a = ref->axis;
-    lines << QStringLiteral("reference test (run %1, %2 h), \u00b5m: B %3  B_mean %4  R+ %5  R- %6  R %7  E+ %8  E- %9  E %10  M %11  A+ %12  A- %13  A %14")
+    lines << QStringLiteral("reference test (run %1, %2), \u00b5m: B %3  B_mean %4  R+ %5  R- %6  R %7  E+ %8  E- %9  E %10  M %11  A+ %12  A- %13  A %14")
                  .arg(ref->runs.front())
-                 .arg(ref->time_s / 3600.0, 0, 'f', 2)
+                 .arg(UnitLabels::clock(ref->time_s))
                  .arg(um(a.reversal_um), um(a.meanReversal_um), um(a.repeatUp_um), um(a.repeatDown_um), um(a.repeat_um),
                       um(a.systematicUp_um), um(a.systematicDown_um), um(a.systematic_um), um(a.meanRange_um))
                  .arg(um(a.accuracyUp_um), um(a.accuracyDown_um), um(a.accuracy_um));
@@ -368,11 +369,11 @@ QString Iso230Report::text() const
                      .arg(hiB >= loB ? QStringLiteral(", B %1 .. %2 \u00b5m").arg(um(loB), um(hiB)) : QString());
     }
     const Iso230DriftSummary &d = m_drift;
-    lines << QStringLiteral("largest drift from the reference: %1 \u00b5m at %2 mm%3, %4 h (run %5)")
+    lines << QStringLiteral("largest drift from the reference: %1 \u00b5m at %2 mm%3, %4 (run %5)")
                  .arg(d.maxDrift_um, 0, 'f', 2)
                  .arg(d.maxDriftPosition_mm, 0, 'f', 1)
                  .arg(d.maxDriftDirection ? QStringLiteral(" (%1)").arg(dirName(d.maxDriftDirection)) : QString())
-                 .arg(d.maxDriftTime_s / 3600.0, 0, 'f', 2)
+                 .arg(UnitLabels::clock(d.maxDriftTime_s))
                  .arg(d.maxDriftRun);
     if (d.withTemperature) {
         for (const Iso230DriftSeries &s : d.series) {

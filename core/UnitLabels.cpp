@@ -1,6 +1,10 @@
 #include "UnitLabels.h"
 
+#include <QDateTime>
 #include <QRegularExpression>
+
+#include <algorithm>
+#include <cmath>
 
 namespace driftlab {
 
@@ -37,6 +41,18 @@ QString UnitLabels::quantity(const QString &kind)
     if (kind == QLatin1String("interferometer") || kind == QLatin1String("deviation"))
         return QStringLiteral("thermal error");
     return kind;
+}
+
+QString UnitLabels::startTime(const QString &iso)
+{
+    const QDateTime t = QDateTime::fromString(iso, Qt::ISODate);
+    return t.isValid() ? t.toUTC().toString(QStringLiteral("yyyy-MM-dd HH:mm")) : iso;
+}
+
+QString UnitLabels::clock(double seconds)
+{
+    const qint64 s = static_cast<qint64>(std::floor(std::max(0.0, seconds)));
+    return QStringLiteral("%1:%2:%3").arg(s / 3600).arg(s / 60 % 60, 2, 10, QLatin1Char('0')).arg(s % 60, 2, 10, QLatin1Char('0'));
 }
 
 } // namespace driftlab

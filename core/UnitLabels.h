@@ -18,6 +18,12 @@ public:
     // A probe's "displacement" is the screw's elongation; the interferometer's deviation at a
     // target is the thermal error. Other kinds as they are.
     static QString quantity(const QString &kind);
+    // A session's stored start (ISO 8601, "2026-11-27T19:33:28Z") as every screen shows it:
+    // "2026-11-27 19:33" in UTC; text that is not a date as it is.
+    static QString startTime(const QString &iso);
+    // Elapsed time in whole seconds (floored; below zero as 0) as h:mm:ss, as the CLI and the
+    // ISO 230 summary print it (the plots' axes: widgets/ElapsedTimeAxis).
+    static QString clock(double seconds);
 };
 
 } // namespace driftlab

@@ -35,7 +35,7 @@ namespace driftlab {
 namespace {
 
 constexpr auto num = &ReportDocument::number;
-constexpr auto hours = &ReportDocument::hours;
+constexpr auto elapsed = &ReportDocument::elapsed;
 
 QString jsonText(const QJsonValue &v)
 {
@@ -158,7 +158,7 @@ void ReportBuilder::sessionSection(ReportDocument &doc) const
         {QStringLiteral("UUID"), info.uuid},
         {QStringLiteral("Started (UTC)"), info.started},
         {QStringLiteral("Operator"), info.operatorName.isEmpty() ? QStringLiteral("-") : info.operatorName},
-        {QStringLiteral("Duration"), std::isfinite(t0) ? QStringLiteral("%1 h").arg(hours(t1 - t0)) : QStringLiteral("-")},
+        {QStringLiteral("Duration (h:mm:ss)"), std::isfinite(t0) ? elapsed(t1 - t0) : QStringLiteral("-")},
         {QStringLiteral("Recording complete"), info.complete ? QStringLiteral("yes") : QStringLiteral("no")},
         {QStringLiteral("Interferometer"), QStringLiteral("%1 run(s), %2 point(s)").arg(runs.size()).arg(points.size())},
         {QStringLiteral("Infrared frames"), QString::number(frames)}};
@@ -188,8 +188,8 @@ void ReportBuilder::sessionSection(ReportDocument &doc) const
         doc.heading(m_look.heading(QStringLiteral("events")));
         QVector<QStringList> ev;
         for (const EventRecord &e : events)
-            ev.push_back({QString::number(e.t, 'f', 1), hours(e.t), e.label});
-        doc.table({QStringLiteral("t (s)"), QStringLiteral("t (h)"), QStringLiteral("Event")}, ev);
+            ev.push_back({elapsed(e.t), e.label});
+        doc.table({QStringLiteral("Elapsed (h:mm:ss)"), QStringLiteral("Event")}, ev);
     }
 }
 

@@ -1,5 +1,7 @@
 #include "ReportDocument.h"
 
+#include "ElapsedTimeAxis.h"
+
 #include <cmath>
 
 namespace driftlab {
@@ -9,9 +11,9 @@ QString ReportDocument::number(double v, int digits)
     return std::isfinite(v) ? QString::number(v, 'g', digits) : QStringLiteral("-");
 }
 
-QString ReportDocument::hours(double t_s)
+QString ReportDocument::elapsed(double t_s)
 {
-    return QString::number(t_s / 3600.0, 'f', 2);
+    return std::isfinite(t_s) ? ElapsedTimeAxis::format(t_s) : QStringLiteral("-");
 }
 
 void ReportDocument::paragraph(const QString &plainText)

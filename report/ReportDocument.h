@@ -41,9 +41,10 @@ public:
     void keyValues(const QVector<QPair<QString, QString>> &pairs);
 
     // How a report writes a number in a cell or sentence: `digits` significant digits, "-"
-    // when not finite; a time in seconds as hours with two decimals.
+    // when not finite; an elapsed time in seconds as h:mm:ss, the one time format of the
+    // screens (ElapsedTimeAxis).
     static QString number(double v, int digits);
-    static QString hours(double t_s);
+    static QString elapsed(double t_s);
 };
 
 } // namespace driftlab

@@ -14,7 +14,7 @@ namespace driftlab {
 namespace {
 
 constexpr auto num = &ReportDocument::number;
-constexpr auto hours = &ReportDocument::hours;
+constexpr auto elapsed = &ReportDocument::elapsed;
 constexpr auto svg = &ReportBuilder::svg;
 constexpr QSizeF kFigure_mm = ReportBuilder::kFigure_mm;
 
@@ -58,7 +58,7 @@ void ReportIso230Section::write(ReportDocument &doc, const SessionStore &store, 
         // One direction (or none recorded): the values of that direction, as Iso230Report::text.
         const Iso230Axis &a = t.axis;
         const bool both = t.bidirectional;
-        rows.push_back({runs.join(QLatin1Char(',')), hours(t.time_s), QString::number(t.targets.size()),
+        rows.push_back({runs.join(QLatin1Char(',')), elapsed(t.time_s), QString::number(t.targets.size()),
                         both ? QStringLiteral("both") : t.directionRecorded ? QStringLiteral("one") : QStringLiteral("not recorded"),
                         QString::number(t.minApproaches), num(both ? a.accuracy_um : a.accuracyUp_um, 4),
                         num(both ? a.systematic_um : a.systematicUp_um, 4), num(a.meanRange_um, 4),
@@ -69,7 +69,7 @@ void ReportIso230Section::write(ReportDocument &doc, const SessionStore &store, 
     doc.paragraph(QStringLiteral("ISO 230-2 axis values per interferometer test, in \u00b5m: A accuracy, E systematic "
                                  "positioning error, M range of the mean positional deviation, R repeatability, "
                                  "B reversal value; n = fewest approaches per target and direction."));
-    doc.table({QStringLiteral("Runs"), QStringLiteral("t (h)"), QStringLiteral("Targets"), QStringLiteral("Directions"),
+    doc.table({QStringLiteral("Runs"), QStringLiteral("Time (h:mm:ss)"), QStringLiteral("Targets"), QStringLiteral("Directions"),
                QStringLiteral("n"), QStringLiteral("A"), QStringLiteral("E"), QStringLiteral("M"), QStringLiteral("R"), QStringLiteral("B")},
               rows);
     QStringList sorted = notes.values();
@@ -111,18 +111,18 @@ void ReportIso230Section::write(ReportDocument &doc, const SessionStore &store, 
         return;
     }
     doc.paragraph(QStringLiteral("ISO 230-3 drift against the reference run %1: largest drift %2 \u00b5m at %3 mm (%4) in run %5, "
-                                 "%6 h after the start.")
+                                 "%6 (h:mm:ss) after the start.")
                       .arg(d.referenceRun)
                       .arg(num(d.maxDrift_um, 4), num(d.maxDriftPosition_mm, 6),
                            d.maxDriftDirection > 0 ? QStringLiteral("+") : d.maxDriftDirection < 0 ? QStringLiteral("-") : QStringLiteral("no direction"))
                       .arg(d.maxDriftRun)
-                      .arg(hours(d.maxDriftTime_s)));
+                      .arg(elapsed(d.maxDriftTime_s)));
     QVector<QStringList> drift;
     for (const Iso230DriftSeries &s : d.series)
         drift.push_back({num(s.position_mm, 6), s.direction > 0 ? QStringLiteral("+") : s.direction < 0 ? QStringLiteral("-") : QStringLiteral("?"),
-                         num(s.maxDrift_um, 4), hours(s.maxDriftTime_s), QString::number(s.maxDriftRun)});
+                         num(s.maxDrift_um, 4), elapsed(s.maxDriftTime_s), QString::number(s.maxDriftRun)});
     doc.table({QStringLiteral("Target (mm)"), QStringLiteral("Direction"), QStringLiteral("Largest drift (\u00b5m)"),
-               QStringLiteral("at t (h)"), QStringLiteral("Run")},
+               QStringLiteral("At (h:mm:ss)"), QStringLiteral("Run")},
               drift);
 }
 

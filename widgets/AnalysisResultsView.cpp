@@ -33,6 +33,7 @@ QString number(double v, int decimals = 3)
 }
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+const QSize kPlotMinimum(300, 200);
 
 } // namespace
 
@@ -91,6 +92,9 @@ AnalysisResultsView::AnalysisResultsView(QWidget *parent)
     // The family table at the full width of the page, six rows in view (every family of auto).
     m_table->setMinimumHeight(m_table->verticalHeader()->defaultSectionSize() * 6 + 2 * m_table->fontMetrics().height() + 16);
     m_table->horizontalHeaderItem(HeldOutRmse)->setToolTip(tr("Shown, never used to choose"));
+    // The note takes the width the numbers leave: sized to its text (up to 24 x-widths) it made
+    // the table 12 px wider than its viewport with the Analysis dock open at 1366 x 768.
+    m_table->horizontalHeader()->setSectionResizeMode(Note, QHeaderView::Stretch);
     topLayout->addWidget(m_table, 1);
     // Below it, tabs at the full width: the metrics per session, and the plots (side by side
     // on a laptop screen the tables needed sideways scrolling and the time ticks ran together).
@@ -140,7 +144,12 @@ void AnalysisResultsView::showSelection(const QJsonObject &selection, const Sess
     const QStringList views = AnalysisPlots::selectionViews();
     for (int i = 0; i < views.size(); ++i) {
         try {
-            m_selectionPlots->addTab(AnalysisPlots::selectionPlot(views[i], selection, store, session).release(), titles[i]);
+            std::unique_ptr<QwtPlot> plot = AnalysisPlots::selectionPlot(views[i], selection, store, session);
+            // The page gives the plot its room: the plots' own minimum heights (up to 551 px with
+            // the channel names on the axis) made the filled view 789 px high, and the main
+            // window 975 px on a 768 px screen (tst_layout1366::analysisResultsFit).
+            plot->setMinimumSize(kPlotMinimum);
+            m_selectionPlots->addTab(plot.release(), titles[i]);
         } catch (const std::exception &e) {
             m_selectionPlots->addTab(new QLabel(QString::fromUtf8(e.what())), titles[i]);
         }
@@ -194,8 +203,8 @@ void AnalysisResultsView::showModels(const std::vector<ModelRow> &rows, const QS
         m_table->setItem(i, Note, item(note));
         m_table->item(i, Note)->setToolTip(note);
     }
-    m_table->resizeColumnsToContents();
-    m_table->setColumnWidth(Note, std::min(m_table->columnWidth(Note), m_table->fontMetrics().horizontalAdvance(QLatin1Char('x')) * 24));
+    for (int c = 0; c < Note; ++c) // the note stretches into what is left (its full text in the tooltip)
+        m_table->resizeColumnToContents(c);
     m_table->blockSignals(false);
     QString chosenName;
     for (const ModelRow &r : m_rows)

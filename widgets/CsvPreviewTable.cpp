@@ -61,6 +61,9 @@ QStringList CsvPreviewTable::load(const QByteArray &head, bool complete, const Q
             setItem(r, c, new QTableWidgetItem(codec->toUnicode(records[r].fields[c])));
     }
     setVerticalHeaderLabels(lines); // file line numbers, as errors name them
+    // Headers and dates whole (at the default 100 px "T Lager [°C" and "01.03.20..."); a wide
+    // file scrolls sideways in its preview.
+    resizeColumnsToContents();
     return header;
 }
 

@@ -17,6 +17,7 @@
 #include "SessionActions.h"
 #include "SessionBrowser.h"
 #include "SessionStore.h"
+#include "UnitLabels.h"
 #include "WheelGuard.h"
 #include "WelcomePage.h"
 #include "Workbench.h"
@@ -495,7 +496,7 @@ void MainWindow::chooseOverlay()
     for (const SessionInfo &s : m_workbench->sessions()) {
         if (s.id == m_workbench->currentSession())
             continue;
-        auto *item = new QListWidgetItem(QStringLiteral("#%1  %2  (%3)").arg(s.id).arg(s.name, s.started), list);
+        auto *item = new QListWidgetItem(QStringLiteral("#%1  %2  (%3)").arg(s.id).arg(s.name, UnitLabels::startTime(s.started)), list);
         item->setData(Qt::UserRole, s.id);
         item->setFlags(item->flags() | Qt::ItemIsUserCheckable);
         item->setCheckState(m_workspace->overlay().contains(s.id) ? Qt::Checked : Qt::Unchecked);

@@ -120,9 +120,9 @@ void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
     m_envelopesComplete = data->info().complete;
     m_timeSeries->setTitle(data->info().name);
     const SessionInfo &info = data->info();
-    m_heading->setText(tr("<b>Session #%1</b>&nbsp;&nbsp;%2&nbsp;&nbsp;<span style='color:#555'>started %3%4%5</span>")
+    m_heading->setText(tr("<b>Session #%1</b>&nbsp;&nbsp;%2&nbsp;&nbsp;<span style='color:#555'>started %3 UTC%4%5</span>")
                            .arg(sessionId)
-                           .arg(info.name.toHtmlEscaped(), info.started.toHtmlEscaped(),
+                           .arg(info.name.toHtmlEscaped(), UnitLabels::startTime(info.started).toHtmlEscaped(),
                                 info.operatorName.isEmpty() ? QString() : tr(", operator %1").arg(info.operatorName.toHtmlEscaped()),
                                 info.complete ? QString() : tr(", incomplete")));
     m_timeSeries->setEvents(store->events(sessionId));
@@ -289,7 +289,7 @@ void ReviewWorkspace::updateProfiles()
             return;
         }
         tables.push_back(d.thermalErrors());
-        names << QStringLiteral("%1 (%2)").arg(name, d.info().started);
+        names << QStringLiteral("%1 (%2)").arg(name, UnitLabels::startTime(d.info().started));
     };
     add(m_sessionId, *m_data);
     for (qint64 id : m_overlay)

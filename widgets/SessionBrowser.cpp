@@ -144,7 +144,6 @@ void SessionBrowser::setSessions(const QVector<SessionInfo> &sessions, const Ses
     m_complete.clear();
     const bool durations = store && !store->isCentralStore();
     for (const SessionInfo &s : sessions) {
-        const QDateTime started = QDateTime::fromString(s.started, Qt::ISODate);
         double last = -1.0;
         if (durations) {
             try {
@@ -163,7 +162,7 @@ void SessionBrowser::setSessions(const QVector<SessionInfo> &sessions, const Ses
         };
         add(QString::number(s.id), s.id);
         add(s.name, s.name.toLower());
-        add(started.isValid() ? started.toUTC().toString(QStringLiteral("yyyy-MM-dd HH:mm")) : s.started, s.started);
+        add(UnitLabels::startTime(s.started), s.started);
         add(last >= 0 ? hms(last) : QStringLiteral("-"), last);
         add(s.operatorName, s.operatorName.toLower());
         add(rig, rig.toLower());
@@ -225,9 +224,13 @@ void SessionBrowser::fitColumns()
     // before any column after them is shown.
     const int width = m_table->viewport()->width();
     int need[Columns];
-    for (int c = 0; c < Columns; ++c)
+    for (int c = 0; c < Columns; ++c) {
+        // A hidden section's size hint is 1 px: on an empty table (no cells to measure) every
+        // column then "fitted" and the first start's table scrolled sideways by 293 px.
+        m_table->setColumnHidden(c, false);
         need[c] = std::max(static_cast<const QAbstractItemView *>(m_table)->sizeHintForColumn(c),
                            m_table->horizontalHeader()->sectionSizeHint(c));
+    }
     const int nameReserve = std::max(120, std::min(need[Name], width - need[State] - need[Started]));
     int used = 0;
     for (const Column c : kPriority) {

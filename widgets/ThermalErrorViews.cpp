@@ -1,5 +1,6 @@
 #include "ThermalErrorViews.h"
 
+#include "ElapsedTimeAxis.h"
 #include "ThermalErrorTable.h"
 #include "TimeSeries.h"
 #include "TimeSeriesPlot.h"
@@ -13,11 +14,6 @@
 namespace driftlab {
 
 namespace {
-QString hoursMinutes(double t_s)
-{
-    const qint64 m = static_cast<qint64>(std::llround(t_s / 60.0));
-    return QStringLiteral("%1:%2").arg(m / 60).arg(m % 60, 2, 10, QLatin1Char('0'));
-}
 
 void markPoints(QwtPlotCurve *curve)
 {
@@ -34,7 +30,7 @@ void positionAxes(TimeSeriesPlot &plot, const QString &title)
     plot.enableAxis(QwtPlot::yRight, false);
 }
 
-// Run r of the table against position, titled "<prefix> run N (h:mm)".
+// Run r of the table against position, titled "<prefix> run N (h:mm:ss)".
 QwtPlotCurve *addRun(TimeSeriesPlot &plot, const ThermalErrorTable &table, std::size_t r, const QString &prefix)
 {
     QVector<double> x, y;
@@ -45,7 +41,7 @@ QwtPlotCurve *addRun(TimeSeriesPlot &plot, const ThermalErrorTable &table, std::
         x.push_back(table.targets_mm()[k]);
         y.push_back(e);
     }
-    const QString run = QObject::tr("run %1 (%2)").arg(table.runs()[r]).arg(hoursMinutes(table.runTimes_s()[r]));
+    const QString run = QObject::tr("run %1 (%2)").arg(table.runs()[r]).arg(ElapsedTimeAxis::format(table.runTimes_s()[r]));
     QwtPlotCurve *curve = plot.addCurve(prefix.isEmpty() ? run : prefix + QLatin1Char(' ') + run, x, y, false);
     markPoints(curve);
     return curve;

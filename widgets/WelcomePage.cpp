@@ -1,6 +1,7 @@
 #include "WelcomePage.h"
 
 #include <QGridLayout>
+#include <QHBoxLayout>
 #include <QLabel>
 #include <QPushButton>
 #include <QVBoxLayout>
@@ -45,9 +46,15 @@ WelcomePage::WelcomePage(QWidget *parent)
     inner->addWidget(m_database);
     inner->addSpacing(8);
     inner->addLayout(grid);
+    // Centred between stretches, not with Qt::AlignHCenter: an aligned item gets the height of
+    // its size hint, two lines per note, and the notes were cut ("...choose its").
+    auto *row = new QHBoxLayout;
+    row->addStretch(1);
+    row->addWidget(box);
+    row->addStretch(1);
     auto *layout = new QVBoxLayout(this);
     layout->addStretch(1);
-    layout->addWidget(box, 0, Qt::AlignHCenter);
+    layout->addLayout(row);
     layout->addStretch(2);
     connect(m_record, &QPushButton::clicked, this, &WelcomePage::recordSimulated);
     connect(m_example, &QPushButton::clicked, this, &WelcomePage::openExample);

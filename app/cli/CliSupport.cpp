@@ -1,6 +1,7 @@
 #include "CliSupport.h"
 
 #include "SessionStore.h"
+#include "UnitLabels.h"
 
 #include "CliCommand.h"
 #include "OutputTarget.h"
@@ -67,8 +68,7 @@ double CliSupport::sessionEnd_s(const SessionStore &store, qint64 sessionId)
 
 QString CliSupport::clockText(double seconds)
 {
-    const qint64 s = static_cast<qint64>(std::floor(std::max(0.0, seconds)));
-    return QStringLiteral("%1:%2:%3").arg(s / 3600).arg(s / 60 % 60, 2, 10, QLatin1Char('0')).arg(s % 60, 2, 10, QLatin1Char('0'));
+    return UnitLabels::clock(seconds);
 }
 
 void CliSupport::progress(const QString &line)

@@ -131,7 +131,7 @@ int ImportCsvCommand::run(const QStringList &args)
     QTextStream out(stdout);
     for (const CsvImportedSession &s : r.sessions)
         out << "session " << s.sessionId << " in " << path << ": " << r.channels << " channels, " << s.rows << " rows, " << s.samples
-            << " samples over " << QString::number(s.lastTime_s / 3600.0, 'f', 2) << " h"
+            << " samples over " << CliSupport::clockText(s.lastTime_s) // h:mm:ss, as every time on screen
             << (r.targets.isEmpty() ? QString() : QStringLiteral(", targets ") + r.targets.join(QLatin1Char(',')))
             << (s.run.isEmpty() ? QString() : QStringLiteral(" (run %1)").arg(s.run)) << '\n';
     return 0;

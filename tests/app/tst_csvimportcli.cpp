@@ -147,6 +147,8 @@ void TestCsvImportCli::loggerQuirks()
     QVERIFY2(r.code == 0, r.err.constData());
     QVERIFY2(r.out.startsWith("session 1 in "), r.out.constData()); // like `record`
     QVERIFY(r.out.contains("2 rows"));
+    // The span as h:mm:ss like every time on screen (issue 33; "over 0.00 h" until 2026-11-28).
+    QVERIFY2(r.out.contains("samples over 0:00:15"), r.out.constData());
     QCOMPARE(SessionStore(db).session(1).name, QStringLiteral("crlf test"));
     // ';' and decimal commas, minutes, a displacement in mm marked as the target.
     const QString semi = write(QStringLiteral("semi.csv"), "t [min];X-Sonde [mm]\n0;0,001\n1,5;0,0035\n");

@@ -12,6 +12,7 @@
 #include <QJsonObject>
 #include <QProcess>
 #include <QTemporaryDir>
+#include <QRegularExpression>
 #include <QtTest>
 
 #include "../support/CliRunner.h"
@@ -172,6 +173,11 @@ void TestIso230Cli::driftFollowsTheNut()
     // The plain text summary.
     QVERIFY2(m_text.startsWith("session 1 '"), m_text.constData());
     QVERIFY(m_text.contains("largest drift from the reference: "));
+    // Times as h:mm:ss like the ISO 230 view (issue 33; "0.04 h" and "1.54 h" until 2026-11-28).
+    const QString text = QString::fromUtf8(m_text);
+    QVERIFY2(text.contains(QRegularExpression(QStringLiteral(R"(reference test \(run \d+, \d+:\d\d:\d\d\), )"))), m_text.constData());
+    QVERIFY2(text.contains(QRegularExpression(QStringLiteral(R"(largest drift from the reference: .*, \d+:\d\d:\d\d \(run \d+\))"))),
+             m_text.constData());
     QVERIFY(m_text.contains("against T4"));
 }
 

@@ -23,6 +23,8 @@
 #include <QTextTable>
 #include <QtTest>
 
+#include <cmath>
+
 using namespace driftlab;
 
 namespace {
@@ -55,6 +57,7 @@ private slots:
     void initTestCase();
     void htmlStaysSmall();
     void tablesBreakNoWord();
+    void timesReadAsElapsedClock();
 
 private:
     QTemporaryDir m_dir;
@@ -122,6 +125,30 @@ void TestReportLayout::tablesBreakNoWord()
     qInfo("%d tables, %d cells at %.0f px", tables, cells, ReportWriter::pdfTextWidth());
     QVERIFY(tables >= 3);
     QVERIFY2(broken.isEmpty(), qPrintable(broken.join(QStringLiteral("\n  "))));
+}
+
+// Issue 33 item 3, one time format everywhere: the report's times are elapsed h:mm:ss like every
+// time axis and readout (until 2026-11-28 its events read "t (s)" and "t (h)": 7200.0 and 2.00,
+// the duration "10.00 h"). Each stored event's time, written here by hand, is in the events table.
+void TestReportLayout::timesReadAsElapsedClock()
+{
+    const auto clock = [](double t_s) {
+        const qint64 s = std::llround(t_s);
+        return QStringLiteral("%1:%2:%3").arg(s / 3600).arg(s / 60 % 60, 2, 10, QLatin1Char('0')).arg(s % 60, 2, 10, QLatin1Char('0'));
+    };
+    QString tables;
+    for (const ReportBlock &b : m_doc.blocks)
+        if (b.kind == ReportBlock::Kind::Html && b.text.contains(QLatin1String("<table")))
+            tables += b.text;
+    QVERIFY(!tables.isEmpty());
+    for (const char *header : {"t (s)", "t (h)", "(h)</th>", "(s)</th>"})
+        QVERIFY2(!tables.contains(QLatin1String(header)), header);
+    const QVector<EventRecord> events = m_store->events(m_session);
+    QVERIFY(events.size() >= 3);
+    for (const EventRecord &e : events)
+        QVERIFY2(tables.contains(QStringLiteral("<td>%1</td>").arg(clock(e.t))), qPrintable(clock(e.t) + QStringLiteral(" ") + e.label));
+    // The duration of the ten hours (the last sample 1 s before 10:00:00 or at it).
+    QVERIFY2(tables.contains(QLatin1String("<td>9:59:59</td>")) || tables.contains(QLatin1String("<td>10:00:00</td>")), "duration");
 }
 
 QTEST_MAIN(TestReportLayout)

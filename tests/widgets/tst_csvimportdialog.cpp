@@ -14,6 +14,7 @@
 #include <QAction>
 #include <QComboBox>
 #include <QDateTimeEdit>
+#include <QHeaderView>
 #include <QJsonDocument>
 #include <QLineEdit>
 #include <QSettings>
@@ -22,6 +23,8 @@
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QtTest>
+
+#include <algorithm>
 
 using namespace driftlab;
 
@@ -217,9 +220,15 @@ void TestCsvImportDialog::loggerFilesGuessedRight_data()
     QTest::addColumn<double>("lastTime");
     QTest::addColumn<QString>("channel");
     QTest::addColumn<double>("lastValue");
-    QTest::newRow("German") << "german_logger.csv" << ';' << ',' << 3 << "Datum" << 660.0 << "Weg_X" << 9.0;
-    QTest::newRow("US") << "us_logger.csv" << ',' << '.' << 1 << "Timestamp" << 3300.0 << "Z_Growth" << 13.75;
-    QTest::newRow("semicolon") << "semicolon_comma.csv" << ';' << ',' << 0 << "Zeit [min]" << 330.0 << "Verlagerung_Z" << 13.2;
+    QTest::addColumn<int>("rows");
+    QTest::newRow("German") << "german_logger.csv" << ';' << ',' << 3 << "Datum" << 660.0 << "Weg_X" << 9.0 << 12;
+    QTest::newRow("US") << "us_logger.csv" << ',' << '.' << 1 << "Timestamp" << 3300.0 << "Z_Growth" << 13.75 << 12;
+    QTest::newRow("semicolon") << "semicolon_comma.csv" << ';' << ',' << 0 << "Zeit [min]" << 330.0 << "Verlagerung_Z" << 13.2 << 12;
+    // Written for the issue 33 check of 2026-11-28, blind to the guesser: a German preamble
+    // "Messung;Spindel" holding the separator, windows-1252 and CRLF; a US table in seconds with
+    // a Fahrenheit column (stored in °C: 72.62 °F is 22.57 °C).
+    QTest::newRow("German, separator in the preamble") << "audit_german.csv" << ';' << ',' << 3 << "Datum Uhrzeit" << 1740.0 << "Verlagerung_X" << 9.9 << 30;
+    QTest::newRow("US, seconds and degF") << "audit_us.csv" << ',' << '.' << 0 << "Time (s)" << 1740.0 << "Nut_temp" << (72.62 - 32.0) * 5.0 / 9.0 << 30;
 }
 
 void TestCsvImportDialog::loggerFilesGuessedRight()
@@ -232,6 +241,7 @@ void TestCsvImportDialog::loggerFilesGuessedRight()
     QFETCH(double, lastTime);
     QFETCH(QString, channel);
     QFETCH(double, lastValue);
+    QFETCH(int, rows);
     CsvImportDialog d(m_db);
     QVERIFY(d.openFile(QStringLiteral(DRIFTLAB_SOURCE_DIR "/tests/data/csv/") + file));
     const CsvColumnMap m = d.columnMap();
@@ -239,9 +249,17 @@ void TestCsvImportDialog::loggerFilesGuessedRight()
     QCOMPARE(m.decimal, decimal);
     QCOMPARE(m.skipLines, skip);
     QCOMPARE(m.time.column, timeColumn);
-    QCOMPARE(d.preview()->rowCount(), 12);
+    QCOMPARE(d.preview()->rowCount(), std::min(rows, 20)); // the preview shows the first 20 rows
     QCOMPARE(d.columnTable()->rowCount(), d.preview()->columnCount() - 1);
     QCOMPARE(ticked(d), d.columnTable()->rowCount()); // every column but the time is imported
+    // The preview shows each header and date whole (at 100 px a column read "T Lager [°C",
+    // "01.03.20..." until 2026-11-28).
+    QTableWidget *p = d.preview();
+    for (int c = 0; c < p->columnCount(); ++c) {
+        const int need = std::max(static_cast<const QAbstractItemView *>(p)->sizeHintForColumn(c), p->horizontalHeader()->sectionSizeHint(c));
+        QVERIFY2(p->columnWidth(c) >= need, qPrintable(QStringLiteral("column '%1': %2 px, needs %3")
+                                                          .arg(p->horizontalHeaderItem(c)->text()).arg(p->columnWidth(c)).arg(need)));
+    }
     QVERIFY(d.errorText().isEmpty());
     QSignalSpy imported(&d, &CsvImportDialog::imported);
     QSignalSpy finished(&d, &CsvImportDialog::importFinished);
@@ -250,13 +268,17 @@ void TestCsvImportDialog::loggerFilesGuessedRight()
     QVERIFY2(finished.front().front().toBool(), qPrintable(d.errorText()));
     SessionStore store(m_db);
     const qint64 id = imported.front().front().toLongLong();
+    QStringList keys;
     for (const ChannelInfo &c : store.channels(id)) {
         const SampleBlock b = store.samples(c.id);
-        QCOMPARE(b.t.size(), 12);
+        QCOMPARE(b.t.size(), rows);
         QCOMPARE(b.t.back(), lastTime);
+        keys << c.key + QLatin1Char(' ') + c.unit;
         if (c.key == channel)
-            QVERIFY2(std::fabs(b.v.back() - lastValue) < 1e-9, qPrintable(QString::number(b.v.back())));
+            QVERIFY2(std::fabs(b.v.back() - lastValue) < 1e-9, qPrintable(QString::number(b.v.back(), 'g', 17)));
     }
+    QVERIFY2(std::any_of(keys.cbegin(), keys.cend(), [&](const QString &k) { return k.startsWith(channel + QLatin1Char(' ')); }),
+             qPrintable(keys.join(QStringLiteral(", "))));
     QVERIFY(store.channels(id).size() == d.preview()->columnCount() - 1);
 }
 

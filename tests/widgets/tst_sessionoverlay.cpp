@@ -281,8 +281,11 @@ void TestSessionOverlay::overlaysLastRunsOnOnePositionAxis()
             out << QPointF(it.key(), it.value() - ref.value(it.key()));
         return out;
     };
-    const QString aTitle = QStringLiteral("#%1 monday (2026-11-20T08:00:00Z) run 2 (0:20)").arg(m_a);
-    const QString bTitle = QStringLiteral("#%1 tuesday (2026-11-21T08:00:00Z) run 1 (0:10)").arg(m_b);
+    // The start as the sessions table shows it and the run's time (the mean of its points' times,
+    // 600 s * run + 25 s) as h:mm:ss (until 2026-11-28 "(2026-11-20T08:00:00Z) run 2 (0:20)": a
+    // second date format and h:mm beside the h:mm:ss axes).
+    const QString aTitle = QStringLiteral("#%1 monday (2026-11-20 08:00) run 2 (0:20:25)").arg(m_a);
+    const QString bTitle = QStringLiteral("#%1 tuesday (2026-11-21 08:00) run 1 (0:10:25)").arg(m_b);
     const QwtPlotCurve *a = plot->curve(aTitle);
     const QwtPlotCurve *b = plot->curve(bTitle);
     QVERIFY2(a && b, qPrintable(plot->curves().front()->title().text()));
@@ -311,7 +314,7 @@ void TestSessionOverlay::overlaysLastRunsOnOnePositionAxis()
     // The overlay ends: the current session's runs again.
     w.setOverlay({});
     QCOMPARE(plot->curves().size(), 2);
-    QVERIFY(plot->curve(QStringLiteral("run 1 (0:10)")) && plot->curve(QStringLiteral("run 2 (0:20)")));
+    QVERIFY(plot->curve(QStringLiteral("run 1 (0:10:25)")) && plot->curve(QStringLiteral("run 2 (0:20:25)")));
     // A session without runs still shows the others' on the position axis.
     w.setSession(&store, m_d);
     QVERIFY(!w.plotForView(QStringLiteral("error-position")));
