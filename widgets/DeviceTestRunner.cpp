@@ -5,6 +5,7 @@
 #include "SessionClock.h"
 #include "SimulatedDevice.h"
 #include "SimulatedRigHub.h"
+#include "UnitLabels.h"
 
 #include <QElapsedTimer>
 
@@ -56,7 +57,7 @@ void DeviceTestRunner::run(DeviceConfig config, RigConfig baseRig)
         values << QStringLiteral("-");
     QStringList units;
     for (const ChannelInfo &c : device->channels())
-        units << c.unit;
+        units << UnitLabels::display(c.unit); // "°C", not the stored code "degC"
     SessionClock clock(1.0);
     clock.start();
     emit update(ids, values, tr("connecting to the device..."));

@@ -57,11 +57,10 @@ int InfoCommand::run(const QStringList &args)
                                         {QStringLiteral("t_first_s"), t0},
                                         {QStringLiteral("t_last_s"), t1}});
             if (!p.isSet(json))
-                out << QStringLiteral("  %1 [%2] %3: %4 samples, %5 .. %6 s\n")
+                out << QStringLiteral("  %1 [%2] %3: %4 samples, %5 .. %6\n")
                            .arg(c.key, UnitLabels::display(c.unit), c.role)
                            .arg(n)
-                           .arg(t0)
-                           .arg(t1);
+                           .arg(UnitLabels::clock(t0), UnitLabels::clock(t1));
         }
         sessions.append(QJsonObject{{QStringLiteral("id"), static_cast<double>(s.id)},
                                     {QStringLiteral("uuid"), s.uuid},

@@ -131,6 +131,10 @@ void TestCli::recordInfoAnalyse()
     QCOMPARE(channels.value(QStringLiteral("S1")).value(QStringLiteral("samples")).toInt(), 1201);
     QCOMPARE(channels.value(QStringLiteral("X")).value(QStringLiteral("samples")).toInt(), 12001);
     QCOMPARE(channels.value(QStringLiteral("T_amb")).value(QStringLiteral("t_last_s")).toDouble(), 1200.0);
+    // The text shows each channel's span in elapsed h:mm:ss, as every screen does.
+    r = run({QStringLiteral("info"), db});
+    QVERIFY2(r.code == 0, r.err.constData());
+    QVERIFY2(r.out.contains("1201 samples, 0:00:00 .. 0:20:00\n"), r.out.constData());
 
     r = run({QStringLiteral("analyse"), QStringLiteral("--db"), db, QStringLiteral("--json"), QStringLiteral("-")});
     QVERIFY2(r.code == 0, r.err.constData());

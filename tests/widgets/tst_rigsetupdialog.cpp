@@ -59,14 +59,15 @@ void TestRigSetupDialog::setUpTestAndSave()
 
     // Test connection: live values from the module.
     dialog.testConnection();
-    // "id: value unit", the module's temperature to one count (200/65535 degC).
+    // "id: value unit", the module's temperature to one count (200/65535 °C).
     auto live = [&](int row) { return dialog.liveValue(row).section(QLatin1Char(' '), 1, 1).toDouble(); };
     QTRY_VERIFY_WITH_TIMEOUT(dialog.liveValue(1).startsWith(QLatin1String("T_amb: 2")), 10000);
     QVERIFY2(std::fabs(live(1) - 21.0) < 0.005, qPrintable(dialog.liveValue(1)));
     QVERIFY2(std::fabs(live(0) - 20.0) < 0.005, qPrintable(dialog.liveValue(0)));
-    QVERIFY(dialog.liveValue(6).contains(QLatin1String("degC")));
+    QVERIFY2(dialog.liveValue(6).endsWith(QStringLiteral(" °C")), qPrintable(dialog.liveValue(6))); // not "degC"
     QCOMPARE(dialog.testState(), QStringLiteral("running"));
     if (qEnvironmentVariableIsSet("DRIFTLAB_SCREENSHOTS")) { // docs/screenshots/rig-setup.png
+        dialog.resize(1350, 728); // as it opens on a 1366 x 768 screen (tst_layout1366::everyDialogFits)
         QTest::qWait(500);
         dialog.grab().save(QDir(qEnvironmentVariable("DRIFTLAB_SCREENSHOTS")).filePath(QStringLiteral("rig-setup.png")));
     }
