@@ -9,6 +9,7 @@
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
 #include "Workbench.h"
+#include "UnitLabels.h"
 
 #include <QComboBox>
 #include <QDir>
@@ -42,11 +43,6 @@ constexpr int kTick_ms = 40;        // status refresh: at most 25 per second
 constexpr int kPlotPeriod_ms = 100; // data re-read and plot redraw
 const char *kBrowse = "Rig file...";
 
-QString hms(double s)
-{
-    const qint64 t = static_cast<qint64>(std::floor(s));
-    return QStringLiteral("%1:%2:%3").arg(t / 3600).arg((t / 60) % 60, 2, 10, QLatin1Char('0')).arg(t % 60, 2, 10, QLatin1Char('0'));
-}
 } // namespace
 
 AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
@@ -418,7 +414,7 @@ void AcquisitionPanel::onTick()
         return;
     }
     m_elapsed->setText(tr("%1%2 elapsed%3")
-                           .arg(hms(m_engine->now_s()), m_end_s > 0 ? tr(" of %1").arg(hms(m_end_s)) : QString(),
+                           .arg(UnitLabels::clock(m_engine->now_s()), m_end_s > 0 ? tr(" of %1").arg(UnitLabels::clock(m_end_s)) : QString(),
                                 m_engine->paused() ? tr(" (paused)") : QString()));
     if (m_live)
         m_live->setClock(m_engine->now_s(), m_engine->paused());

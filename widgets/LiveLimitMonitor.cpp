@@ -1,5 +1,7 @@
 #include "LiveLimitMonitor.h"
 
+#include "UnitLabels.h"
+
 #include <QJsonArray>
 
 #include <cmath>
@@ -12,11 +14,6 @@ QString number(double v)
     return QString::number(v, 'g', 6);
 }
 
-QString hms(double s)
-{
-    const qint64 t = static_cast<qint64>(std::floor(std::max(0.0, s)));
-    return QStringLiteral("%1:%2:%3").arg(t / 3600).arg((t / 60) % 60, 2, 10, QLatin1Char('0')).arg(t % 60, 2, 10, QLatin1Char('0'));
-}
 } // namespace
 
 bool LiveLimitMonitor::Limit::any() const
@@ -133,7 +130,7 @@ QVector<LiveLimitMonitor::Alarm> LiveLimitMonitor::observe(const QString &channe
         if (first >= 0) {
             const bool above = first == high;
             const QString label = QStringLiteral("alarm: %1 %2 = %3%4 at %5 (limit %6 %7%4)")
-                                      .arg(kindName(kind), channel, number(v[first]), unit, hms(t.value(first)),
+                                      .arg(kindName(kind), channel, number(v[first]), unit, UnitLabels::clock(t.value(first)),
                                            above ? QStringLiteral(">") : QStringLiteral("<"),
                                            number(above ? limit.high : limit.low));
             set(kind, true, t.value(first), v[first], label);
@@ -149,7 +146,7 @@ QVector<LiveLimitMonitor::Alarm> LiveLimitMonitor::observe(const QString &channe
         const bool silent = since > limit.silent_s;
         set(Kind::Silent, silent, now_s, since,
             QStringLiteral("alarm: sensor silent %1: no sample for %2 s at %3 (limit %4 s)")
-                .arg(channel, QString::number(since, 'f', 0), hms(now_s), number(limit.silent_s)));
+                .arg(channel, QString::number(since, 'f', 0), UnitLabels::clock(now_s), number(limit.silent_s)));
     } else {
         set(Kind::Silent, false, 0, 0, QString());
     }

@@ -38,12 +38,6 @@ namespace {
 enum Column { ColChannel, ColValue, ColLow, ColHigh, ColCount };
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-QString hms(double s)
-{
-    const qint64 t = static_cast<qint64>(std::floor(std::max(0.0, s)));
-    return QStringLiteral("%1:%2:%3").arg(t / 3600).arg((t / 60) % 60, 2, 10, QLatin1Char('0')).arg(t % 60, 2, 10, QLatin1Char('0'));
-}
-
 QString limitText(double v)
 {
     return std::isnan(v) ? QString() : QLocale().toString(v, 'g', 6);
@@ -172,7 +166,7 @@ LiveRecordingView::LiveRecordingView(QWidget *parent) : QWidget(parent)
             const QString key = item->data(Qt::UserRole).toString();
             if (QwtPlotCurve *c = m_plot->curve(key)) {
                 c->setVisible(item->checkState() == Qt::Checked);
-                if (m_tracked.value(key).dirty) // samples it took while hidden, not drawn yet
+                if (m_tracked.constFind(key)->dirty) // samples it took while hidden, not drawn yet
                     drawCurves(m_drawnAt_s);
                 else
                     m_plot->replot();
@@ -237,9 +231,9 @@ void LiveRecordingView::finish(const QString &message)
 
 void LiveRecordingView::setClock(double now_s, bool paused)
 {
-    QString text = tr("%1 elapsed").arg(hms(now_s));
+    QString text = tr("%1 elapsed").arg(UnitLabels::clock(now_s));
     if (m_end_s > 0)
-        text += tr(", %1 remaining").arg(hms(std::max(0.0, m_end_s - now_s)));
+        text += tr(", %1 remaining").arg(UnitLabels::clock(std::max(0.0, m_end_s - now_s)));
     else
         text += tr(", until Stop");
     if (paused)

@@ -1,7 +1,6 @@
 #include "CliSupport.h"
 
 #include "SessionStore.h"
-#include "UnitLabels.h"
 
 #include "CliCommand.h"
 #include "OutputTarget.h"
@@ -64,11 +63,6 @@ double CliSupport::sessionEnd_s(const SessionStore &store, qint64 sessionId)
             end = std::max(end, d.tLast.back());
     }
     return end;
-}
-
-QString CliSupport::clockText(double seconds)
-{
-    return UnitLabels::clock(seconds);
 }
 
 void CliSupport::progress(const QString &line)

@@ -28,8 +28,6 @@ public:
     // Session time of the last stored sample of any channel (read from the coarsest sample
     // mipmap, not the samples), -infinity for a session without samples.
     static double sessionEnd_s(const SessionStore &store, qint64 sessionId);
-    // "2:48:00" for 10080 s: a session time for messages.
-    static QString clockText(double seconds);
     // Writes a progress line to standard error.
     static void progress(const QString &line);
     // Parses "SECONDS" or "H:MM:SS" (also "MM:SS"; minutes and seconds after the first field

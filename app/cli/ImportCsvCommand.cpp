@@ -6,6 +6,7 @@
 #include "CsvError.h"
 #include "CsvImporter.h"
 #include "SessionStore.h"
+#include "UnitLabels.h"
 
 #include <QCommandLineParser>
 #include <QDateTime>
@@ -131,7 +132,7 @@ int ImportCsvCommand::run(const QStringList &args)
     QTextStream out(stdout);
     for (const CsvImportedSession &s : r.sessions)
         out << "session " << s.sessionId << " in " << path << ": " << r.channels << " channels, " << s.rows << " rows, " << s.samples
-            << " samples over " << CliSupport::clockText(s.lastTime_s) // h:mm:ss, as every time on screen
+            << " samples over " << UnitLabels::clock(s.lastTime_s) // h:mm:ss, as every time on screen
             << (r.targets.isEmpty() ? QString() : QStringLiteral(", targets ") + r.targets.join(QLatin1Char(',')))
             << (s.run.isEmpty() ? QString() : QStringLiteral(" (run %1)").arg(s.run)) << '\n';
     return 0;

@@ -7,6 +7,7 @@
 #include "InterferometerImport.h"
 #include "SessionStore.h"
 #include "StorageError.h"
+#include "UnitLabels.h"
 
 #include <QCommandLineParser>
 #include <QDateTime>
@@ -114,11 +115,11 @@ int ImportRtlCommand::run(const QStringList &args)
                 throw UsageError(QStringLiteral("import-rtl: run %1 would start at %2 (%3 s, times from %4), after the end of "
                                                 "session %5 at %6 (%7 s); nothing imported")
                                      .arg(i + 1)
-                                     .arg(CliSupport::clockText(starts[i]))
+                                     .arg(UnitLabels::clock(starts[i]))
                                      .arg(starts[i], 0, 'f', 0)
                                      .arg(source)
                                      .arg(session)
-                                     .arg(CliSupport::clockText(end))
+                                     .arg(UnitLabels::clock(end))
                                      .arg(end, 0, 'f', 0));
         r = InterferometerImport::import(store, session, rtl, options);
     } catch (const std::invalid_argument &e) {

@@ -9,6 +9,7 @@
 #include "PlotExporter.h"
 #include "ReviewWorkspace.h"
 #include "SessionStore.h"
+#include "UnitLabels.h"
 
 #include <QCommandLineParser>
 #include <QFileInfo>
@@ -120,7 +121,7 @@ int PlotCommand::run(const QStringList &args)
                              .arg(p.value(from))
                              .arg(t0, 0, 'f', 0)
                              .arg(session)
-                             .arg(CliSupport::clockText(end))
+                             .arg(UnitLabels::clock(end))
                              .arg(end, 0, 'f', 0));
     if (selectionView) { // the latest select-points result stored with the session
         std::unique_ptr<QwtPlot> plot;
