@@ -4,6 +4,7 @@
 #include "SessionIso230.h"
 #include "SessionStore.h"
 #include "TimeSeriesPlot.h"
+#include "UnitLabels.h"
 
 #include <QComboBox>
 #include <QHBoxLayout>
@@ -28,12 +29,11 @@ namespace driftlab {
 
 namespace {
 
+// As the iso230 command and the report write it (UnitLabels::clock: whole seconds, floored;
+// this view rounded, so a run could read one second later here).
 QString hms(double s)
 {
-    if (!std::isfinite(s))
-        return QStringLiteral("-");
-    const qint64 t = static_cast<qint64>(std::llround(s));
-    return QStringLiteral("%1:%2:%3").arg(t / 3600).arg((t / 60) % 60, 2, 10, QLatin1Char('0')).arg(t % 60, 2, 10, QLatin1Char('0'));
+    return std::isfinite(s) ? UnitLabels::clock(s) : QStringLiteral("-");
 }
 
 // A cell with the value's exact double behind its rounded text ("-" for NaN: not given by the data).
