@@ -6,6 +6,8 @@
 
 #include <QString>
 
+#include <optional>
+
 namespace driftlab {
 
 class UnitLabels {
@@ -24,6 +26,14 @@ public:
     // Elapsed time in whole seconds (floored; below zero as 0) as h:mm:ss, as the CLI and the
     // ISO 230 summary print it (the plots' axes: widgets/ElapsedTimeAxis).
     static QString clock(double seconds);
+    // The inverse, for every place a person types an elapsed time or a duration (the CLI's
+    // --duration/--from/--to, the Analysis dock's ranges, the Acquisition dock's duration, the
+    // measurement run's times): "H:MM:SS" or "M:SS" (minutes and seconds below 60), plain
+    // seconds, or a number with a unit ("2 h", "90 min", "45 s"; a decimal comma is read as a
+    // point). Fractions are allowed on the last field. Not negative. nullopt with *why ("'ten'
+    // is not a duration (SECONDS or H:MM:SS)", "'1:99:00': minutes must be below 60 in
+    // H:MM:SS") when it is not one.
+    static std::optional<double> parseClock(const QString &text, QString *why = nullptr);
 };
 
 } // namespace driftlab

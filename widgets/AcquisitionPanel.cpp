@@ -1,6 +1,7 @@
 #include "AcquisitionPanel.h"
 
 #include "AcquisitionEngine.h"
+#include "ElapsedTimeBox.h"
 #include "LiveRecordingView.h"
 #include "RigConfigLoader.h"
 #include "RigDeviceSet.h"
@@ -25,7 +26,6 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QPlainTextEdit>
-#include <QSpinBox>
 #include <QPushButton>
 #include <QStandardPaths>
 #include <QTableWidget>
@@ -56,11 +56,9 @@ AcquisitionPanel::AcquisitionPanel(QWidget *parent) : QWidget(parent)
     m_name = new QLineEdit(this);
     m_name->setPlaceholderText(tr("automatic: rig and start time"));
     m_operator = new QLineEdit(this);
-    m_duration = new QSpinBox(this);
-    m_duration->setRange(0, 7 * 24 * 60);
-    m_duration->setSuffix(tr(" min"));
+    m_duration = new ElapsedTimeBox(this); // 0:00:00 shows as "until Stop"
     m_duration->setSpecialValueText(tr("until Stop"));
-    m_duration->setToolTip(tr("Simulated duration of the run; it stops by itself when reached"));
+    m_duration->setToolTip(tr("Simulated duration of the run in h:mm:ss (or 90 min, 2 h); it stops by itself when reached"));
     m_notes = new QPlainTextEdit(this);
     m_notes->setPlaceholderText(tr("what is tested, set-up, anything unusual"));
     m_notes->setMaximumHeight(2 * fontMetrics().lineSpacing() + 12);
@@ -242,7 +240,7 @@ void AcquisitionPanel::setRunDetails(const QString &name, const QString &operato
 {
     m_name->setText(name);
     m_operator->setText(operatorName);
-    m_duration->setValue(static_cast<int>(std::lround(duration_s / 60.0)));
+    m_duration->setValue(duration_s);
     m_notes->setPlainText(notes);
 }
 
@@ -263,7 +261,7 @@ bool AcquisitionPanel::startRecording(const QString &rigNameOrPath, const QStrin
                                .arg(config.name, QDateTime::currentDateTime().toString(QStringLiteral("yyyy-MM-dd HH:mm")));
         AcquisitionEngine::Options options;
         options.speed = set.realDevices ? 1.0 : speed; // real instruments record in real time
-        m_end_s = 60.0 * m_duration->value();
+        m_end_s = m_duration->value();
         if (m_end_s > 0)
             options.end_s = m_end_s;
         auto engine = std::make_unique<AcquisitionEngine>(options);

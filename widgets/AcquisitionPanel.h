@@ -18,7 +18,6 @@ class QDoubleSpinBox;
 class QLabel;
 class QLineEdit;
 class QPlainTextEdit;
-class QSpinBox;
 class QPushButton;
 class QTableWidget;
 class QTimer;
@@ -85,7 +84,7 @@ private:
     QLabel *m_db;
     QLineEdit *m_name;
     QLineEdit *m_operator;
-    QSpinBox *m_duration;     // minutes, 0 = until Stop
+    QDoubleSpinBox *m_duration; // seconds (h:mm:ss on screen), 0 = until Stop
     QPlainTextEdit *m_notes;
     QDoubleSpinBox *m_speed;
     QLabel *m_message;        // errors and results, word-wrapped

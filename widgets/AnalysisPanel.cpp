@@ -2,6 +2,7 @@
 
 #include "DataDrivenFitRecord.h"
 #include "DataDrivenModelJson.h"
+#include "ElapsedTimeBox.h"
 #include "FitRequestCheck.h"
 #include "PointSelection.h"
 #include "SessionStore.h"
@@ -31,20 +32,20 @@ namespace driftlab {
 
 namespace {
 
-QDoubleSpinBox *hoursBox(const QString &special, QWidget *parent)
+// A session-time bound in h:mm:ss; the special text at the minimum leaves that side open.
+QDoubleSpinBox *timeBox(const QString &open, QWidget *parent)
 {
-    auto *b = new QDoubleSpinBox(parent);
-    b->setRange(-1.0, 100000.0);
-    b->setDecimals(2);
-    b->setSuffix(QStringLiteral(" h"));
-    b->setSpecialValueText(special); // shown at the minimum: the start / the end of the session
-    b->setValue(-1.0);
+    auto *b = new ElapsedTimeBox(parent);
+    b->setRange(-60.0, 1000.0 * 3600.0); // one step below 0:00:00 is the open side
+    b->setSpecialValueText(open);
+    b->setValue(b->minimum());
     return b;
 }
 
+// The bound in hours as the fit request takes it; `open` at the minimum.
 double hours(const QDoubleSpinBox *b, double open)
 {
-    return b->value() <= b->minimum() ? open : b->value();
+    return b->value() <= b->minimum() ? open : b->value() / 3600.0;
 }
 
 QListWidget *sessionList(QWidget *parent)
@@ -88,10 +89,10 @@ AnalysisPanel::AnalysisPanel(QWidget *parent)
       m_target(new QComboBox(this)),
       m_kMin(new QSpinBox(this)),
       m_kMax(new QSpinBox(this)),
-      m_trainFrom(hoursBox(tr("start"), this)),
-      m_trainTo(hoursBox(tr("end"), this)),
-      m_holdoutFrom(hoursBox(tr("start"), this)),
-      m_holdoutTo(hoursBox(tr("end"), this)),
+      m_trainFrom(timeBox(tr("start"), this)),
+      m_trainTo(timeBox(tr("end"), this)),
+      m_holdoutFrom(timeBox(tr("start"), this)),
+      m_holdoutTo(timeBox(tr("end"), this)),
       m_points(new QComboBox(this)),
       m_reference(new QComboBox(this)),
       m_select(new QPushButton(tr("Select points"), this)),
@@ -115,7 +116,7 @@ AnalysisPanel::AnalysisPanel(QWidget *parent)
     m_reference->addItem(tr("absolute"), QStringLiteral("absolute"));
     m_training->setToolTip(tr("Training sessions (runs): with three or more, cross-validation leaves whole sessions out"));
     m_heldOut->setToolTip(tr("Held-out sessions: validated per session and pooled, never used to fit or choose"));
-    m_holdoutFrom->setToolTip(tr("Held-out hours of the one training session (when no held-out session is checked)"));
+    m_holdoutFrom->setToolTip(tr("Held-out part of the one training session, in session time h:mm:ss (when no held-out session is checked)"));
     auto *form = new QFormLayout();
     form->addRow(tr("Training"), m_training);
     form->addRow(tr("Held out"), m_heldOut);
@@ -128,11 +129,11 @@ AnalysisPanel::AnalysisPanel(QWidget *parent)
     auto *train = new QHBoxLayout();
     train->addWidget(m_trainFrom);
     train->addWidget(m_trainTo);
-    form->addRow(tr("Training hours"), train);
+    form->addRow(tr("Training time"), train);
     auto *held = new QHBoxLayout();
     held->addWidget(m_holdoutFrom);
     held->addWidget(m_holdoutTo);
-    form->addRow(tr("or held-out hours"), held);
+    form->addRow(tr("or held-out time"), held);
     form->addRow(tr("Temperature inputs"), m_points);
     form->addRow(tr("Reference"), m_reference);
     auto *models = new QGroupBox(tr("Models"), this);
@@ -216,8 +217,8 @@ bool AnalysisPanel::startWorkflow(qint64 session, const QString &target, double 
         return false;
     }
     m_trainFrom->setValue(m_trainFrom->minimum());
-    m_trainTo->setValue(std::isfinite(trainTo_h) ? trainTo_h : m_trainTo->minimum());
-    m_holdoutFrom->setValue(std::isfinite(trainTo_h) ? trainTo_h : m_holdoutFrom->minimum());
+    m_trainTo->setValue(std::isfinite(trainTo_h) ? trainTo_h * 3600.0 : m_trainTo->minimum());
+    m_holdoutFrom->setValue(std::isfinite(trainTo_h) ? trainTo_h * 3600.0 : m_holdoutFrom->minimum());
     m_holdoutTo->setValue(m_holdoutTo->minimum());
     m_workflow = selectOnly ? Workflow::SelectOnly : Workflow::SelectThenFit;
     if (!startSelection()) {

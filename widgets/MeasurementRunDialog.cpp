@@ -1,6 +1,7 @@
 #include "MeasurementRunDialog.h"
 
 #include "RtlFile.h"
+#include "UnitLabels.h"
 
 #include <QApplication>
 #include <QClipboard>
@@ -41,6 +42,23 @@ bool parseNumber(QString text, double &value)
         value = QLocale::c().toDouble(QString(text).replace(QLatin1Char(','), QLatin1Char('.')), &ok);
     return ok && std::isfinite(value);
 }
+
+// A target's session time: exact seconds in the item's data (the stamp keeps its fraction),
+// h:mm:ss in its text.
+void setTime(QTableWidgetItem *item, double seconds)
+{
+    item->setData(Qt::UserRole, seconds);
+    item->setText(UnitLabels::clock(seconds));
+    item->setBackground(QBrush());
+}
+
+bool timeOf(const QTableWidgetItem *item, double &seconds)
+{
+    const QVariant v = item->data(Qt::UserRole);
+    bool ok = false;
+    seconds = v.toDouble(&ok);
+    return v.isValid() && ok;
+}
 } // namespace
 
 MeasurementRunDialog::MeasurementRunDialog(Now now, Commit commit, QWidget *parent, int firstRun)
@@ -75,7 +93,7 @@ MeasurementRunDialog::MeasurementRunDialog(Now now, Commit commit, QWidget *pare
     fb->addWidget(rtl);
     form->addRow(fb);
     m_table = new QTableWidget(0, ColCount, this);
-    m_table->setHorizontalHeaderLabels({tr("Target (mm)"), tr("Thermal error (µm)"), tr("Session time (s)")});
+    m_table->setHorizontalHeaderLabels({tr("Target (mm)"), tr("Thermal error (µm)"), tr("Session time (h:mm:ss)")});
     m_table->horizontalHeader()->setStretchLastSection(true);
     m_runLabel = new QLabel(this);
     m_status = new QLabel(tr("Type each deviation as the laser software shows it, or paste a column of values (Ctrl+V)."), this);
@@ -167,22 +185,49 @@ void MeasurementRunDialog::setDirection(const QString &direction)
 
 void MeasurementRunDialog::cellEdited(int row, int column)
 {
-    if (m_updating || column != ColDeviation)
+    if (m_updating)
+        return;
+    if (column == ColTime) {
+        timeEdited(row);
+        return;
+    }
+    if (column != ColDeviation)
         return;
     QTableWidgetItem *item = m_table->item(row, ColDeviation);
     double v = 0.0;
     m_updating = true;
     if (item->text().trimmed().isEmpty()) {
         m_table->item(row, ColTime)->setText(QString());
+        m_table->item(row, ColTime)->setData(Qt::UserRole, QVariant());
         item->setBackground(QBrush());
     } else if (parseNumber(item->text(), v)) {
         item->setBackground(QBrush());
         if (m_table->item(row, ColTime)->text().isEmpty())
-            m_table->item(row, ColTime)->setText(QString::number(m_now(), 'f', 2));
+            setTime(m_table->item(row, ColTime), m_now());
         setError(QString());
     } else {
         item->setBackground(QColor(255, 205, 210));
         setError(tr("target %1 mm: \"%2\" is not a number").arg(m_table->item(row, ColTarget)->text(), item->text()));
+    }
+    m_updating = false;
+}
+
+void MeasurementRunDialog::timeEdited(int row)
+{
+    // The technician corrects a stamp: h:mm:ss (or seconds, "90 min") on the session's clock.
+    QTableWidgetItem *item = m_table->item(row, ColTime);
+    QString why;
+    m_updating = true;
+    if (item->text().trimmed().isEmpty()) {
+        item->setData(Qt::UserRole, QVariant());
+        item->setBackground(QBrush());
+    } else if (const std::optional<double> t = UnitLabels::parseClock(item->text(), &why)) {
+        setTime(item, *t);
+        setError(QString());
+    } else {
+        item->setData(Qt::UserRole, QVariant());
+        item->setBackground(QColor(255, 205, 210));
+        setError(tr("target %1 mm: session time %2").arg(m_table->item(row, ColTarget)->text(), why));
     }
     m_updating = false;
 }
@@ -267,7 +312,7 @@ bool MeasurementRunDialog::commitRun()
             setError(tr("target %1 mm has no deviation: enter it or remove the row (nothing committed)").arg(target));
             return false;
         }
-        if (!parseNumber(m_table->item(r, ColTime)->text(), t)) {
+        if (!timeOf(m_table->item(r, ColTime), t)) {
             setError(tr("target %1 mm has no valid time (nothing committed)").arg(target));
             return false;
         }

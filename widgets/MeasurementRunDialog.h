@@ -46,6 +46,7 @@ public:
 private:
     void fillTargets();
     void cellEdited(int row, int column);
+    void timeEdited(int row);
     void setError(const QString &message);
 
     Now m_now;

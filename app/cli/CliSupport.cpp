@@ -1,6 +1,7 @@
 #include "CliSupport.h"
 
 #include "SessionStore.h"
+#include "UnitLabels.h"
 
 #include "CliCommand.h"
 #include "OutputTarget.h"
@@ -72,23 +73,13 @@ void CliSupport::progress(const QString &line)
 
 double CliSupport::parseDuration(const QString &text, const QString &option)
 {
-    const QStringList parts = text.split(QLatin1Char(':'));
-    if (parts.size() > 3 || text.isEmpty())
-        throw UsageError(QStringLiteral("--%1: '%2' is not a duration (SECONDS or H:MM:SS)").arg(option, text));
-    double total = 0.0;
-    for (int i = 0; i < parts.size(); ++i) {
-        bool ok = false;
-        const double v = parts[i].toDouble(&ok);
-        if (!ok || !(v >= 0) || !std::isfinite(v))
-            throw UsageError(QStringLiteral("--%1: '%2' is not a duration (SECONDS or H:MM:SS)").arg(option, text));
-        if (i > 0 && v >= 60.0)
-            throw UsageError(QStringLiteral("--%1: '%2': %3 must be below 60 in H:MM:SS")
-                                 .arg(option, text, i + 1 == parts.size() ? QStringLiteral("seconds") : QStringLiteral("minutes")));
-        total = total * 60.0 + v;
-    }
-    if (total <= 0)
+    QString why;
+    const std::optional<double> seconds = UnitLabels::parseClock(text, &why);
+    if (!seconds)
+        throw UsageError(QStringLiteral("--%1: %2").arg(option, why));
+    if (*seconds <= 0)
         throw UsageError(QStringLiteral("--%1: the duration must be positive, got '%2'").arg(option, text));
-    return total;
+    return *seconds;
 }
 
 } // namespace driftlab

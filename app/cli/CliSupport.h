@@ -30,8 +30,8 @@ public:
     static double sessionEnd_s(const SessionStore &store, qint64 sessionId);
     // Writes a progress line to standard error.
     static void progress(const QString &line);
-    // Parses "SECONDS" or "H:MM:SS" (also "MM:SS"; minutes and seconds after the first field
-    // below 60). Throws UsageError naming `option`.
+    // A positive duration as UnitLabels::parseClock reads it ("SECONDS", "H:MM:SS", "MM:SS",
+    // "2 h", "90 min"). Throws UsageError naming `option`.
     static double parseDuration(const QString &text, const QString &option);
 };
 

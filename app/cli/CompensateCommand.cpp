@@ -72,7 +72,7 @@ int CompensateCommand::run(const QStringList &args)
     const QCommandLineOption session(QStringLiteral("session"), QStringLiteral("Session to follow (being recorded, or finished)."),
                                      QStringLiteral("id"));
     const QCommandLineOption enable(QStringLiteral("enable"), QStringLiteral("Write to the controller (default: compute only)."));
-    const QCommandLineOption duration(QStringLiteral("duration"), QStringLiteral("Run time, SECONDS or H:MM:SS (default: until Ctrl-C)."),
+    const QCommandLineOption duration(QStringLiteral("duration"), QStringLiteral("Run time: SECONDS, H:MM:SS or with a unit (90 min, 2 h); default: until Ctrl-C."),
                                       QStringLiteral("time"));
     const QCommandLineOption rate(QStringLiteral("rate"), QStringLiteral("Loop rate, Hz (default 10)."), QStringLiteral("Hz"),
                                   QStringLiteral("10"));

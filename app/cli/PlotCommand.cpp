@@ -47,9 +47,9 @@ int PlotCommand::run(const QStringList &args)
                                  QStringLiteral("120"));
     const QCommandLineOption channels(QStringLiteral("channels"), QStringLiteral("timeseries: channel ids, comma-separated."),
                                       QStringLiteral("ids"));
-    const QCommandLineOption from(QStringLiteral("from"), QStringLiteral("Time window start: SECONDS or H:MM:SS."),
+    const QCommandLineOption from(QStringLiteral("from"), QStringLiteral("Time window start: SECONDS, H:MM:SS or with a unit (90 min)."),
                                   QStringLiteral("time"));
-    const QCommandLineOption to(QStringLiteral("to"), QStringLiteral("Time window end: SECONDS or H:MM:SS."), QStringLiteral("time"));
+    const QCommandLineOption to(QStringLiteral("to"), QStringLiteral("Time window end: SECONDS, H:MM:SS or with a unit (2 h)."), QStringLiteral("time"));
     const QCommandLineOption target(QStringLiteral("target"),
                                     QStringLiteral("error-temperature: interferometer target (mm; the nearest is used)."),
                                     QStringLiteral("mm"));

@@ -109,7 +109,7 @@ int RecordCommand::run(const QStringList &args)
     const QCommandLineOption rig(QStringLiteral("rig"), QStringLiteral("Rig file (JSON) or built-in preset name."),
                                  QStringLiteral("config"));
     const QCommandLineOption listRigs(QStringLiteral("list-rigs"), QStringLiteral("List the built-in rig presets and exit."));
-    const QCommandLineOption duration(QStringLiteral("duration"), QStringLiteral("Simulated duration: SECONDS or H:MM:SS."),
+    const QCommandLineOption duration(QStringLiteral("duration"), QStringLiteral("Simulated duration: SECONDS, H:MM:SS or with a unit (90 min, 2 h)."),
                                       QStringLiteral("duration"));
     const QCommandLineOption speed(QStringLiteral("speed"),
                                    QStringLiteral("Time acceleration N for simulated devices (default: as fast as possible)."),

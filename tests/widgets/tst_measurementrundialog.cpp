@@ -3,6 +3,7 @@
 // an incomplete run refused, a committed run handed over with the next run number.
 #include "MeasurementRunDialog.h"
 
+#include <QTableWidget>
 #include <QtTest>
 
 using namespace driftlab;
@@ -11,6 +12,7 @@ class TestMeasurementRunDialog : public QObject {
     Q_OBJECT
 private slots:
     void typePasteCommit();
+    void timesInClockNotation();
 };
 
 void TestMeasurementRunDialog::typePasteCommit()
@@ -65,6 +67,42 @@ void TestMeasurementRunDialog::typePasteCommit()
     // More values than targets: the extra ones are not entered, and it says so.
     QCOMPARE(d.paste(QStringLiteral("1\n2\n3\n4\n5\n6\n"), 0), 5);
     QVERIFY(d.lastError().contains(QLatin1String("pasted more values than targets")));
+}
+
+void TestMeasurementRunDialog::timesInClockNotation()
+{
+    // The stamps read h:mm:ss like every time on screen, keep their exact seconds, and a
+    // corrected time is typed as h:mm:ss (or "90 min"); a wrong one names its target and
+    // stops the commit.
+    double now = 3723.5; // 1:02:03.5
+    QVector<InterferometerPoint> committed;
+    MeasurementRunDialog d([&] { return now; }, [&](const QVector<InterferometerPoint> &p, const QString &) { committed += p; });
+    d.setTargets({0.0, 100.0, 200.0});
+    auto *table = d.findChild<QTableWidget *>();
+    QVERIFY(table);
+    QVERIFY(table->horizontalHeaderItem(2)->text().contains(QLatin1String("h:mm:ss")));
+    QVERIFY(d.enterDeviation(0, QStringLiteral("1.0")));
+    QCOMPARE(table->item(0, 2)->text(), QStringLiteral("1:02:03"));
+    now = 3725.0;
+    QVERIFY(d.enterDeviation(1, QStringLiteral("2.0")));
+    QVERIFY(d.enterDeviation(2, QStringLiteral("3.0")));
+    table->item(1, 2)->setText(QStringLiteral("1:00:00"));  // corrected by hand
+    QCOMPARE(table->item(1, 2)->text(), QStringLiteral("1:00:00"));
+    table->item(2, 2)->setText(QStringLiteral("62 min"));
+    QCOMPARE(table->item(2, 2)->text(), QStringLiteral("1:02:00"));
+    table->item(0, 2)->setText(QStringLiteral("1:75:00"));
+    QVERIFY2(d.lastError().contains(QLatin1String("target 0.000 mm: session time '1:75:00': minutes must be below 60")), qPrintable(d.lastError()));
+    QVERIFY(!d.commitRun());
+    QVERIFY2(d.lastError().contains(QLatin1String("target 0.000 mm has no valid time")), qPrintable(d.lastError()));
+    QVERIFY(committed.isEmpty());
+    table->item(0, 2)->setText(QStringLiteral("1:02:03.5"));
+    QVERIFY2(d.commitRun(), qPrintable(d.lastError()));
+    QCOMPARE(committed.size(), 3);
+    // Committed in time order: 1:00:00, 1:02:00, 1:02:03.5.
+    QCOMPARE(committed[0].t, 3600.0);
+    QCOMPARE(committed[0].position_mm, 100.0);
+    QCOMPARE(committed[1].t, 3720.0);
+    QCOMPARE(committed[2].t, 3723.5);
 }
 
 QTEST_MAIN(TestMeasurementRunDialog)
