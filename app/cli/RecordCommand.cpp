@@ -11,6 +11,7 @@
 #include "RigConfigLoader.h"
 #include "RigRecorder.h"
 #include "SessionStore.h"
+#include "UnitLabels.h"
 #include "RigDeviceSet.h"
 
 #include <QCommandLineParser>
@@ -80,11 +81,6 @@ private:
                                  .toStdString());
 }
 
-QString hms(double s)
-{
-    const qint64 t = static_cast<qint64>(std::llround(s));
-    return QStringLiteral("%1:%2:%3").arg(t / 3600).arg((t / 60) % 60, 2, 10, QLatin1Char('0')).arg(t % 60, 2, 10, QLatin1Char('0'));
-}
 } // namespace
 
 QString RecordCommand::summary() const
@@ -208,9 +204,9 @@ int RecordCommand::run(const QStringList &args)
 
     const QString sessionName =
         p.isSet(name) ? p.value(name)
-                      : (realDevices ? QStringLiteral("Rig '%1', %2") : QStringLiteral("Simulated rig '%1', %2")).arg(config.name, hms(seconds));
+                      : (realDevices ? QStringLiteral("Rig '%1', %2") : QStringLiteral("Simulated rig '%1', %2")).arg(config.name, UnitLabels::clock(seconds));
     CliSupport::progress(QStringLiteral("recording %1 of %2 rig '%3' into %4%5")
-                             .arg(hms(seconds), realDevices ? QStringLiteral("the") : QStringLiteral("simulated"), config.name, path,
+                             .arg(UnitLabels::clock(seconds), realDevices ? QStringLiteral("the") : QStringLiteral("simulated"), config.name, path,
                                   speedValue > 0.0 ? QStringLiteral(" at %1x real time (device threads)").arg(speedValue)
                                                    : QString()));
     QElapsedTimer timer;
@@ -220,7 +216,7 @@ int RecordCommand::run(const QStringList &args)
         if (timer.elapsed() - lastReport >= 2000 || done >= total) {
             const double wall = std::max(1e-3, static_cast<double>(timer.elapsed()) / 1000.0);
             CliSupport::progress(QStringLiteral("  %1 / %2 simulated (%3 %), %4 samples, %5x real time")
-                                     .arg(hms(std::min(done, total)), hms(total))
+                                     .arg(UnitLabels::clock(std::min(done, total)), UnitLabels::clock(total))
                                      .arg(static_cast<int>(100.0 * std::min(done, total) / total))
                                      .arg(samples)
                                      .arg(done / wall, 0, 'f', 0));
@@ -275,10 +271,10 @@ int RecordCommand::run(const QStringList &args)
         }
         if (!engine.writerError().empty())
             CliSupport::progress(QStringLiteral("  stopped at %1: the session cannot be written; what was committed before is kept")
-                                     .arg(hms(engine.now_s())));
+                                     .arg(UnitLabels::clock(engine.now_s())));
         if (g_interrupted) {
             engine.addMarker(QStringLiteral("recording stopped by the operator"));
-            CliSupport::progress(QStringLiteral("  interrupted at %1: storing what was recorded").arg(hms(engine.now_s())));
+            CliSupport::progress(QStringLiteral("  interrupted at %1: storing what was recorded").arg(UnitLabels::clock(engine.now_s())));
         }
         engine.stop();
         samples = engine.samplesWritten();
@@ -319,7 +315,7 @@ int RecordCommand::run(const QStringList &args)
         if (g_interrupted && reached < seconds) {
             store->addEvent(id, EventRecord{reached, QStringLiteral("recording stopped by the operator")});
             store->setComplete(id, true);
-            CliSupport::progress(QStringLiteral("  interrupted at %1: storing what was recorded").arg(hms(reached)));
+            CliSupport::progress(QStringLiteral("  interrupted at %1: storing what was recorded").arg(UnitLabels::clock(reached)));
         }
         samples = recorder.sink()->samplesWritten();
         points = recorder.sink()->pointsWritten();
