@@ -273,7 +273,7 @@ void AnalysisResultsView::showModel(int row)
     if (range)
         m_rangeFit = f;
     for (const ValidationSeries &s : f->holdoutSessions)
-        add(s, range ? tr("held-out hours of #%1").arg(s.session) : tr("held-out #%1").arg(s.session));
+        add(s, range ? tr("held-out time of #%1").arg(s.session) : tr("held-out #%1").arg(s.session));
     if (f->holdoutSessions.size() > 1 && f->holdout)
         add(*f->holdout, tr("held-out (pooled)"));
     m_sessions->resizeColumnsToContents();
