@@ -128,21 +128,26 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
     work->setStretchFactor(0, 0);
     work->setStretchFactor(1, 1);
     work->setChildrenCollapsible(false);
-    // The candidates' detail below, at the full width (its six columns did not fit beside the
-    // controls) and with any height the dock has beyond the controls'.
-    auto *column = new QVBoxLayout();
-    column->addWidget(work, 0);
-    column->addWidget(m_candidates, 1);
-
+    // The result beside the controls: the residual maps and, below them, the candidates'
+    // detail at the full width of the view (in the dock at 1366 x 768 the table had room for
+    // one row). MainWindow takes the view into the central area.
     m_before->setTitle(tr("Validation residual, baseline"));
     m_after->setTitle(tr("Validation residual, corrected model"));
+    m_plots = new QSplitter(Qt::Vertical, this);
+    m_plots->setObjectName(QStringLiteral("DiagnosisPlots"));
+    m_plots->addWidget(m_before);
+    m_plots->addWidget(m_after);
+    m_plots->setChildrenCollapsible(false);
     m_results = new QSplitter(Qt::Vertical, this);
     m_results->setObjectName(QStringLiteral("DiagnosisView"));
-    m_results->addWidget(m_before);
-    m_results->addWidget(m_after);
+    m_results->addWidget(m_plots);
+    m_results->addWidget(m_candidates);
+    m_results->setStretchFactor(0, 2);
+    m_results->setStretchFactor(1, 1);
+    m_results->setSizes({2000, 1000}); // two thirds for the maps, a third (4 rows at 1366 x 768) for the table
     m_results->setChildrenCollapsible(false);
     auto *layout = new QHBoxLayout(this);
-    layout->addLayout(column, 1);
+    layout->addWidget(work, 1);
     layout->addWidget(m_results, 1);
     // 3 px above and below (with the style's 9-11 px the controls, and the answer beside them,
     // were 200 px high in a dock whose viewport is 194 px at 1366 x 768).

@@ -55,9 +55,11 @@ public:
     QTableWidget *candidateTable() const { return m_candidates; }
     ErrorSurfacePlot *baselineResiduals() const { return m_before; }
     ErrorSurfacePlot *correctedResiduals() const { return m_after; }
-    // The two residual maps: beside the controls, or (MainWindow) a full-size view of the
-    // central area, taken out of the panel. A vertical splitter; MainWindow may turn it.
+    // The result: the two residual maps (plotsView, one above the other; MainWindow turns
+    // them side by side) over the candidates' table. Beside the controls, or (MainWindow) a
+    // full-size view of the central area, taken out of the panel.
     QSplitter *resultsView() const { return m_results; }
+    QSplitter *plotsView() const { return m_plots; }
 
     // Validation residual grid (target x run time) of the baseline (corrected = false) or
     // the corrected model; reference-run points are left out.
@@ -90,6 +92,7 @@ private:
     QTableWidget *m_candidates;
     ErrorSurfacePlot *m_before;
     ErrorSurfacePlot *m_after;
+    QSplitter *m_plots;
     QSplitter *m_results;
     BackgroundJob m_job;
     QString m_lastError;

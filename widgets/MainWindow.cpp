@@ -100,7 +100,7 @@ MainWindow::MainWindow(QWidget *parent)
     m_views->addTab(m_acquisition->liveView(), tr("Recording")); // the running recording at full size
     m_views->addTab(m_iso230, tr("ISO 230")); // the interferometer runs of the current session
     m_views->addTab(m_models->resultsView(), tr("Model fit"));
-    m_diagnosis->resultsView()->setOrientation(Qt::Horizontal);
+    m_diagnosis->plotsView()->setOrientation(Qt::Horizontal);
     m_views->addTab(m_diagnosis->resultsView(), tr("Diagnosis"));
     m_views->addTab(m_analysis->resultsView(), tr("Analysis"));
     setCentralWidget(m_views);

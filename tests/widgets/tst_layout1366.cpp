@@ -31,6 +31,7 @@
 #include <QScrollArea>
 #include <QScrollBar>
 #include <QSettings>
+#include <QSplitter>
 #include <QTableView>
 #include <QTabWidget>
 #include <QTableWidget>
@@ -192,6 +193,7 @@ private slots:
     void deviceTableFitsWhileRecording();
     void firstStartFits();
     void analysisResultsFit();
+    void diagnosisCandidatesInTheCentralView();
 
 private:
     QTemporaryDir m_dir;
@@ -407,6 +409,35 @@ void TestLayout1366::analysisResultsFit()
     const QStringList p = problems(&window);
     QVERIFY2(p.isEmpty(), qPrintable(QStringLiteral("analysis results:\n  ") + p.join(QStringLiteral("\n  "))));
     QVERIFY2(window.minimumSizeHint().height() <= kScreen.height(), qPrintable(QString::number(window.minimumSizeHint().height())));
+}
+
+void TestLayout1366::diagnosisCandidatesInTheCentralView()
+{
+    // The candidates' table is part of the Diagnosis result in the central area, below the
+    // residual maps, with at least four of the grammar's ten members in view while the dock is
+    // open; in the dock at 1366 x 768 it had room for one row.
+    MainWindow window;
+    showOnTheScreen(window, m_db);
+    if (QTest::currentTestFailed())
+        return;
+    raiseDock(window, QStringLiteral("DiagnosisDock"));
+    QTableWidget *table = window.diagnosis()->candidateTable();
+    table->setRowCount(10);
+    for (int r = 0; r < 10; ++r)
+        for (int c = 0; c < table->columnCount(); ++c)
+            table->setItem(r, c, new QTableWidgetItem(QStringLiteral("member %1").arg(r)));
+    window.centralViews()->setCurrentWidget(window.diagnosis()->resultsView());
+    QTest::qWait(50);
+    QVERIFY2(window.diagnosis()->resultsView()->isAncestorOf(table), "the candidates' table is not in the central Diagnosis view");
+    QVERIFY(table->isVisible());
+    int whole = 0;
+    for (int r = 0; r < 10; ++r) {
+        const int top = table->rowViewportPosition(r);
+        whole += top >= 0 && top + table->rowHeight(r) <= table->viewport()->height();
+    }
+    QVERIFY2(whole >= 4, qPrintable(QStringLiteral("%1 rows of the candidates' table in view (viewport %2 px)").arg(whole).arg(table->viewport()->height())));
+    const QStringList p = problems(&window);
+    QVERIFY2(p.isEmpty(), qPrintable(QStringLiteral("diagnosis view:\n  ") + p.join(QStringLiteral("\n  "))));
 }
 
 QTEST_MAIN(TestLayout1366)
