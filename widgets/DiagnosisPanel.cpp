@@ -115,6 +115,7 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
         {tr("effect"), tr("accepted"), tr("score"), tr("held-out RMS (µm)"), tr("ΔAICc"), tr("evidence")});
     m_candidates->horizontalHeader()->setStretchLastSection(true);
     m_candidates->verticalHeader()->hide();
+    m_candidates->resizeColumnsToContents(); // the headings whole before the first result
     // The controls as wide as they need (the session boxes at 20 characters), the answer the
     // rest, a splitter between them; the answer as high as the controls (its own scroll bar).
     for (QComboBox *box : {m_train, m_validate}) {

@@ -93,8 +93,9 @@ MeasurementRunDialog::MeasurementRunDialog(Now now, Commit commit, QWidget *pare
     fb->addWidget(rtl);
     form->addRow(fb);
     m_table = new QTableWidget(0, ColCount, this);
-    m_table->setHorizontalHeaderLabels({tr("Target (mm)"), tr("Thermal error (µm)"), tr("Session time (h:mm:ss)")});
+    m_table->setHorizontalHeaderLabels({tr("Target (mm)"), tr("Thermal error (µm)"), tr("Time (h:mm:ss)")});
     m_table->horizontalHeader()->setStretchLastSection(true);
+    m_table->resizeColumnsToContents(); // the headings whole ("Thermal error (µm)" was cut at 100 px)
     m_runLabel = new QLabel(this);
     m_status = new QLabel(tr("Type each deviation as the laser software shows it, or paste a column of values (Ctrl+V)."), this);
     m_status->setWordWrap(true);

@@ -33,6 +33,7 @@
 #include <QSettings>
 #include <QSplitter>
 #include <QTableView>
+#include <QStyle>
 #include <QTabWidget>
 #include <QTableWidget>
 #include <QTemporaryDir>
@@ -103,6 +104,19 @@ QStringList problems(QWidget *top)
             const int columns = table->horizontalHeader()->length();
             if (table->horizontalScrollBar()->isVisible() || columns > table->viewport()->width() + 1)
                 out << QStringLiteral("%1 scrolls sideways: columns %2 px, viewport %3 px").arg(name).arg(columns).arg(table->viewport()->width());
+            // Every column's heading readable whole ("eld-out RMS (µn" was cut in an empty table).
+            const QHeaderView *header = table->horizontalHeader();
+            const int margin = 2 * header->style()->pixelMetric(QStyle::PM_HeaderMargin, nullptr, header);
+            for (int c = 0; c < header->count() && header->isVisible() && table->model(); ++c) {
+                if (header->isSectionHidden(c))
+                    continue;
+                const QString heading = table->model()->headerData(c, Qt::Horizontal).toString();
+                int widest = 0;
+                for (const QString &line : heading.split(QLatin1Char('\n')))
+                    widest = std::max(widest, header->fontMetrics().horizontalAdvance(line));
+                if (!heading.isEmpty() && widest + margin > header->sectionSize(c) + 1)
+                    out << QStringLiteral("%1: heading '%2' needs %3 px, its column has %4").arg(name, heading).arg(widest + margin).arg(header->sectionSize(c));
+            }
         }
         if (auto *label = qobject_cast<QLabel *>(w)) {
             const QString text = plain(label);
