@@ -11,6 +11,8 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
+#include <QPrintDialog>
+#include <QPrinter>
 #include <QPushButton>
 #include <QScrollBar>
 #include <QTextBrowser>
@@ -47,6 +49,15 @@ ReportDialog::ReportDialog(const SessionStore *store, qint64 sessionId, QWidget 
     auto *buttons = new QDialogButtonBox(QDialogButtonBox::Close);
     QPushButton *pdf = buttons->addButton(tr("Save &PDF..."), QDialogButtonBox::ActionRole);
     QPushButton *html = buttons->addButton(tr("Save &HTML..."), QDialogButtonBox::ActionRole);
+    QPushButton *printButton = buttons->addButton(tr("P&rint..."), QDialogButtonBox::ActionRole);
+    connect(printButton, &QPushButton::clicked, this, [this] {
+        QPrinter printer(QPrinter::HighResolution);
+        printer.setDocName(QStringLiteral("report-%1").arg(m_session));
+        QPrintDialog dialog(&printer, this);
+        dialog.setWindowTitle(tr("Print the test report"));
+        if (dialog.exec() == QDialog::Accepted)
+            print(printer);
+    });
     connect(pdf, &QPushButton::clicked, this, [this] { saveAs(QStringLiteral("pdf")); });
     connect(html, &QPushButton::clicked, this, [this] { saveAs(QStringLiteral("html")); });
     connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
@@ -92,6 +103,24 @@ bool ReportDialog::save(const QString &path)
         return false;
     }
     m_status->setText(tr("Saved %1").arg(path));
+    return true;
+}
+
+bool ReportDialog::print(QPrinter &printer)
+{
+    if (!m_built)
+        return false;
+    QApplication::setOverrideCursor(Qt::WaitCursor);
+    try {
+        ReportWriter(m_document, m_template).print(printer, printer.resolution());
+    } catch (const std::exception &e) {
+        QApplication::restoreOverrideCursor();
+        m_status->setText(tr("Not printed: %1").arg(QString::fromUtf8(e.what())));
+        return false;
+    }
+    QApplication::restoreOverrideCursor();
+    m_status->setText(printer.outputFileName().isEmpty() ? tr("Sent to %1").arg(printer.printerName())
+                                                         : tr("Printed to %1").arg(printer.outputFileName()));
     return true;
 }
 

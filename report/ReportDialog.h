@@ -9,6 +9,7 @@
 #include <QDialog>
 
 class QLabel;
+class QPrinter;
 class QLineEdit;
 class QTextBrowser;
 
@@ -26,6 +27,9 @@ public:
     bool rebuild(const QString &templateFolder);
     // Writes the report (PDF or HTML by suffix); false and a message on failure.
     bool save(const QString &path);
+    // Prints the report on `printer` (the PDF's pages: A4 layout, page numbers); false and a
+    // message on failure. The Print... button asks for the printer first.
+    bool print(QPrinter &printer);
     QTextBrowser *preview() const { return m_preview; }
     QString message() const;
 

@@ -118,11 +118,22 @@ void ReportWriter::writePdf(QIODevice *device) const
     writer.setPageLayout(pdfPage());
     writer.setTitle(QStringLiteral("%1: %2").arg(m_look.title(), m_doc.sessionName));
     writer.setCreator(QStringLiteral("DriftLab"));
+    paintPages(writer, writer.resolution());
+}
+
+void ReportWriter::print(QPagedPaintDevice &printer, int resolution) const
+{
+    printer.setPageLayout(pdfPage());
+    paintPages(printer, resolution);
+}
+
+void ReportWriter::paintPages(QPagedPaintDevice &writer, int resolution) const
+{
     QPainter painter(&writer);
     if (!painter.isActive())
-        throw std::runtime_error("the PDF could not be started");
+        throw std::runtime_error("the pages could not be started (PDF or printer)");
     // Lay out in 96-dpi pixels, the unit QTextDocument measures fonts in.
-    const double scale = writer.resolution() / 96.0;
+    const double scale = resolution / 96.0;
     painter.scale(scale, scale);
     const double width = writer.width() / scale;
     const double footer = 18.0;

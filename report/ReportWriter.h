@@ -7,6 +7,7 @@
 #include <QString>
 
 class QIODevice;
+class QPagedPaintDevice;
 class QTextDocument;
 
 namespace driftlab {
@@ -23,6 +24,9 @@ public:
     // `figureWidth_px` wide, drawn from the same SVG.
     void fillPreview(QTextDocument &doc, int figureWidth_px) const;
     void writePdf(QIODevice *device) const;
+    // The PDF's pages on a printer (QPrinter, at its `resolution` in dpi): the same layout,
+    // page size and margins. Throws std::runtime_error if the printer cannot start.
+    void print(QPagedPaintDevice &printer, int resolution) const;
     // By suffix (.html/.htm or .pdf), through QSaveFile: the file appears whole or not at all.
     // Throws std::invalid_argument for another suffix, std::runtime_error if it cannot be written.
     void write(const QString &path) const;
@@ -38,6 +42,7 @@ private:
     QString headerHtml(bool forPdf) const;
     void addLogo(QTextDocument &doc) const;
     static QString styleSheet();
+    void paintPages(QPagedPaintDevice &device, int resolution) const;
     static double layOut(const QString &fragment, QTextDocument &d, double width);
 
     const ReportDocument &m_doc;

@@ -8,6 +8,10 @@
 #include "SessionStore.h"
 
 #include <QLabel>
+#include <QPrinter>
+#include <QProcess>
+#include <QRegularExpression>
+#include <QStandardPaths>
 #include <QScrollBar>
 #include <QTemporaryDir>
 #include <QTextBrowser>
@@ -19,6 +23,7 @@ class TestReportDialog : public QObject {
     Q_OBJECT
 private slots:
     void previewsAndSaves();
+    void printsTheSavedPages();
 };
 
 void TestReportDialog::previewsAndSaves()
@@ -60,6 +65,54 @@ void TestReportDialog::previewsAndSaves()
     QVERIFY(dialog.message().contains(QStringLiteral(".pdf or .html")));
     QVERIFY(!dialog.rebuild(dir.filePath(QStringLiteral("no-such-template"))));
     QVERIFY(dialog.message().contains(QStringLiteral("does not exist")));
+}
+
+namespace {
+// Standard output of a poppler tool (empty when it is not installed).
+QString poppler(const QString &tool, const QStringList &args)
+{
+    QProcess p;
+    p.start(tool, args);
+    if (!p.waitForFinished(60000) || p.exitCode() != 0)
+        return QString();
+    return QString::fromUtf8(p.readAllStandardOutput());
+}
+
+int pages(const QString &pdf)
+{
+    const QRegularExpressionMatch m = QRegularExpression(QStringLiteral("Pages:\\s+(\\d+)")).match(poppler(QStringLiteral("pdfinfo"), {pdf}));
+    return m.hasMatch() ? m.captured(1).toInt() : -1;
+}
+} // namespace
+
+void TestReportDialog::printsTheSavedPages()
+{
+    // File > Test report > Print...: the printer gets the saved PDF's pages (same layout, same
+    // text, the ISO 230 section included). Printed to a PDF file, the two are compared by
+    // poppler's pdfinfo and pdftotext.
+    if (QStandardPaths::findExecutable(QStringLiteral("pdfinfo")).isEmpty() || QStandardPaths::findExecutable(QStringLiteral("pdftotext")).isEmpty())
+        QSKIP("poppler-utils (pdfinfo, pdftotext) not installed");
+    QTemporaryDir dir;
+    QVERIFY(dir.isValid());
+    SessionStore store(dir.filePath(QStringLiteral("t.sqlite")));
+    const qint64 id = BundleTransfer::importBundle(store, QStringLiteral(DRIFTLAB_SOURCE_DIR "/resources/bundles/example.bundle"));
+    ReportDialog dialog(&store, id);
+    const QString saved = dir.filePath(QStringLiteral("saved.pdf")), printed = dir.filePath(QStringLiteral("printed.pdf"));
+    QVERIFY(dialog.save(saved));
+    QPrinter printer(QPrinter::HighResolution);
+    printer.setOutputFormat(QPrinter::PdfFormat);
+    printer.setOutputFileName(printed);
+    QVERIFY2(dialog.print(printer), qPrintable(dialog.message()));
+    QVERIFY2(dialog.message().contains(printed), qPrintable(dialog.message()));
+    const int savedPages = pages(saved);
+    QVERIFY(savedPages >= 3);
+    QCOMPARE(pages(printed), savedPages);
+    const auto words = [](const QString &pdf) {
+        return poppler(QStringLiteral("pdftotext"), {pdf, QStringLiteral("-")}).simplified();
+    };
+    const QString printedText = words(printed);
+    QVERIFY(printedText.contains(QLatin1String("ISO 230-2 positioning and ISO 230-3 drift")));
+    QCOMPARE(printedText, words(saved));
 }
 
 QTEST_MAIN(TestReportDialog)
