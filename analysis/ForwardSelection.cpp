@@ -9,6 +9,22 @@
 
 namespace driftlab {
 
+namespace {
+
+size_t applicableCount(const std::vector<CandidateOutcome> &outcomes)
+{
+    return static_cast<size_t>(std::count_if(outcomes.begin(), outcomes.end(), [](const CandidateOutcome &o) { return o.applicable; }));
+}
+
+// Every pair that could be formed from a round's n applicable candidates: the hypotheses of a
+// pair search, whichever of them were refitted.
+size_t formablePairs(size_t n)
+{
+    return n < 2 ? 0 : n * (n - 1) / 2;
+}
+
+} // namespace
+
 ForwardSelection::ForwardSelection(const DiagnosisOptions &options, const std::vector<CandidateEffect> &library)
     : m_options(options), m_library(library), m_acceptance(options)
 {
@@ -120,19 +136,23 @@ bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, c
     }
     // A pair counts when, together, it passes every rule against the reference, both
     // amplitudes stay significant, and each member lowers the AICc of the other alone clearly.
+    // The Benjamini-Hochberg threshold counts every pair that could have been formed from the
+    // round's applicable candidates, not only the few refitted (the partial-evidence preselection
+    // looked at all of them): the pairs not refitted enter with p = 1, as in tryTriples.
     int best = -1;
     CandidateOutcome bestJoint;
     std::vector<const CandidateFit *> fitted;
     for (size_t k = 0; k < pairs.size(); ++k)
         fitted.push_back(ok[k] ? &fits[k] : nullptr);
-    const double threshold = m_acceptance.discoveryThreshold(fitted, reference);
     const size_t pairsFitted = static_cast<size_t>(std::count(ok.begin(), ok.end(), true));
+    const size_t hypotheses = std::max(formablePairs(applicableCount(outcomes)), pairsFitted);
+    const double threshold = m_acceptance.discoveryThreshold(fitted, reference, hypotheses - pairsFitted);
     for (size_t k = 0; k < pairs.size(); ++k) {
         if (!ok[k])
             continue;
         const auto [a, b] = pairs[k];
         CandidateOutcome joint = m_acceptance.judge(m_library[b], fits[k], reference, effectiveN, train.drawingFixedEnd_mm, threshold,
-                                                    !accepted.empty(), pairsFitted);
+                                                    !accepted.empty(), hypotheses);
         double zA = 0.0;
         for (const IdentifiedParameter &p : fits[k].fit.all)
             if (std::find(round.fits[a].amplitudeNames.begin(), round.fits[a].amplitudeNames.end(), p.name) !=
@@ -157,9 +177,10 @@ bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, c
     const auto [a, b] = pairs[static_cast<size_t>(best)];
     const std::string together = "accepted together with " + m_library[a].code + " + " + m_library[b].code +
                                  ": neither passes alone, the two together do (held-out " + fixedText(100.0 * bestJoint.heldoutImprovement, 0) +
-                                 " % better than the model before them) and each lowers the AICc and significantly improves the "
+                                 " % better than the model before them; " + std::to_string(hypotheses) +
+                                 " pair hypotheses in the false-discovery rate) and each lowers the AICc and significantly improves the "
                                  "held-out prediction of the other alone";
-    const size_t tried = static_cast<size_t>(std::count_if(outcomes.begin(), outcomes.end(), [](const CandidateOutcome &o) { return o.applicable; }));
+    const size_t tried = applicableCount(outcomes);
     Step first;
     first.choice = {&m_library[a], round.fits[a].start};
     first.outcome = outcomes[static_cast<size_t>(std::find(indexOf.begin(), indexOf.end(), a) - indexOf.begin())];
@@ -201,11 +222,10 @@ bool ForwardSelection::tryTriples(Result &result, std::vector<Choice> &accepted,
     with.push_back({&m_library[a], round.fits[a].start});
     with.push_back({&m_library[b], pair.start});
     std::vector<size_t> thirds;
-    size_t applicable = 0;
+    const size_t applicable = applicableCount(outcomes);
     for (size_t k = 0; k < outcomes.size(); ++k) {
         if (!outcomes[k].applicable)
             continue;
-        ++applicable;
         const size_t c = indexOf[k];
         if (c != a && c != b && !excluded(c, with))
             thirds.push_back(c);
@@ -233,7 +253,7 @@ bool ForwardSelection::tryTriples(Result &result, std::vector<Choice> &accepted,
     for (size_t k = 0; k < thirds.size(); ++k)
         if (ok[k])
             fitted.push_back(&fits[k]);
-    const size_t hypotheses = applicable * (applicable - 1) / 2 + thirds.size();
+    const size_t hypotheses = formablePairs(applicable) + thirds.size();
     const double threshold = m_acceptance.discoveryThreshold(fitted, reference, hypotheses - std::min(hypotheses, fitted.size()));
     auto amplitudeZ = [](const CandidateFit &f, const std::vector<std::string> &names) {
         double z = 0.0;

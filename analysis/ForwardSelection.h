@@ -70,7 +70,9 @@ private:
         bool cancelled = false;
     };
     // When no candidate passes alone: the pairs of candidates with partial evidence, each
-    // refitted together; the best pair that passes together is accepted as two steps.
+    // refitted together; the best pair that passes together is accepted as two steps. Its
+    // Benjamini-Hochberg threshold counts every pair the round's applicable candidates could
+    // form (those not refitted at p = 1), not only the pairs refitted.
     bool tryPairs(Result &result, std::vector<Choice> &accepted, const CandidateFit &reference, Round &round,
                   const std::vector<CandidateOutcome> &outcomes, const std::vector<size_t> &indexOf,
                   const DiagnosisRecording &train, double effectiveN, const Refit &refit,

@@ -76,8 +76,11 @@ void addStructureDrift(DiagnosisRecording &r, double c_um_K)
     }
 }
 
-// Holding heat of P_W into the fixed end at standstill added to every interferometer point:
-// the difference of the seed-000 truth with and without it (the identifier's simulation).
+// Holding heat of P_W into the fixed end at standstill: the difference of the seed-000 truth
+// with and without it (the identifier's simulation) added to every interferometer point and to
+// the screw-end probe. Heat in the screw lengthens it, so the probe sees it too; added to the
+// interferometer alone (before 2026-11-28) the probe contradicted it, and the best fit of
+// holding_heat + structure_offset was 0.31 W and 23.65 um/K (truth 2 W and 8 um/K).
 void addHoldingHeat(DiagnosisRecording &r, const ScrewGeometry &g, const FdmParameters &truth, double P_W,
                     const IdentificationOptions &options)
 {
@@ -90,13 +93,24 @@ void addHoldingHeat(DiagnosisRecording &r, const ScrewGeometry &g, const FdmPara
     with.addHeatSource(std::make_shared<FeedLawHeatSource>(FeedLawHeatSource::Law::Standstill, FeedLawHeatSource::Location::Bearing));
     const FitStatistics a = without.predict(plain, {r.screw}), b = with.predict(held, {r.screw});
     size_t k = 0;
+    TimeSeries probe; // the difference at the probe samples the identifier simulates
     for (size_t i = 0; i < a.points.size() && i < b.points.size(); ++i) {
+        const double d = b.points[i].predicted_um - a.points[i].predicted_um;
+        if (a.points[i].elongation) {
+            probe.t.push_back(a.points[i].t_s);
+            probe.v.push_back(d);
+        }
         if (a.points[i].elongation || a.points[i].temperature)
             continue;
         if (k < r.screw.interferometer.size())
-            r.screw.interferometer[k].error_um += b.points[i].predicted_um - a.points[i].predicted_um;
+            r.screw.interferometer[k].error_um += d;
         ++k;
     }
+    if (probe.t.size() < 2)
+        return;
+    TimeSeries &e = r.screw.elongation_um;
+    for (size_t j = 0; j < e.t.size() && j < e.v.size(); ++j)
+        e.v[j] += probe.at(e.t[j]);
 }
 
 } // namespace
@@ -183,6 +197,10 @@ int main(int argc, char **argv)
                     if (why.find("below") != std::string::npos || why.find("not ") != std::string::npos)
                         std::printf("      %s\n", why.c_str());
             }
+    for (const ParameterValue &v : masked.corrected.parameters)
+        if (v.name == "holding_heat_W" || v.name == "structure_offset_um_K")
+            std::printf("    fitted %s = %.3f +- %.3f (truth %.0f)\n", v.name.c_str(), v.value, v.standardError,
+                        v.name == "holding_heat_W" ? 2.0 : 8.0);
     if (masked.advice.given)
         std::printf("    which test would decide: %s\n", masked.advice.summary.c_str());
     return 0;
