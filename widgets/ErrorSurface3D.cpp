@@ -1,9 +1,14 @@
 #include "ErrorSurface3D.h"
 
 #include "ElapsedTimeAxis.h"
-#include "ThermalErrorTable.h"
+#include "PlotExporter.h"
+#include "PlotInteraction.h"
 
-#include <QHBoxLayout>
+#include <QLabel>
+#include <QMenu>
+#include <QMouseEvent>
+#include <QTextStream>
+#include <QVBoxLayout>
 #include <QtDataVisualization/Q3DCamera>
 #include <QtDataVisualization/Q3DScene>
 #include <QtDataVisualization/Q3DSurface>
@@ -35,7 +40,7 @@ ErrorSurface3D::ErrorSurface3D(QWidget *parent) : QWidget(parent)
 {
     m_graph = new Q3DSurface();
     m_proxy = new QSurfaceDataProxy();
-    auto *series = new QSurface3DSeries(m_proxy);
+    auto *series = m_series = new QSurface3DSeries(m_proxy);
     series->setDrawMode(QSurface3DSeries::DrawSurfaceAndWireframe);
     series->setFlatShadingEnabled(false);
     QLinearGradient gradient;
@@ -56,9 +61,18 @@ ErrorSurface3D::ErrorSurface3D(QWidget *parent) : QWidget(parent)
     m_graph->axisZ()->setSegmentCount(4);
     m_graph->scene()->activeCamera()->setCameraPreset(Q3DCamera::CameraPresetIsometricRightHigh);
     m_graph->activeTheme()->setFont(QFont(QStringLiteral("DejaVu Sans"), 32));
-    auto *layout = new QHBoxLayout(this);
+    m_readout = new QLabel(tr("Click the surface to read a point; right click (without dragging) for the menu."), this);
+    m_readout->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    connect(series, &QSurface3DSeries::selectedPointChanged, this, [this](const QPoint &p) {
+        if (p != QSurface3DSeries::invalidSelectionPosition())
+            m_readout->setText(selectionText(m_table, p));
+    });
+    m_graph->installEventFilter(this); // the right click's menu (the graph is a window of its own)
+    auto *layout = new QVBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
-    layout->addWidget(QWidget::createWindowContainer(m_graph, this));
+    m_container = QWidget::createWindowContainer(m_graph, this);
+    layout->addWidget(m_container, 1);
+    layout->addWidget(m_readout);
 }
 
 ErrorSurface3D::~ErrorSurface3D() = default;
@@ -90,11 +104,84 @@ QImage ErrorSurface3D::renderImage() const
 {
     if (!m_graph->isExposed() && !m_graph->isVisible())
         return {};
-    return m_graph->renderToImage(0, size() * devicePixelRatioF());
+    return m_graph->renderToImage(0, m_container->size() * devicePixelRatioF());
+}
+
+QRect ErrorSurface3D::graphRect() const
+{
+    return m_container->geometry();
+}
+
+QString ErrorSurface3D::selectionText(const ThermalErrorTable &table, QPoint rowColumn)
+{
+    const int r = rowColumn.x(), k = rowColumn.y();
+    if (r < 0 || k < 0 || r >= static_cast<int>(table.runCount()) || k >= static_cast<int>(table.targetCount()))
+        return QString();
+    const double e = table.error(static_cast<std::size_t>(r), static_cast<std::size_t>(k));
+    return tr("position %1 mm   elapsed time %2   thermal error %3")
+        .arg(table.targets_mm()[static_cast<std::size_t>(k)], 0, 'f', 1)
+        .arg(ElapsedTimeAxis::format(table.runTimes_s()[static_cast<std::size_t>(r)]))
+        .arg(std::isnan(e) ? tr("not measured (drawn from the nearest target)") : QStringLiteral("%1 µm").arg(e, 0, 'f', 2));
+}
+
+void ErrorSurface3D::select(QPoint rowColumn)
+{
+    m_series->setSelectedPoint(rowColumn);
+}
+
+QString ErrorSurface3D::readout() const
+{
+    return m_readout->text();
+}
+
+int ErrorSurface3D::writeCsv(const ThermalErrorTable &table, QTextStream &out)
+{
+    out << "position_mm,time_s,thermal_error_um\n";
+    int n = 0;
+    for (std::size_t r = 0; r < table.runCount(); ++r) {
+        for (std::size_t k = 0; k < table.targetCount(); ++k) {
+            const double e = table.error(r, k);
+            out << QString::number(table.targets_mm()[k], 'g', 12) << ',' << QString::number(table.runTimes_s()[r], 'g', 12) << ','
+                << (std::isnan(e) ? QString() : QString::number(e, 'g', 10)) << '\n';
+            ++n;
+        }
+    }
+    return n;
+}
+
+QMenu *ErrorSurface3D::createMenu(QWidget *parent)
+{
+    auto *menu = new QMenu(parent);
+    PlotInteraction::ExportActions actions;
+    actions.image = [this] { return QPixmap::fromImage(renderImage()); };
+    actions.save = [this](const QString &path) { PlotExporter::exportImage(renderImage(), path); };
+    actions.csvTitle = tr("Export the table as CSV...");
+    if (m_table.runCount() > 0)
+        actions.csv = [this](QTextStream &out) { return writeCsv(m_table, out); };
+    PlotInteraction::addExportActions(menu, this, actions);
+    return menu;
+}
+
+bool ErrorSurface3D::eventFilter(QObject *watched, QEvent *event)
+{
+    if (watched == m_graph && (event->type() == QEvent::MouseButtonPress || event->type() == QEvent::MouseButtonRelease)) {
+        const auto *mouse = static_cast<QMouseEvent *>(event);
+        if (mouse->button() == Qt::RightButton) {
+            if (event->type() == QEvent::MouseButtonPress) {
+                m_rightPress = mouse->globalPos();
+            } else if ((mouse->globalPos() - m_rightPress).manhattanLength() <= 3) {
+                QMenu *menu = createMenu(this); // a click, not a rotation
+                menu->setAttribute(Qt::WA_DeleteOnClose);
+                menu->popup(mouse->globalPos());
+            }
+        }
+    }
+    return QWidget::eventFilter(watched, event);
 }
 
 void ErrorSurface3D::setTable(const ThermalErrorTable &table)
 {
+    m_table = table;
     fillProxy(*m_proxy, table);
     // Ticks on round clock steps over the runs' time span.
     if (table.runCount() > 0) {

@@ -2,16 +2,23 @@
 
 #include "AxisTicks.h"
 #include "ElapsedTimeAxis.h"
+#include "PlotCursors.h"
 #include "PlotInteraction.h"
+#include "PlotReadout.h"
 
 #include "ContourSpectrogram.h"
 #include "ThermalErrorTable.h"
 
 #include <qwt_color_map.h>
 #include <qwt_plot_layout.h>
+#include <qwt_plot_magnifier.h>
+#include <qwt_plot_panner.h>
 #include <qwt_plot_spectrogram.h>
 #include <qwt_raster_data.h>
+#include <qwt_scale_div.h>
 #include <qwt_scale_widget.h>
+
+#include <QTextStream>
 
 #include <algorithm>
 #include <cmath>
@@ -99,7 +106,8 @@ QwtLinearColorMap *errorColourMap()
 
 } // namespace
 
-ErrorSurfacePlot::ErrorSurfacePlot(QWidget *parent) : QwtPlot(parent), m_spectrogram(new ContourSpectrogram())
+ErrorSurfacePlot::ErrorSurfacePlot(QWidget *parent)
+    : QwtPlot(parent), m_spectrogram(new ContourSpectrogram()), m_zoomer(new PlotReadout(canvas()))
 {
     setTitle(tr("Thermal error over position and time"));
     setMinimumSize(260, 140); // not the plot's size hint: windows must fit 1366 x 768
@@ -114,7 +122,21 @@ ErrorSurfacePlot::ErrorSurfacePlot(QWidget *parent) : QwtPlot(parent), m_spectro
     enableAxis(QwtPlot::yRight);
     axisWidget(QwtPlot::yRight)->setColorBarEnabled(true);
     plotLayout()->setAlignCanvasToScales(true);
-    PlotInteraction::install(this, nullptr); // context menu (image), per-axis wheel zoom
+    // As on TimeSeriesPlot: the rubber band and a readout with units (position, time and the
+    // error under the pointer), the middle button pans, the wheel zooms; the colour bar's
+    // scale stays the colour map's.
+    const auto field = [this](double x, double y) { return valueAt(x, y); };
+    m_zoomer->setField(field, QwtPlot::yRight);
+    m_zoomer->setRubberBandPen(QPen(Qt::darkGray, 1, Qt::DashLine));
+    m_zoomer->setTrackerMode(QwtPicker::AlwaysOn);
+    auto *panner = new QwtPlotPanner(canvas());
+    panner->setMouseButton(Qt::MiddleButton);
+    panner->setAxisEnabled(QwtPlot::yRight, false);
+    auto *magnifier = new QwtPlotMagnifier(canvas());
+    magnifier->setAxisEnabled(QwtPlot::yRight, false);
+    PlotInteraction *interaction = PlotInteraction::install(this, m_zoomer); // menu, per-axis zoom, undo
+    interaction->setVisibleDataWriter([this](QTextStream &out) { return writeVisibleCells(out); });
+    PlotCursors::installPoints(this, field, QwtPlot::yRight); // Shift+click: point cursors A, B
 }
 
 ErrorSurfacePlot::~ErrorSurfacePlot() = default;
@@ -132,6 +154,9 @@ void ErrorSurfacePlot::setGrid(const std::vector<double> &x, const std::vector<d
 {
     if (z.size() != x.size() * y.size())
         throw std::invalid_argument("ErrorSurfacePlot::setGrid: z must hold x.size() * y.size() values");
+    m_x = x;
+    m_y = y;
+    m_z = z;
     auto *raster = new GridRaster(x, y, z);
     const QwtInterval range = raster->interval(Qt::ZAxis);
     m_spectrogram->setData(raster); // takes ownership
@@ -147,12 +172,47 @@ void ErrorSurfacePlot::setGrid(const std::vector<double> &x, const std::vector<d
     setAxisScale(QwtPlot::yLeft, t.minValue(), t.maxValue(),
                  ElapsedTimeAxis::installed(this, QwtPlot::yLeft) ? ElapsedTimeAxis::roundStep((t.maxValue() - t.minValue()) / 8.0) : 0.0);
     replot();
+    m_zoomer->setZoomBase(false); // new data: the whole grid is the first view
+    PlotInteraction::of(this)->clearZoomHistory();
 }
 
 double ErrorSurfacePlot::valueAt(double position_mm, double time_s) const
 {
     const QwtRasterData *data = m_spectrogram->data();
     return data ? data->value(position_mm, time_s) : 0.0;
+}
+
+int ErrorSurfacePlot::writeVisibleCells(QTextStream &out) const
+{
+    QStringList header;
+    for (const QString &name : m_csvColumns)
+        header << PlotInteraction::csvField(name);
+    out << header.join(QLatin1Char(',')) << '\n';
+    const auto range = [this](int axis) {
+        const QwtScaleDiv &d = axisScaleDiv(axis);
+        return std::make_pair(std::min(d.lowerBound(), d.upperBound()), std::max(d.lowerBound(), d.upperBound()));
+    };
+    const auto [x0, x1] = range(QwtPlot::xBottom);
+    const auto [y0, y1] = range(QwtPlot::yLeft);
+    int n = 0;
+    for (std::size_t r = 0; r < m_y.size(); ++r) {
+        if (m_y[r] < y0 || m_y[r] > y1)
+            continue;
+        for (std::size_t k = 0; k < m_x.size(); ++k) {
+            if (m_x[k] < x0 || m_x[k] > x1)
+                continue;
+            const double z = m_z[r * m_x.size() + k];
+            out << QString::number(m_x[k], 'g', 12) << ',' << QString::number(m_y[r], 'g', 12) << ','
+                << (std::isnan(z) ? QString() : QString::number(z, 'g', 10)) << '\n';
+            ++n;
+        }
+    }
+    return n;
+}
+
+bool ErrorSurfacePlot::exportVisibleData(const QString &path, QString *error, int *rows) const
+{
+    return PlotInteraction::writeCsv(path, [this](QTextStream &out) { return writeVisibleCells(out); }, error, rows);
 }
 
 void ErrorSurfacePlot::resizeEvent(QResizeEvent *event)

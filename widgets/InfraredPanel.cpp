@@ -54,6 +54,7 @@ InfraredPanel::InfraredPanel(QWidget *parent)
     m_surface->setTitle(tr("Axial screw temperature over time"));
     m_surface->setAxisTitle(QwtPlot::xBottom, tr("axial position (m)"));
     m_surface->setAxisTitle(QwtPlot::yRight, tr("temperature (°C)"));
+    m_surface->setCsvColumns({QStringLiteral("axial_position_m"), QStringLiteral("time_s"), QStringLiteral("temperature_C")});
     connect(m_slider, &QSlider::valueChanged, this, &InfraredPanel::showFrame);
     connect(m_view, &InfraredView::readout, m_label, &QLabel::setText);
 }

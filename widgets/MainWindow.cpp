@@ -569,7 +569,7 @@ QImage MainWindow::snapshot()
             continue;
         const QImage gl = surface->renderImage();
         if (!gl.isNull())
-            painter.drawImage(QRect(surface->mapTo(this, QPoint(0, 0)), surface->size()), gl);
+            painter.drawImage(QRect(surface->mapTo(this, surface->graphRect().topLeft()), surface->graphRect().size()), gl);
     }
     return image;
 }

@@ -1,5 +1,6 @@
 #pragma once
-// Renders any QwtPlot to PNG, SVG or PDF (chosen by the file suffix), with or without a display.
+// Renders any QwtPlot to PNG, SVG or PDF (chosen by the file suffix), with or without a display;
+// a plain widget (the infrared view) or a rendered image (the 3-D view) the same way.
 // The document is rendered in memory and then written atomically (QSaveFile): a failure (a full
 // disk, a write error) leaves no partial file and an existing file unchanged.
 
@@ -7,6 +8,8 @@
 #include <QSizeF>
 #include <QString>
 
+class QImage;
+class QWidget;
 class QwtPlot;
 
 namespace driftlab {
@@ -21,6 +24,10 @@ public:
     // document cannot be made.
     static QByteArray render(QwtPlot &plot, const QString &format, QSizeF size_mm = QSizeF(240, 150), int dpi = 120);
     static bool supportedSuffix(const QString &path);
+    // A widget as it paints itself, at its size (PNG pixels = widget pixels at `dpi`).
+    static void exportWidget(QWidget &widget, const QString &path, int dpi = 96);
+    // An image (the 3-D view's off-screen render), embedded in SVG and PDF.
+    static void exportImage(const QImage &image, const QString &path, int dpi = 96);
 };
 
 } // namespace driftlab

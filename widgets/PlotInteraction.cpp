@@ -25,12 +25,40 @@
 
 namespace driftlab {
 
-namespace {
-QString csvField(QString text)
+QString PlotInteraction::csvField(QString text)
 {
     if (text.contains(QLatin1Char(',')) || text.contains(QLatin1Char('"')))
         text = QLatin1Char('"') + text.replace(QLatin1Char('"'), QStringLiteral("\"\"")) + QLatin1Char('"');
     return text;
+}
+
+namespace {
+// The curves' points inside the visible x range: curve, x, value, and the value's axis title.
+int curveRows(const QwtPlot &plot, QTextStream &out)
+{
+    auto title = [&plot](int axis) {
+        const QString t = plot.axisTitle(axis).text();
+        return t.isEmpty() ? (axis == QwtPlot::xBottom ? QStringLiteral("x") : QStringLiteral("y")) : t;
+    };
+    out << "curve," << PlotInteraction::csvField(title(QwtPlot::xBottom)) << ",value,axis\n";
+    const QwtScaleDiv &x = plot.axisScaleDiv(QwtPlot::xBottom);
+    const double x0 = std::min(x.lowerBound(), x.upperBound()), x1 = std::max(x.lowerBound(), x.upperBound());
+    int n = 0;
+    for (const QwtPlotItem *item : plot.itemList(QwtPlotItem::Rtti_PlotCurve)) {
+        const auto *curve = static_cast<const QwtPlotCurve *>(item);
+        if (!curve->isVisible())
+            continue;
+        const QString name = PlotInteraction::csvField(curve->title().text());
+        const QString axis = PlotInteraction::csvField(title(curve->yAxis()));
+        for (size_t i = 0; i < curve->dataSize(); ++i) {
+            const QPointF p = curve->sample(i);
+            if (p.x() < x0 || p.x() > x1)
+                continue;
+            out << name << ',' << QString::number(p.x(), 'g', 12) << ',' << QString::number(p.y(), 'g', 10) << ',' << axis << '\n';
+            ++n;
+        }
+    }
+    return n;
 }
 } // namespace
 
@@ -161,7 +189,8 @@ bool PlotInteraction::eventFilter(QObject *watched, QEvent *event)
     if (event->type() == QEvent::MouseButtonPress || event->type() == QEvent::MouseMove ||
         event->type() == QEvent::MouseButtonRelease) {
         for (int axis = 0; axis < QwtPlot::axisCnt; ++axis) {
-            if (watched != m_plot->axisWidget(axis) || !m_plot->axisEnabled(axis))
+            // A colour bar's scale is the colour map's: zooming it alone would relabel the colours.
+            if (watched != m_plot->axisWidget(axis) || !m_plot->axisEnabled(axis) || m_plot->axisWidget(axis)->isColorBarEnabled())
                 continue;
             auto *e = static_cast<QMouseEvent *>(event);
             const bool horizontal = axis == QwtPlot::xBottom || axis == QwtPlot::xTop;
@@ -197,7 +226,8 @@ bool PlotInteraction::eventFilter(QObject *watched, QEvent *event)
     }
     if (event->type() == QEvent::Wheel) {
         for (int axis = 0; axis < QwtPlot::axisCnt; ++axis) {
-            if (watched != m_plot->axisWidget(axis) || !m_plot->axisEnabled(axis))
+            // A colour bar's scale is the colour map's: zooming it alone would relabel the colours.
+            if (watched != m_plot->axisWidget(axis) || !m_plot->axisEnabled(axis) || m_plot->axisWidget(axis)->isColorBarEnabled())
                 continue;
             auto *e = static_cast<QWheelEvent *>(event);
             const int delta = e->angleDelta().y() != 0 ? e->angleDelta().y() : e->angleDelta().x();
@@ -233,30 +263,47 @@ QMenu *PlotInteraction::createMenu(QWidget *parent)
     QAction *reset = menu->addAction(tr("Reset zoom"), this, &PlotInteraction::resetZoom);
     reset->setEnabled(canUndoZoom() || (m_zoomer && m_zoomer->zoomRectIndex() > 0));
     menu->addSeparator();
-    menu->addAction(tr("Copy image"), this, [this] { QApplication::clipboard()->setPixmap(m_plot->grab()); });
-    menu->addAction(tr("Save image (PNG, SVG, PDF)..."), this, [this] {
-        const QString out = QFileDialog::getSaveFileName(m_plot, tr("Save image"), QStringLiteral("plot.png"),
+    ExportActions actions;
+    actions.image = [this] { return m_plot->grab(); };
+    actions.save = [this](const QString &path) { PlotExporter::exportPlot(*m_plot, path); };
+    actions.csvTitle = tr("Export visible data as CSV...");
+    if (m_writer)
+        actions.csv = m_writer;
+    else if (!m_plot->itemList(QwtPlotItem::Rtti_PlotCurve).isEmpty())
+        actions.csv = [this](QTextStream &out) { return curveRows(*m_plot, out); };
+    addExportActions(menu, m_plot, actions);
+    return menu;
+}
+
+void PlotInteraction::addExportActions(QMenu *menu, QWidget *owner, const ExportActions &actions)
+{
+    menu->addAction(tr("Copy image"), owner, [actions] { QApplication::clipboard()->setPixmap(actions.image()); });
+    menu->addAction(tr("Save image (PNG, SVG, PDF)..."), owner, [owner, actions] {
+        const QString out = QFileDialog::getSaveFileName(owner, tr("Save image"), QStringLiteral("plot.png"),
                                                          tr("PNG (*.png);;SVG (*.svg);;PDF (*.pdf)"));
         if (out.isEmpty())
             return;
         try {
-            PlotExporter::exportPlot(*m_plot, out);
+            actions.save(out);
         } catch (const std::exception &e) {
-            QMessageBox::warning(m_plot, tr("Save image"), QString::fromUtf8(e.what()));
+            QMessageBox::warning(owner, tr("Save image"), QString::fromUtf8(e.what()));
         }
     });
-    QAction *csv = menu->addAction(tr("Export visible data as CSV..."), this, [this] {
-        const QString out = QFileDialog::getSaveFileName(m_plot, tr("Export visible data"), QStringLiteral("plot.csv"),
-                                                         tr("CSV (*.csv)"));
+    QAction *csv = menu->addAction(actions.csvTitle, owner, [owner, actions] {
+        const QString out = QFileDialog::getSaveFileName(owner, tr("Export CSV"), QStringLiteral("plot.csv"), tr("CSV (*.csv)"));
         QString error;
-        if (!out.isEmpty() && !exportVisibleData(*m_plot, out, &error))
-            QMessageBox::warning(m_plot, tr("Export visible data"), error);
+        if (!out.isEmpty() && !writeCsv(out, actions.csv, &error))
+            QMessageBox::warning(owner, tr("Export CSV"), error);
     });
-    csv->setEnabled(!m_plot->itemList(QwtPlotItem::Rtti_PlotCurve).isEmpty());
-    return menu;
+    csv->setEnabled(bool(actions.csv));
 }
 
-bool PlotInteraction::exportVisibleData(const QwtPlot &plot, const QString &path, QString *error, int *rows)
+bool PlotInteraction::exportVisible(const QString &path, QString *error, int *rows) const
+{
+    return m_writer ? writeCsv(path, m_writer, error, rows) : exportVisibleData(*m_plot, path, error, rows);
+}
+
+bool PlotInteraction::writeCsv(const QString &path, const CsvWriter &write, QString *error, int *rows)
 {
     QSaveFile file(path);
     if (!file.open(QIODevice::WriteOnly | QIODevice::Text)) {
@@ -266,28 +313,7 @@ bool PlotInteraction::exportVisibleData(const QwtPlot &plot, const QString &path
     }
     QTextStream out(&file);
     out.setCodec("UTF-8");
-    auto title = [&plot](int axis) {
-        const QString t = plot.axisTitle(axis).text();
-        return t.isEmpty() ? (axis == QwtPlot::xBottom ? QStringLiteral("x") : QStringLiteral("y")) : t;
-    };
-    out << "curve," << csvField(title(QwtPlot::xBottom)) << ",value,axis\n";
-    const QwtScaleDiv &x = plot.axisScaleDiv(QwtPlot::xBottom);
-    const double x0 = std::min(x.lowerBound(), x.upperBound()), x1 = std::max(x.lowerBound(), x.upperBound());
-    int n = 0;
-    for (const QwtPlotItem *item : plot.itemList(QwtPlotItem::Rtti_PlotCurve)) {
-        const auto *curve = static_cast<const QwtPlotCurve *>(item);
-        if (!curve->isVisible())
-            continue;
-        const QString name = csvField(curve->title().text());
-        const QString axis = csvField(title(curve->yAxis()));
-        for (size_t i = 0; i < curve->dataSize(); ++i) {
-            const QPointF p = curve->sample(i);
-            if (p.x() < x0 || p.x() > x1)
-                continue;
-            out << name << ',' << QString::number(p.x(), 'g', 12) << ',' << QString::number(p.y(), 'g', 10) << ',' << axis << '\n';
-            ++n;
-        }
-    }
+    const int n = write(out);
     out.flush();
     if (out.status() != QTextStream::Ok || !file.flush() || !file.commit()) {
         if (error)
@@ -297,6 +323,11 @@ bool PlotInteraction::exportVisibleData(const QwtPlot &plot, const QString &path
     if (rows)
         *rows = n;
     return true;
+}
+
+bool PlotInteraction::exportVisibleData(const QwtPlot &plot, const QString &path, QString *error, int *rows)
+{
+    return writeCsv(path, [&plot](QTextStream &out) { return curveRows(plot, out); }, error, rows);
 }
 
 } // namespace driftlab

@@ -14,11 +14,15 @@
 
 #include <QElapsedTimer>
 #include <QObject>
+#include <QPixmap>
 #include <QPoint>
 #include <QString>
 #include <QVector>
 
+#include <functional>
+
 class QMenu;
+class QTextStream;
 class QwtPlot;
 class QwtPlotZoomer;
 
@@ -47,6 +51,27 @@ public:
     // Writes the curves' points inside the visible x range as CSV (curve, x, y with the axes'
     // titles in the header); false with *error when it cannot write. QSaveFile: never half-written.
     static bool exportVisibleData(const QwtPlot &plot, const QString &path, QString *error, int *rows = nullptr);
+    // A plot whose data are not curves (a spectrogram's grid) writes its own visible data:
+    // the header and the rows into `out`, returning the number of rows.
+    using CsvWriter = std::function<int(QTextStream &out)>;
+    void setVisibleDataWriter(CsvWriter writer) { m_writer = std::move(writer); }
+    // What the menu's "Export visible data as CSV" writes: the writer's rows, else the curves'.
+    bool exportVisible(const QString &path, QString *error, int *rows = nullptr) const;
+    // Writes `write`'s CSV through QSaveFile (never half-written); false with *error naming the file.
+    static bool writeCsv(const QString &path, const CsvWriter &write, QString *error, int *rows = nullptr);
+    // A CSV field, quoted when it holds a comma or a quote.
+    static QString csvField(QString text);
+
+    // The export entries of every view's menu (plots, the infrared and 3-D views): Copy image,
+    // Save image (PNG, SVG, PDF)..., and the CSV entry (disabled without a writer). Errors go to
+    // a message box naming the file.
+    struct ExportActions {
+        std::function<QPixmap()> image;                 // what Copy image puts on the clipboard
+        std::function<void(const QString &path)> save;  // writes PNG/SVG/PDF by suffix; throws
+        QString csvTitle;                               // "Export visible data as CSV..."
+        CsvWriter csv;
+    };
+    static void addExportActions(QMenu *menu, QWidget *owner, const ExportActions &actions);
     // Zooms one axis by `factor` (< 1: in) around the scale value `centre`.
     static void zoomAxis(QwtPlot &plot, int axis, double factor, double centre);
 
@@ -67,6 +92,7 @@ private:
 
     QwtPlot *m_plot;
     QwtPlotZoomer *m_zoomer;
+    CsvWriter m_writer;
     QVector<Snapshot> m_history;
     Snapshot m_pressed; // before a rubber band started (pushed when the zoomer zooms)
     bool m_hasPressed = false;

@@ -33,6 +33,12 @@ QString value(const QwtPlot *plot, int axis, double v)
 
 PlotReadout::PlotReadout(QWidget *canvas) : QwtPlotZoomer(canvas) {}
 
+void PlotReadout::setField(std::function<double(double, double)> value, int valueAxis)
+{
+    m_field = std::move(value);
+    m_valueAxis = valueAxis;
+}
+
 QString PlotReadout::valueText(const QwtPlot *plot, int axis, double v)
 {
     return value(plot, axis, v);
@@ -49,6 +55,10 @@ QString PlotReadout::readout(const QPointF &plotPos) const
 {
     const QwtPlot *p = plot();
     QString text = value(p, xAxis(), plotPos.x()) + QStringLiteral("   ") + value(p, yAxis(), plotPos.y());
+    if (m_field) {
+        const double v = m_field(plotPos.x(), plotPos.y());
+        return text + QStringLiteral("   ") + (std::isfinite(v) ? value(p, m_valueAxis, v) : QStringLiteral("-"));
+    }
     const int other = yAxis() == QwtPlot::yLeft ? QwtPlot::yRight : QwtPlot::yLeft;
     if (p->axisEnabled(other) && !p->axisTitle(other).isEmpty()) {
         // The same pixel on the other value axis.

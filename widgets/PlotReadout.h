@@ -7,11 +7,17 @@
 
 #include <QString>
 
+#include <functional>
+
 namespace driftlab {
 
 class PlotReadout : public QwtPlotZoomer {
 public:
     explicit PlotReadout(QWidget *canvas);
+
+    // On a 2-D field (the error surface): the readout adds the field's value under the pointer
+    // in the unit of `valueAxis` (the colour bar) instead of the other value axis' pixel.
+    void setField(std::function<double(double x, double y)> value, int valueAxis);
 
     // The readout at a point of the plot's scales (x, left y); the right axis too when shown.
     QString readout(const QPointF &plotPos) const;
@@ -23,6 +29,10 @@ public:
 
 protected:
     QwtText trackerTextF(const QPointF &pos) const override;
+
+private:
+    std::function<double(double, double)> m_field;
+    int m_valueAxis = -1;
 };
 
 } // namespace driftlab

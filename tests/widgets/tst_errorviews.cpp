@@ -1,5 +1,6 @@
 // Thermal error views show exactly the computed thermal errors, and export headless.
 
+#include "ElapsedTimeAxis.h"
 #include "ErrorSurface3D.h"
 #include "ErrorSurfacePlot.h"
 #include "PlotExporter.h"
@@ -11,7 +12,10 @@
 #include <QtDataVisualization/QSurfaceDataProxy>
 
 #include <QImage>
+#include <QOffscreenSurface>
+#include <QOpenGLContext>
 #include <QTemporaryDir>
+#include <QTextStream>
 #include <QtTest>
 
 #include <qwt_plot_curve.h>
@@ -49,6 +53,7 @@ private slots:
     void profilesAndHistoriesHoldTheTable();
     void errorAgainstTemperatureFitsTheLine();
     void surface3DProxyHoldsTheGrid();
+    void surface3DReadsTheSelectedPointAndWritesTheTable();
     void exportsPngSvgPdf();
     void rejectsUnknownFormat();
 };
@@ -140,6 +145,41 @@ void TestErrorViews::surface3DProxyHoldsTheGrid()
             QVERIFY(std::fabs(p.z() - table.runTimes_s()[size_t(r)]) < 1e-2); // seconds, shown as h:mm:ss
         }
     }
+}
+
+void TestErrorViews::surface3DReadsTheSelectedPointAndWritesTheTable()
+{
+    const ThermalErrorTable table = makeTable();
+    // Run 2 at target 3 (150 mm): the table's own numbers, with units and the time in h:mm:ss.
+    const QString text = ErrorSurface3D::selectionText(table, QPoint(2, 3));
+    const QString expected = QStringLiteral("position 150.0 mm   elapsed time %1   thermal error %2 µm")
+                                 .arg(ElapsedTimeAxis::format(table.runTimes_s()[2]))
+                                 .arg(table.error(2, 3), 0, 'f', 2);
+    QCOMPARE(text, expected);
+    QVERIFY(ErrorSurface3D::selectionText(table, QPoint(99, 0)).isEmpty());
+    QString csv;
+    QTextStream out(&csv);
+    QCOMPARE(ErrorSurface3D::writeCsv(table, out), int(table.runCount() * table.targetCount()));
+    out.flush();
+    const QStringList lines = csv.split(QLatin1Char('\n'), Qt::SkipEmptyParts);
+    QCOMPARE(lines.size(), int(table.runCount() * table.targetCount()) + 1);
+    QCOMPARE(lines[0], QStringLiteral("position_mm,time_s,thermal_error_um"));
+    const QStringList cell = lines[1 + 2 * int(table.targetCount()) + 3].split(QLatin1Char(','));
+    QCOMPARE(cell[0].toDouble(), 150.0);
+    QCOMPARE(cell[1].toDouble(), table.runTimes_s()[2]);
+    QVERIFY(std::fabs(cell[2].toDouble() - table.error(2, 3)) < 1e-9);
+
+    // The widget itself needs OpenGL (Q3DSurface).
+    QOffscreenSurface surface;
+    surface.create();
+    QOpenGLContext gl;
+    if (!gl.create() || !gl.makeCurrent(&surface))
+        QSKIP("no OpenGL context here: the 3-D view's widget is not tested");
+    gl.doneCurrent();
+    ErrorSurface3D view;
+    view.setTable(table);
+    view.select(QPoint(2, 3));
+    QCOMPARE(view.readout(), expected);
 }
 
 void TestErrorViews::exportsPngSvgPdf()
