@@ -1,5 +1,6 @@
 #include "PlotInteraction.h"
 
+#include "ElapsedTimeAxis.h"
 #include "PlotExporter.h"
 
 #include <qwt_plot.h>
@@ -40,7 +41,10 @@ int curveRows(const QwtPlot &plot, QTextStream &out)
         const QString t = plot.axisTitle(axis).text();
         return t.isEmpty() ? (axis == QwtPlot::xBottom ? QStringLiteral("x") : QStringLiteral("y")) : t;
     };
-    out << "curve," << PlotInteraction::csvField(title(QwtPlot::xBottom)) << ",value,axis\n";
+    // A time axis shows h:mm:ss but the rows hold seconds: the column says so (time_s, as the
+    // CLI's CSVs and the surface exports name it), not the axis's "(h:mm:ss)".
+    const QString xName = ElapsedTimeAxis::installed(&plot, QwtPlot::xBottom) ? QStringLiteral("time_s") : title(QwtPlot::xBottom);
+    out << "curve," << PlotInteraction::csvField(xName) << ",value,axis\n";
     const QwtScaleDiv &x = plot.axisScaleDiv(QwtPlot::xBottom);
     const double x0 = std::min(x.lowerBound(), x.upperBound()), x1 = std::max(x.lowerBound(), x.upperBound());
     int n = 0;
