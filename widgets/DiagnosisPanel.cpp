@@ -134,6 +134,9 @@ DiagnosisPanel::DiagnosisPanel(QWidget *parent)
     // one row). MainWindow takes the view into the central area.
     m_before->setTitle(tr("Validation residual, baseline"));
     m_after->setTitle(tr("Validation residual, corrected model"));
+    for (ErrorSurfacePlot *p : {m_before, m_after})
+        p->showEmpty(tr("Diagnose a training and a validation session (Diagnosis dock): the validation residual over "
+                        "position and time appears here, before and after the correction."));
     m_plots = new QSplitter(Qt::Vertical, this);
     m_plots->setObjectName(QStringLiteral("DiagnosisPlots"));
     m_plots->addWidget(m_before);
@@ -417,12 +420,18 @@ void DiagnosisPanel::finish(bool ok, const QString &error)
     }
     m_candidates->resizeColumnsToContents();
     std::vector<double> x, y, z;
+    const QString noMap = tr("The validation session has fewer than two interferometer runs (or targets) besides the "
+                             "reference: no residual map. The answer and the candidates' evidence stand.");
     residualGrid(r.predictions, false, x, y, z);
     if (x.size() >= 2 && y.size() >= 2)
         m_before->setGrid(x, y, z);
+    else
+        m_before->showEmpty(noMap);
     residualGrid(r.predictions, true, x, y, z);
     if (x.size() >= 2 && y.size() >= 2)
         m_after->setGrid(x, y, z);
+    else
+        m_after->showEmpty(noMap);
     for (ErrorSurfacePlot *p : {m_before, m_after})
         p->setAxisTitle(QwtPlot::yRight, tr("residual (µm)"));
     m_stage->setText(tr("done"));

@@ -18,10 +18,12 @@
 #include <qwt_scale_div.h>
 #include <qwt_scale_widget.h>
 
+#include <QLabel>
 #include <QTextStream>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace driftlab {
@@ -137,6 +139,39 @@ ErrorSurfacePlot::ErrorSurfacePlot(QWidget *parent)
     PlotInteraction *interaction = PlotInteraction::install(this, m_zoomer); // menu, per-axis zoom, undo
     interaction->setVisibleDataWriter([this](QTextStream &out) { return writeVisibleCells(out); });
     PlotCursors::installPoints(this, field, QwtPlot::yRight); // Shift+click: point cursors A, B
+    m_emptyLabel = new QLabel(canvas()); // over the canvas, wrapped to its width
+    m_emptyLabel->setObjectName(QStringLiteral("emptySurfaceMessage"));
+    m_emptyLabel->setWordWrap(true);
+    m_emptyLabel->setAlignment(Qt::AlignCenter);
+    m_emptyLabel->setStyleSheet(QStringLiteral("color: #5a5a5a;"));
+    m_emptyLabel->setAttribute(Qt::WA_TransparentForMouseEvents);
+    showEmpty(tr("No map yet: it needs two or more interferometer runs."));
+}
+
+void ErrorSurfacePlot::showEmpty(const QString &message)
+{
+    // No axes of an empty grid (Qwt's default -0.5..0.5 read "-0:00:00.6" on the time axis),
+    // the reason in the canvas instead.
+    m_x.clear();
+    m_y.clear();
+    m_z.clear();
+    m_spectrogram->setVisible(false);
+    for (int axis : {QwtPlot::xBottom, QwtPlot::yLeft, QwtPlot::yRight})
+        enableAxis(axis, false);
+    // No readout over nothing. (Not setEnabled(false): enabling it again would put the picker's
+    // event filter in front of the cursors' and take their Shift+click and drag.)
+    m_zoomer->setTrackerMode(QwtPicker::AlwaysOff);
+    if (PlotCursors *cursors = PlotCursors::of(this))
+        cursors->clear();
+    m_emptyLabel->setText(message);
+    m_emptyLabel->setVisible(true);
+    replot();
+    placeEmptyLabel();
+}
+
+QString ErrorSurfacePlot::emptyMessage() const
+{
+    return m_emptyLabel->isHidden() ? QString() : m_emptyLabel->text();
 }
 
 ErrorSurfacePlot::~ErrorSurfacePlot() = default;
@@ -157,6 +192,11 @@ void ErrorSurfacePlot::setGrid(const std::vector<double> &x, const std::vector<d
     m_x = x;
     m_y = y;
     m_z = z;
+    m_emptyLabel->setVisible(false);
+    m_spectrogram->setVisible(true);
+    m_zoomer->setTrackerMode(QwtPicker::AlwaysOn);
+    for (int axis : {QwtPlot::xBottom, QwtPlot::yLeft, QwtPlot::yRight})
+        enableAxis(axis, true);
     auto *raster = new GridRaster(x, y, z);
     const QwtInterval range = raster->interval(Qt::ZAxis);
     m_spectrogram->setData(raster); // takes ownership
@@ -179,7 +219,7 @@ void ErrorSurfacePlot::setGrid(const std::vector<double> &x, const std::vector<d
 double ErrorSurfacePlot::valueAt(double position_mm, double time_s) const
 {
     const QwtRasterData *data = m_spectrogram->data();
-    return data ? data->value(position_mm, time_s) : 0.0;
+    return data && !m_x.empty() ? data->value(position_mm, time_s) : std::numeric_limits<double>::quiet_NaN();
 }
 
 int ErrorSurfacePlot::writeVisibleCells(QTextStream &out) const
@@ -218,8 +258,15 @@ bool ErrorSurfacePlot::exportVisibleData(const QString &path, QString *error, in
 void ErrorSurfacePlot::resizeEvent(QResizeEvent *event)
 {
     QwtPlot::resizeEvent(event);
+    placeEmptyLabel();
     // About one label per 70 px of plot width ("500" plus a gap, in the bold-free tick font).
     AxisTicks::fitToWidth(this, QwtPlot::xBottom, 70, 8);
+}
+
+void ErrorSurfacePlot::placeEmptyLabel()
+{
+    const QRect r = canvas()->contentsRect().adjusted(12, 12, -12, -12);
+    m_emptyLabel->setGeometry(r);
 }
 
 } // namespace driftlab

@@ -14,6 +14,7 @@
 
 class QTextStream;
 class QwtPlotSpectrogram;
+class QLabel;
 
 namespace driftlab {
 
@@ -30,6 +31,10 @@ public:
     // Any surface on a rectilinear grid: z[row * x.size() + column], rows along y
     // (ascending), NaN = not measured. Axis titles are the caller's.
     void setGrid(const std::vector<double> &x, const std::vector<double> &y, const std::vector<double> &z);
+    // No grid: no axes, `message` in the canvas (why there is no map, what to do). A new plot
+    // starts so; setGrid ends it.
+    void showEmpty(const QString &message);
+    QString emptyMessage() const; // "" while a grid is shown
     // The value the surface shows at (position, time) — for readouts and tests.
     double valueAt(double position_mm, double time_s) const;
     QwtPlotSpectrogram *spectrogram() const { return m_spectrogram; }
@@ -47,9 +52,11 @@ protected:
 
 private:
     int writeVisibleCells(QTextStream &out) const;
+    void placeEmptyLabel();
 
     QwtPlotSpectrogram *m_spectrogram;
     PlotReadout *m_zoomer;
+    QLabel *m_emptyLabel = nullptr;
     std::vector<double> m_x, m_y, m_z; // the grid as given (NaN = not measured)
     QStringList m_csvColumns{QStringLiteral("position_mm"), QStringLiteral("time_s"), QStringLiteral("thermal_error_um")};
 };

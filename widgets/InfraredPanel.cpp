@@ -95,6 +95,7 @@ void InfraredPanel::setSession(std::shared_ptr<const SessionReviewData> data)
     m_slider->setEnabled(n > 1);
     if (n == 0) {
         m_label->setText(tr("This session has no infrared frames."));
+        m_surface->showEmpty(tr("This session has no infrared frames."));
         m_view->setFrame(cv::Mat(), {});
         m_profile->clearCurves();
         return;
@@ -103,6 +104,8 @@ void InfraredPanel::setSession(std::shared_ptr<const SessionReviewData> data)
     profileGrid(*m_data, kProfilePoints, x, t, z);
     if (t.size() >= 2)
         m_surface->setGrid(x, t, z);
+    else
+        m_surface->showEmpty(tr("One infrared frame: a temperature map over time needs two or more."));
     // Open on the most informative frame: the largest axial temperature spread.
     int best = 0;
     double bestSpread = -1.0;

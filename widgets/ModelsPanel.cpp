@@ -64,6 +64,8 @@ ModelsPanel::ModelsPanel(QWidget *parent)
     m_measured->setTitle(tr("Measured thermal error"));
     m_predicted->setTitle(tr("Predicted thermal error"));
     m_residual->setTitle(tr("Residual (measured − predicted)"));
+    for (ErrorSurfacePlot *p : {m_measured, m_predicted, m_residual})
+        p->showEmpty(tr("Fit the physical model (Models dock): the maps of each recording appear here."));
     // One row: the panel stays usable in a bottom dock of a 768-pixel-high screen.
     m_results = new QSplitter(Qt::Horizontal, this);
     m_results->setObjectName(QStringLiteral("ModelFitView"));
@@ -347,6 +349,8 @@ void ModelsPanel::showRecording(int index)
         if (y.size() >= 2 && x.size() >= 2) {
             plots[which]->setGrid(x, y, z);
             plots[which]->setAxisTitle(QwtPlot::yRight, which == 2 ? tr("residual (µm)") : tr("thermal error (µm)"));
+        } else { // not the previous recording's map
+            plots[which]->showEmpty(tr("%1: fewer than two interferometer runs or targets, no map.").arg(m_recordingNames.value(index)));
         }
     }
 }

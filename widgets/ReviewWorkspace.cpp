@@ -142,6 +142,8 @@ void ReviewWorkspace::setSession(const SessionStore *store, qint64 sessionId)
     }
     m_profiles->clearCurves();
     m_profiles->setFooter(QString());
+    if (!m_hasErrors)
+        m_surface->showEmpty(tr("This session has no interferometer runs besides the reference run: no thermal errors to show."));
     if (m_hasErrors) {
         const ThermalErrorTable table = data->thermalErrors();
         m_surface->setTable(table);

@@ -87,6 +87,7 @@ private slots:
     void readoutHasUnits();
     void rubberBandZoomUndoesAndTheColourBarStays();
     void csvOfAZoomedViewHoldsTheCellsInside();
+    void emptyUntilAGridAndAfterOne();
     void grabForTheDocs();
 };
 
@@ -263,6 +264,34 @@ void TestSurfaceCursors::csvOfAZoomedViewHoldsTheCellsInside()
     QCOMPARE(g.readAll(), f.readAll());
     QVERIFY(!plot.exportVisibleData(QStringLiteral("/nonexistent-dir/x.csv"), &error));
     QVERIFY2(error.contains(QStringLiteral("/nonexistent-dir/x.csv")), qPrintable(error));
+}
+
+void TestSurfaceCursors::emptyUntilAGridAndAfterOne()
+{
+    // Before a grid (and when a view has none for the shown recording) the plot says why and
+    // shows no axes: Qwt's default -0.5..0.5 read "-0:00:00.6" on the time axis, and a
+    // recording without a map kept the previous recording's.
+    ErrorSurfacePlot plot;
+    QVERIFY(!plot.emptyMessage().isEmpty());
+    for (int axis : {QwtPlot::xBottom, QwtPlot::yLeft, QwtPlot::yRight})
+        QVERIFY(!plot.axisEnabled(axis));
+    QVERIFY(std::isnan(plot.valueAt(0.0, 0.0)));
+    QVERIFY(showFilled(plot));
+    QCOMPARE(plot.emptyMessage(), QString());
+    for (int axis : {QwtPlot::xBottom, QwtPlot::yLeft, QwtPlot::yRight})
+        QVERIFY(plot.axisEnabled(axis));
+    QCOMPARE(plot.valueAt(150.0, 1800.0), truth(150.0, 1800.0));
+    PlotCursors::of(&plot)->setPoint(PlotCursors::A, 150.0, 1800.0);
+    plot.showEmpty(QStringLiteral("run 2: one interferometer run, no map"));
+    QCOMPARE(plot.emptyMessage(), QStringLiteral("run 2: one interferometer run, no map"));
+    QVERIFY(std::isnan(plot.valueAt(150.0, 1800.0))); // not the previous grid's value
+    QVERIFY(PlotCursors::of(&plot)->text().isEmpty());
+    QVERIFY(!plot.axisEnabled(QwtPlot::yLeft));
+    QString error;
+    int rows = -1;
+    QTemporaryDir dir;
+    QVERIFY2(plot.exportVisibleData(dir.filePath(QStringLiteral("e.csv")), &error, &rows), qPrintable(error));
+    QCOMPARE(rows, 0);
 }
 
 void TestSurfaceCursors::grabForTheDocs()
