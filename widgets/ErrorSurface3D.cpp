@@ -59,8 +59,13 @@ ErrorSurface3D::ErrorSurface3D(QWidget *parent) : QWidget(parent)
     m_graph->axisX()->setLabelFormat(QStringLiteral("%.0f"));
     m_graph->axisY()->setLabelFormat(QStringLiteral("%.1f"));
     m_graph->axisZ()->setSegmentCount(4);
+    // Position and time as long as each other: by default the box takes the data's own ratio,
+    // and 520 mm against 14,400 s squeezed the position axis to one label ("520") at 1366 x 768.
+    m_graph->setHorizontalAspectRatio(1.0);
     m_graph->scene()->activeCamera()->setCameraPreset(Q3DCamera::CameraPresetIsometricRightHigh);
-    m_graph->activeTheme()->setFont(QFont(QStringLiteral("DejaVu Sans"), 32));
+    // Zoomed out: the axis titles and the front corner's labels inside the view at 1366 x 768.
+    m_graph->scene()->activeCamera()->setZoomLevel(62.0f);
+    m_graph->activeTheme()->setFont(QFont(QStringLiteral("DejaVu Sans"), 44)); // larger than the default: the camera is zoomed out
     m_readout = new QLabel(tr("Click the surface to read a point; right click (without dragging) for the menu."), this);
     m_readout->setTextInteractionFlags(Qt::TextSelectableByMouse);
     connect(series, &QSurface3DSeries::selectedPointChanged, this, [this](const QPoint &p) {
