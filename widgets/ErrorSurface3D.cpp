@@ -62,14 +62,17 @@ ErrorSurface3D::ErrorSurface3D(QWidget *parent) : QWidget(parent)
     // Position and time as long as each other: by default the box takes the data's own ratio,
     // and 520 mm against 14,400 s squeezed the position axis to one label ("520") at 1366 x 768.
     m_graph->setHorizontalAspectRatio(1.0);
-    m_graph->scene()->activeCamera()->setCameraPreset(Q3DCamera::CameraPresetIsometricRightHigh);
-    // Zoomed out: the axis titles and the front corner's labels inside the view at 1366 x 768.
-    m_graph->scene()->activeCamera()->setZoomLevel(62.0f);
+    resetView();
     m_graph->activeTheme()->setFont(QFont(QStringLiteral("DejaVu Sans"), 44)); // larger than the default: the camera is zoomed out
-    m_readout = new QLabel(tr("Click the surface to read a point; right click (without dragging) for the menu."), this);
+    m_readout = new QLabel(this);
     m_readout->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    clearCursors(); // the readout's first text says what a click does
     connect(series, &QSurface3DSeries::selectedPointChanged, this, [this](const QPoint &p) {
-        if (p != QSurface3DSeries::invalidSelectionPosition())
+        if (p == QSurface3DSeries::invalidSelectionPosition())
+            return;
+        if (m_shiftPress)
+            setCursor(!m_cursor[0] || m_cursor[1] ? 0 : 1, p);
+        else if (!m_cursor[0])
             m_readout->setText(selectionText(m_table, p));
     });
     m_graph->installEventFilter(this); // the right click's menu (the graph is a window of its own)
@@ -134,6 +137,55 @@ void ErrorSurface3D::select(QPoint rowColumn)
     m_series->setSelectedPoint(rowColumn);
 }
 
+void ErrorSurface3D::setCursor(int which, QPoint rowColumn)
+{
+    if (which == 0)
+        m_cursor[1].reset(); // A again: B starts afresh, as on the 2-D plots
+    m_cursor[which != 0] = rowColumn;
+    m_readout->setText(cursorsText(m_table, m_cursor[0], m_cursor[1]));
+}
+
+void ErrorSurface3D::clearCursors()
+{
+    m_cursor[0].reset();
+    m_cursor[1].reset();
+    m_readout->setText(tr("Click the surface to read a point, Shift+click for cursors A and B; right click (without dragging) for the menu."));
+}
+
+void ErrorSurface3D::resetView()
+{
+    m_graph->scene()->activeCamera()->setCameraPreset(Q3DCamera::CameraPresetIsometricRightHigh);
+    // Zoomed out: the axis titles and the front corner's labels inside the view at 1366 x 768.
+    m_graph->scene()->activeCamera()->setZoomLevel(62.0f);
+}
+
+QString ErrorSurface3D::cursorsText(const ThermalErrorTable &table, const std::optional<QPoint> &a, const std::optional<QPoint> &b)
+{
+    const auto valid = [&table](const std::optional<QPoint> &p) {
+        return p && p->x() >= 0 && p->y() >= 0 && p->x() < static_cast<int>(table.runCount()) && p->y() < static_cast<int>(table.targetCount());
+    };
+    QStringList parts;
+    if (valid(a))
+        parts << QStringLiteral("A  ") + selectionText(table, *a);
+    if (valid(b))
+        parts << QStringLiteral("B  ") + selectionText(table, *b);
+    if (valid(a) && valid(b)) {
+        const auto at = [&table](QPoint p) {
+            return std::make_tuple(table.targets_mm()[static_cast<std::size_t>(p.y())], table.runTimes_s()[static_cast<std::size_t>(p.x())],
+                                   table.error(static_cast<std::size_t>(p.x()), static_cast<std::size_t>(p.y())));
+        };
+        const auto [xa, ta, ea] = at(*a);
+        const auto [xb, tb, eb] = at(*b);
+        const double dt = tb - ta;
+        const double de = eb - ea;
+        parts << tr("Δ position %1 mm   Δ elapsed time %2%3   Δ thermal error %4")
+                     .arg(xb - xa, 0, 'f', 1)
+                     .arg(dt < 0 ? QStringLiteral("-") : QString(), ElapsedTimeAxis::format(std::fabs(dt)))
+                     .arg(std::isnan(de) ? QStringLiteral("-") : QStringLiteral("%1 µm").arg(de, 0, 'f', 2));
+    }
+    return parts.join(QLatin1Char('\n'));
+}
+
 QString ErrorSurface3D::readout() const
 {
     return m_readout->text();
@@ -163,6 +215,10 @@ QMenu *ErrorSurface3D::createMenu(QWidget *parent)
     actions.csvTitle = tr("Export the table as CSV...");
     if (m_table.runCount() > 0)
         actions.csv = [this](QTextStream &out) { return writeCsv(m_table, out); };
+    menu->addAction(tr("Reset view"), this, [this] { resetView(); });
+    if (m_cursor[0])
+        menu->addAction(tr("Clear cursors"), this, [this] { clearCursors(); });
+    menu->addSeparator();
     PlotInteraction::addExportActions(menu, this, actions);
     return menu;
 }
@@ -171,6 +227,8 @@ bool ErrorSurface3D::eventFilter(QObject *watched, QEvent *event)
 {
     if (watched == m_graph && (event->type() == QEvent::MouseButtonPress || event->type() == QEvent::MouseButtonRelease)) {
         const auto *mouse = static_cast<QMouseEvent *>(event);
+        if (mouse->button() == Qt::LeftButton && event->type() == QEvent::MouseButtonPress)
+            m_shiftPress = mouse->modifiers() & Qt::ShiftModifier; // the selection comes with the next frame
         if (mouse->button() == Qt::RightButton) {
             if (event->type() == QEvent::MouseButtonPress) {
                 m_rightPress = mouse->globalPos();

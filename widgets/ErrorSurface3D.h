@@ -12,6 +12,8 @@
 #include <QPoint>
 #include <QWidget>
 
+#include <optional>
+
 class QLabel;
 class QMenu;
 class QTextStream;
@@ -48,6 +50,15 @@ public:
     QString readout() const;
     // Selects a grid point as a click on it would (row = run, column = target).
     void select(QPoint rowColumn);
+    // Cursors A and B on grid points, as on the 2-D plots: Shift+click sets A, the next
+    // Shift+click B, a third starts again at A; the readout then gives both points and their
+    // delta (position mm, elapsed time h:mm:ss, thermal error µm). Cleared from the menu.
+    void setCursor(int which, QPoint rowColumn); // which: 0 = A, 1 = B
+    void clearCursors();
+    static QString cursorsText(const ThermalErrorTable &table, const std::optional<QPoint> &a, const std::optional<QPoint> &b);
+    // The camera as the view opened (the 3-D view's "Reset zoom": the wheel zooms, the right
+    // button rotates).
+    void resetView();
     // The right button's menu (the caller owns it).
     QMenu *createMenu(QWidget *parent);
 
@@ -59,6 +70,8 @@ private:
     QWidget *m_container = nullptr; // the graph's window in this widget
     QLabel *m_readout = nullptr;
     QPoint m_rightPress;
+    bool m_shiftPress = false; // the last left press held Shift: its selection places a cursor
+    std::optional<QPoint> m_cursor[2];
     QtDataVisualization::Q3DSurface *m_graph = nullptr;
     QtDataVisualization::QSurfaceDataProxy *m_proxy = nullptr;
     QtDataVisualization::QSurface3DSeries *m_series = nullptr;

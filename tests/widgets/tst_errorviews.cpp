@@ -169,6 +169,21 @@ void TestErrorViews::surface3DReadsTheSelectedPointAndWritesTheTable()
     QCOMPARE(cell[1].toDouble(), table.runTimes_s()[2]);
     QVERIFY(std::fabs(cell[2].toDouble() - table.error(2, 3)) < 1e-9);
 
+    // Cursors A (run 2, 150 mm) and B (run 5, 550 mm): both points and the delta worked out
+    // from the table: 400 mm, the runs' time difference in h:mm:ss, the errors' difference.
+    const QStringList cursors = ErrorSurface3D::cursorsText(table, QPoint(2, 3), QPoint(5, 11)).split(QLatin1Char('\n'));
+    QCOMPARE(cursors.size(), 3);
+    QCOMPARE(cursors[0], QStringLiteral("A  ") + expected);
+    QCOMPARE(cursors[1], QStringLiteral("B  ") + ErrorSurface3D::selectionText(table, QPoint(5, 11)));
+    const QString delta = QStringLiteral("Δ position 400.0 mm   Δ elapsed time %1   Δ thermal error %2 µm")
+                              .arg(ElapsedTimeAxis::format(table.runTimes_s()[5] - table.runTimes_s()[2]))
+                              .arg(table.error(5, 11) - table.error(2, 3), 0, 'f', 2);
+    QCOMPARE(cursors[2], delta);
+    // B before A: the time delta is negative, written with its sign.
+    QVERIFY(ErrorSurface3D::cursorsText(table, QPoint(5, 11), QPoint(2, 3))
+                .contains(QStringLiteral("Δ elapsed time -") + ElapsedTimeAxis::format(table.runTimes_s()[5] - table.runTimes_s()[2])));
+    QCOMPARE(ErrorSurface3D::cursorsText(table, QPoint(2, 3), std::nullopt), QStringLiteral("A  ") + expected);
+
     // The widget itself needs OpenGL (Q3DSurface).
     QOffscreenSurface surface;
     surface.create();
@@ -180,6 +195,13 @@ void TestErrorViews::surface3DReadsTheSelectedPointAndWritesTheTable()
     view.setTable(table);
     view.select(QPoint(2, 3));
     QCOMPARE(view.readout(), expected);
+    view.setCursor(0, QPoint(2, 3));
+    view.setCursor(1, QPoint(5, 11));
+    QCOMPARE(view.readout().split(QLatin1Char('\n')).last(), delta);
+    view.setCursor(0, QPoint(5, 11)); // a third: A again, B cleared
+    QCOMPARE(view.readout(), QStringLiteral("A  ") + ErrorSurface3D::selectionText(table, QPoint(5, 11)));
+    view.clearCursors();
+    QVERIFY(view.readout().contains(QLatin1String("Shift+click")));
 }
 
 void TestErrorViews::exportsPngSvgPdf()
