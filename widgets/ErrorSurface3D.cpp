@@ -178,9 +178,9 @@ QString ErrorSurface3D::cursorsText(const ThermalErrorTable &table, const std::o
         const auto [xb, tb, eb] = at(*b);
         const double dt = tb - ta;
         const double de = eb - ea;
-        parts << tr("Δ position %1 mm   Δ elapsed time %2%3   Δ thermal error %4")
+        parts << tr("Δ position %1 mm   Δ elapsed time %2   Δ thermal error %3")
                      .arg(xb - xa, 0, 'f', 1)
-                     .arg(dt < 0 ? QStringLiteral("-") : QString(), ElapsedTimeAxis::format(std::fabs(dt)))
+                     .arg(ElapsedTimeAxis::format(dt)) // signed: B before A reads "-2:30:00"
                      .arg(std::isnan(de) ? QStringLiteral("-") : QStringLiteral("%1 µm").arg(de, 0, 'f', 2));
     }
     return parts.join(QLatin1Char('\n'));

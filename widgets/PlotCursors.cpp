@@ -115,7 +115,7 @@ double PlotCursors::valueAt(const QwtPlotCurve &curve, double x)
 QString PlotCursors::deltaText(int axis, double d) const
 {
     if (ElapsedTimeAxis::installed(m_plot, axis))
-        return (d < 0 ? QStringLiteral("-") : QString()) + ElapsedTimeAxis::format(std::fabs(d));
+        return ElapsedTimeAxis::format(d); // signed: "-0:30:00"
     return PlotReadout::valueText(m_plot, axis, d);
 }
 
