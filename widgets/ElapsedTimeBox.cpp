@@ -3,6 +3,7 @@
 #include "UnitLabels.h"
 
 #include <QRegularExpression>
+#include <QToolTip>
 
 namespace driftlab {
 
@@ -44,7 +45,21 @@ QValidator::State ElapsedTimeBox::validate(QString &text, int &) const
 
 void ElapsedTimeBox::fixup(QString &text) const
 {
-    text = textFromValue(value()); // an unfinished entry goes back to the value it had
+    // Called with an entry validate() did not accept when it is to be taken (Return, focus
+    // out): it goes back to the value the box had, and the box says why.
+    const QString typed = text.trimmed();
+    const QString kept = textFromValue(value());
+    text = kept;
+    if (typed.isEmpty() || typed == kept)
+        return;
+    QString why;
+    if (const std::optional<double> v = UnitLabels::parseClock(typed, &why))
+        why = tr("'%1' is outside %2 to %3").arg(typed, specialValueText().isEmpty() ? textFromValue(minimum()) : specialValueText(),
+                                                  textFromValue(maximum()));
+    m_refusal = tr("%1; kept %2").arg(why, kept);
+    if (isVisible())
+        QToolTip::showText(mapToGlobal(QPoint(0, height())), m_refusal, const_cast<ElapsedTimeBox *>(this));
+    emit entryRefused(m_refusal);
 }
 
 } // namespace driftlab

@@ -48,9 +48,21 @@ void TestElapsedTimeBox::typedAndShownAsClock()
     type(box, QStringLiteral("abc"));
     QCOMPARE(box.value(), 7260.0);
     QCOMPARE(box.text(), QStringLiteral("2:01:00"));
-    // An impossible clock (minutes 75) is not accepted either.
+    QVERIFY(box.lastRefusal().isEmpty()); // never typed: no letter of it can start a time
+    // An impossible clock (minutes 75) is not accepted either, and the box says why.
+    QSignalSpy refused(&box, &ElapsedTimeBox::entryRefused);
     type(box, QStringLiteral("1:75:00"));
     QCOMPARE(box.value(), 7260.0);
+    QCOMPARE(refused.count(), 1);
+    QCOMPARE(refused.at(0).at(0).toString(), QStringLiteral("'1:75:00': minutes must be below 60 in H:MM:SS; kept 2:01:00"));
+    // A time beyond the range is named with the range.
+    type(box, QStringLiteral("200 h"));
+    QCOMPARE(box.value(), 7260.0);
+    QCOMPARE(box.lastRefusal(), QStringLiteral("'200 h' is outside until Stop to 168:00:00; kept 2:01:00"));
+    // A good entry after a refused one is taken, and nothing more is refused.
+    type(box, QStringLiteral("0:10:00"));
+    QCOMPARE(box.value(), 600.0);
+    QCOMPARE(refused.count(), 2);
     box.setValue(0.0);
     QCOMPARE(box.text(), QStringLiteral("until Stop"));
 }
