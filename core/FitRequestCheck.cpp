@@ -1,7 +1,9 @@
 #include "FitRequestCheck.h"
 
 #include "DataDrivenSession.h"
+#include "RequestError.h"
 #include "SessionStore.h"
+#include "UnitLabels.h"
 
 #include <QStringList>
 
@@ -18,6 +20,18 @@ namespace {
 QString hours(double h) { return std::isfinite(h) ? QString::number(h, 'g', 6) : QString(); }
 
 QString rangeText(const HourRange &r) { return hours(r.from_h) + QLatin1Char(':') + hours(r.to_h); }
+
+// The GUI's words for the same things: the field the option stands for, session time h:mm:ss.
+QString clockAt(double h, const char *open) { return std::isfinite(h) ? UnitLabels::clock(h * 3600.0) : QString::fromLatin1(open); }
+
+QString rangeOnScreen(const HourRange &r) { return clockAt(r.from_h, "start") + QStringLiteral(" to ") + clockAt(r.to_h, "end"); }
+
+QString fieldOnScreen(const QString &option)
+{
+    if (option == QLatin1String("--holdout-range"))
+        return QStringLiteral("Held-out time");
+    return QStringLiteral("Training time"); // --train-range, and select-points' --range (the dock's training time)
+}
 
 } // namespace
 
@@ -40,7 +54,11 @@ void FitRequestCheck::checkRange(const SessionStore &store, qint64 session, cons
         return;
     const double end_h = sessionEnd_h(store, session);
     if (r.from_h >= end_h || r.to_h <= 0.0)
-        bad(QStringLiteral("%1 %2 lies outside session %3, which covers hours 0 to %4").arg(option, rangeText(r)).arg(session).arg(end_h, 0, 'f', 2));
+        throw RequestError(QStringLiteral("%1 %2 lies outside session %3, which covers hours 0 to %4").arg(option, rangeText(r)).arg(session).arg(end_h, 0, 'f', 2),
+                           QStringLiteral("%1 %2 lies outside session %3, which runs from 0:00:00 to %4")
+                               .arg(fieldOnScreen(option), rangeOnScreen(r))
+                               .arg(session)
+                               .arg(UnitLabels::clock(end_h * 3600.0)));
 }
 
 void FitRequestCheck::checkRanges(const SessionStore &store, qint64 session, const HourRange &train,
@@ -56,10 +74,14 @@ void FitRequestCheck::checkRanges(const SessionStore &store, qint64 session, con
     const double end_h = sessionEnd_h(store, session);
     const double from = std::max(train.from_h, holdout->from_h), to = std::min(train.to_h, holdout->to_h);
     if (from < to)
-        bad(QStringLiteral("--train-range %1 and --holdout-range %2 overlap (hours %3 to %4 would be fitted and held out): "
-                           "held-out hours must not be fitted")
-                .arg(train.all() ? QStringLiteral("(the whole session)") : rangeText(train), rangeText(*holdout),
-                     hours(std::max(from, 0.0)), hours(std::min(to, end_h))));
+        throw RequestError(QStringLiteral("--train-range %1 and --holdout-range %2 overlap (hours %3 to %4 would be fitted and held out): "
+                                          "held-out hours must not be fitted")
+                               .arg(train.all() ? QStringLiteral("(the whole session)") : rangeText(train), rangeText(*holdout),
+                                    hours(std::max(from, 0.0)), hours(std::min(to, end_h))),
+                           QStringLiteral("Training time %1 and held-out time %2 overlap (%3 would be fitted and held out): "
+                                          "held-out time must not be fitted")
+                               .arg(train.all() ? QStringLiteral("(the whole session)") : rangeOnScreen(train), rangeOnScreen(*holdout),
+                                    rangeOnScreen({std::max(from, 0.0), std::min(to, end_h)})));
 }
 
 void FitRequestCheck::checkTarget(const SessionStore &store, qint64 session, const QString &target)
@@ -116,9 +138,12 @@ void FitRequestCheck::check(const SessionStore &store, const DataDrivenFitReques
             bad(QStringLiteral("session %1 is given twice").arg(train[i]));
     for (qint64 h : held) {
         if (train.contains(h))
-            bad(QStringLiteral("--holdout: session %1 is a training session; held-out data must be a session the model was "
-                               "not fitted to (or use --holdout-range)")
-                    .arg(h));
+            throw RequestError(QStringLiteral("--holdout: session %1 is a training session; held-out data must be a session the model was "
+                                              "not fitted to (or use --holdout-range)")
+                                   .arg(h),
+                               QStringLiteral("Session %1 is ticked under Training and under Held out: held-out data must be a "
+                                              "session the model was not fitted to (or untick it there and give a held-out time)")
+                                   .arg(h));
         if (held.count(h) > 1)
             bad(QStringLiteral("--holdout: session %1 is given twice").arg(h));
     }

@@ -5,6 +5,7 @@
 #include "ElapsedTimeBox.h"
 #include "FitRequestCheck.h"
 #include "PointSelection.h"
+#include "RequestError.h"
 #include "SessionStore.h"
 #include "Workbench.h"
 
@@ -436,7 +437,7 @@ bool AnalysisPanel::startSelection()
                 return !m_job.cancelled();
             }).record;
         } catch (const std::exception &e) {
-            error = m_job.cancelled() ? tr("Cancelled: no selection was made") : QString::fromUtf8(e.what());
+            error = m_job.cancelled() ? tr("Cancelled: no selection was made") : RequestError::forScreen(e);
         }
         QMetaObject::invokeMethod(this, [this, result, error, session = q.session] {
             finishWorker();
@@ -530,14 +531,14 @@ bool AnalysisPanel::startModels(const QStringList &models, bool automatic)
                     row.result = std::move(r);
                     stored.push_back(id);
                 } catch (const std::exception &e) {
-                    row.error = m_job.cancelled() ? tr("cancelled") : QString::fromUtf8(e.what());
+                    row.error = m_job.cancelled() ? tr("cancelled") : RequestError::forScreen(e);
                     stored.push_back(0);
                 }
                 rows.push_back(std::move(row));
             }
         } catch (const std::exception &e) {
             ModelRow row;
-            row.error = QString::fromUtf8(e.what());
+            row.error = RequestError::forScreen(e);
             rows.push_back(row);
             stored.push_back(0);
         }
@@ -582,7 +583,7 @@ bool AnalysisPanel::saveModel(int row, const QString &path)
         DataDrivenModelJson::write(m_rows[static_cast<std::size_t>(row)].result->document, path);
         return true;
     } catch (const std::exception &e) {
-        m_lastError = QString::fromUtf8(e.what());
+        m_lastError = RequestError::forScreen(e);
         return false;
     }
 }

@@ -10,6 +10,7 @@
 #include "DataDrivenFitRecord.h"
 #include "ExtrapolationWarning.h"
 #include "DataDrivenModelJson.h"
+#include "ElapsedTimeBox.h"
 #include "RigRecorder.h"
 #include "SessionStore.h"
 #include "SimulatedRig.h"
@@ -34,6 +35,7 @@ private slots:
     void selectsAndFitsInBackground();
     void cancelStopsTheFits();
     void refusesIncompleteInput();
+    void refusalsInTheDocksWords();
     void severalSessionsAsTheCli();
     void autoChoosesAsTheCli();
 
@@ -181,6 +183,53 @@ void TestAnalysisPanel::refusesIncompleteInput()
     QVERIFY(!panel.startWorkflow(1, QStringLiteral("NOPE"), 1.0, true));
     QVERIFY(panel.lastError().contains(QStringLiteral("NOPE")));
     QVERIFY(!panel.running());
+}
+
+// A refusal the dock can provoke names the dock's fields and session time as it shows it, not
+// the CLI's options and hours (the CLI's wording is tst_clirules').
+void TestAnalysisPanel::refusalsInTheDocksWords()
+{
+    AnalysisPanel panel;
+    panel.setStore(m_store.get());
+    QVERIFY(panel.setSession(1, QStringLiteral("S1")));
+    const QList<ElapsedTimeBox *> boxes = panel.findChildren<ElapsedTimeBox *>();
+    QCOMPARE(boxes.size(), 4); // training from / to, held-out from / to
+    boxes[0]->setValue(0.0);
+    boxes[1]->setValue(3600.0);
+    boxes[2]->setValue(1800.0);
+    boxes[3]->setValue(boxes[3]->minimum()); // "end"
+    const auto firstError = [&panel]() -> QString {
+        QSignalSpy fitted(&panel, &AnalysisPanel::fitsFinished);
+        if (!panel.startFits({QStringLiteral("ridge")}))
+            return panel.lastError();
+        if (!fitted.wait(60000) || panel.models().empty())
+            return QStringLiteral("(no row)");
+        return panel.models().front().error;
+    };
+    QCOMPARE(firstError(), QStringLiteral("Training time 0:00:00 to 1:00:00 and held-out time 0:30:00 to end overlap "
+                                          "(0:30:00 to 1:00:00 would be fitted and held out): held-out time must not be fitted"));
+    boxes[1]->setValue(boxes[1]->minimum());  // training to "end"
+    boxes[2]->setValue(3.0 * 3600.0);         // held out from 3:00:00, after the 2-h session
+    boxes[1]->setValue(3600.0);
+    const QString outside = firstError();
+    QVERIFY2(outside.startsWith(QStringLiteral("Held-out time 3:00:00 to end lies outside session 1, which runs from 0:00:00 to ")),
+             qPrintable(outside));
+    QVERIFY2(!outside.contains(QStringLiteral("--")), qPrintable(outside));
+
+    // The same session ticked under Training and under Held out.
+    AnalysisPanel runs;
+    runs.setStore(m_runs.get());
+    QVERIFY(runs.setTrainingSessions({1, 2}));
+    QVERIFY(runs.setHeldOutSessions({2}));
+    QVERIFY(runs.setTarget(QStringLiteral("S1")));
+    QSignalSpy fitted(&runs, &AnalysisPanel::fitsFinished);
+    QString both;
+    if (!runs.startFits({QStringLiteral("ridge")}))
+        both = runs.lastError();
+    else if (fitted.wait(60000) && !runs.models().empty())
+        both = runs.models().front().error;
+    QCOMPARE(both, QStringLiteral("Session 2 is ticked under Training and under Held out: held-out data must be a session the "
+                                  "model was not fitted to (or untick it there and give a held-out time)"));
 }
 
 void TestAnalysisPanel::severalSessionsAsTheCli()
