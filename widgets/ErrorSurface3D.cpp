@@ -50,7 +50,7 @@ ErrorSurface3D::ErrorSurface3D(QWidget *parent) : QWidget(parent)
     series->setBaseGradient(gradient);
     series->setColorStyle(Q3DTheme::ColorStyleRangeGradient);
     m_graph->addSeries(series);
-    m_graph->axisX()->setTitle(tr("position (mm)"));
+    m_graph->axisX()->setTitle(tr("axis position (mm)"));
     m_graph->axisZ()->setTitle(tr("elapsed time (h:mm:ss)"));
     m_graph->axisZ()->setFormatter(new ElapsedAxisFormatter);
     m_graph->axisY()->setTitle(tr("thermal error (µm)"));
@@ -126,7 +126,7 @@ QString ErrorSurface3D::selectionText(const ThermalErrorTable &table, QPoint row
     if (r < 0 || k < 0 || r >= static_cast<int>(table.runCount()) || k >= static_cast<int>(table.targetCount()))
         return QString();
     const double e = table.error(static_cast<std::size_t>(r), static_cast<std::size_t>(k));
-    return tr("position %1 mm   elapsed time %2   thermal error %3")
+    return tr("axis position %1 mm   elapsed time %2   thermal error %3")
         .arg(table.targets_mm()[static_cast<std::size_t>(k)], 0, 'f', 1)
         .arg(ElapsedTimeAxis::format(table.runTimes_s()[static_cast<std::size_t>(r)]))
         .arg(std::isnan(e) ? tr("not measured (drawn from the nearest target)") : QStringLiteral("%1 µm").arg(e, 0, 'f', 2));
@@ -178,7 +178,7 @@ QString ErrorSurface3D::cursorsText(const ThermalErrorTable &table, const std::o
         const auto [xb, tb, eb] = at(*b);
         const double dt = tb - ta;
         const double de = eb - ea;
-        parts << tr("Δ position %1 mm   Δ elapsed time %2   Δ thermal error %3")
+        parts << tr("Δ axis position %1 mm   Δ elapsed time %2   Δ thermal error %3")
                      .arg(xb - xa, 0, 'f', 1)
                      .arg(ElapsedTimeAxis::format(dt)) // signed: B before A reads "-2:30:00"
                      .arg(std::isnan(de) ? QStringLiteral("-") : QStringLiteral("%1 µm").arg(de, 0, 'f', 2));

@@ -152,7 +152,7 @@ void TestErrorViews::surface3DReadsTheSelectedPointAndWritesTheTable()
     const ThermalErrorTable table = makeTable();
     // Run 2 at target 3 (150 mm): the table's own numbers, with units and the time in h:mm:ss.
     const QString text = ErrorSurface3D::selectionText(table, QPoint(2, 3));
-    const QString expected = QStringLiteral("position 150.0 mm   elapsed time %1   thermal error %2 µm")
+    const QString expected = QStringLiteral("axis position 150.0 mm   elapsed time %1   thermal error %2 µm")
                                  .arg(ElapsedTimeAxis::format(table.runTimes_s()[2]))
                                  .arg(table.error(2, 3), 0, 'f', 2);
     QCOMPARE(text, expected);
@@ -175,7 +175,7 @@ void TestErrorViews::surface3DReadsTheSelectedPointAndWritesTheTable()
     QCOMPARE(cursors.size(), 3);
     QCOMPARE(cursors[0], QStringLiteral("A  ") + expected);
     QCOMPARE(cursors[1], QStringLiteral("B  ") + ErrorSurface3D::selectionText(table, QPoint(5, 11)));
-    const QString delta = QStringLiteral("Δ position 400.0 mm   Δ elapsed time %1   Δ thermal error %2 µm")
+    const QString delta = QStringLiteral("Δ axis position 400.0 mm   Δ elapsed time %1   Δ thermal error %2 µm")
                               .arg(ElapsedTimeAxis::format(table.runTimes_s()[5] - table.runTimes_s()[2]))
                               .arg(table.error(5, 11) - table.error(2, 3), 0, 'f', 2);
     QCOMPARE(cursors[2], delta);
