@@ -21,6 +21,10 @@ Prints one line per case and the score per class:
            named; charged = a library code named (the fault charged to the machine)
   any      failed = diagnose exited non-zero or wrote no JSON (answer "(exit N)" or "(no result)"):
            never right, whatever the class; listed in each class's tally
+A second verdict, "by location", scores the same answer after reading a grammar member of a heat
+source as the library code at its location (heat:free_end:LAW -> free_end_bearing_heat,
+heat:fixed_end:LAW and heat:motor_coupling:LAW -> motor_heat_fixed_end): the right source under
+another time law. The strict verdict above stays the headline; the second is printed beside it.
 Raw rows go to OUT_DIR/sweep.csv.
 """
 
@@ -56,6 +60,27 @@ SENSOR_OF = {"interferometer_air": "interferometer", "probe_mount_drift": "screw
 
 def codes(answer):
     return set(a for a in answer.split("+") if a and a != "none")
+
+
+# A grammar member of a heat source ("heat:LOCATION:LAW", analysis/EffectGrammar) read as the
+# library code whose heat enters at that location.
+CODE_AT = {"free_end": "free_end_bearing_heat", "fixed_end": "motor_heat_fixed_end",
+           "motor_coupling": "motor_heat_fixed_end"}
+
+
+def by_location(answer):
+    """The answer with every heat member at a library code's location replaced by that code."""
+    if failed(answer):
+        return answer
+    out = []
+    for a in answer.split("+"):
+        parts = a.split(":")
+        code = CODE_AT.get(parts[1]) if len(parts) == 3 and parts[0] == "heat" else None
+        if code is None:
+            out.append(a)
+        elif code not in out:
+            out.append(code)
+    return "+".join(out)
 
 
 def failed(answer):
@@ -102,6 +127,11 @@ def selftest():
         ("outside", "bed_bending", "structure_linear+unexplained", [], "wrong"),
         ("sensor", "ambient_pt100_step", "none", [{"channel": "ambient"}], "right"),
         ("sensor", "ambient_pt100_step", "holding_heat", [{"channel": "ambient"}], "charged"),
+        # by location: a heat member at the true source's location is that source
+        ("single", "free_end_bearing_heat", by_location("heat:free_end:feed_power"), [], "right"),
+        ("pair", "motor_heat_fixed_end,holding_heat", by_location("heat:motor_coupling:feed+holding_heat"), [], "right"),
+        ("single", "holding_heat", by_location("heat:nut:feed"), [], "missed"),  # no library code at the nut
+        ("clean", "none", by_location("heat:free_end:feed_power"), [], "wrong"),
     ]
     for kind, truth in sorted(set(CASES + OTHER_CASES)):
         for answer in ("(exit 126)", "(exit 1)", "(no result)"):
@@ -185,11 +215,12 @@ def main(argv):
             err = p.stderr if p.stderr else (open(js + ".stderr").read() if os.path.exists(js + ".stderr") else "")
             note = (err.strip().splitlines() or [""])[-1][:160]
         verdict = score(kind, truth, answer, chain)
-        rows.append({"case": n, "kind": kind, "truth": truth, "answer": answer, "verdict": verdict,
+        located = score(kind, truth, by_location(answer), chain)
+        rows.append({"case": n, "kind": kind, "truth": truth, "answer": answer, "verdict": verdict, "by_location": located,
                      "baseline_heldout_um": bh, "corrected_heldout_um": ch, "seconds": round(secs, 1),
                      "chain": json.dumps(chain), "note": note})
-        print("%2d %-8s %-42s %-40s %-8s %6.2f -> %6.2f um %6.1f s" % (n, kind, truth, answer, verdict, bh, ch, secs),
-              flush=True)
+        print("%2d %-8s %-42s %-40s %-8s %6.2f -> %6.2f um %6.1f s%s" % (n, kind, truth, answer, verdict, bh, ch, secs,
+              "" if located == verdict else "   (by location: %s)" % located), flush=True)
     with open(os.path.join(out, "sweep%s.csv" % ("-" + "".join(extra).replace("-", "") if extra else "")), "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0].keys()))
         w.writeheader()
@@ -201,8 +232,9 @@ def main(argv):
             tally = {}
             for r in rs:
                 tally[r["verdict"]] = tally.get(r["verdict"], 0) + 1
-            print("%-8s right %d/%d   (%s)" % (kind, tally.get("right", 0), len(rs),
-                                               ", ".join("%s %d" % kv for kv in sorted(tally.items()))))
+            print("%-8s right %d/%d   (%s)   by location: right %d/%d" % (
+                kind, tally.get("right", 0), len(rs), ", ".join("%s %d" % kv for kv in sorted(tally.items())),
+                sum(1 for r in rs if r["by_location"] == "right"), len(rs)))
     secs = sorted(r["seconds"] for r in rows)
     print("diagnose wall time median %.1f s, max %.1f s" % (secs[len(secs) // 2], secs[-1]))
     return 0
