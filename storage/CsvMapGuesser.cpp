@@ -1,9 +1,15 @@
 #include "CsvMapGuesser.h"
 
+#include "CsvReader.h"
+#include "CsvRowDecoder.h"
+
 #include <QDateTime>
+#include <QFile>
 #include <QRegularExpression>
 #include <QSet>
 #include <QTextCodec>
+
+#include <algorithm>
 
 namespace driftlab {
 
@@ -270,6 +276,53 @@ void CsvMapGuesser::guessColumns(const QStringList &header, const QVector<QStrin
         ids.insert(id);
         map.columns.push_back(s);
     }
+}
+
+CsvColumnMap CsvMapGuesser::guessFile(const QString &path)
+{
+    QFile f(path);
+    if (!f.open(QIODevice::ReadOnly))
+        throw CsvError(path, 0, 0, QString(), QStringLiteral("cannot open: %1").arg(f.errorString()));
+    const QByteArray head = f.read(kHeadBytes);
+    const bool complete = f.atEnd();
+    CsvColumnMap map;
+    guessDialect(head, map);
+    // The header and the first rows as the guessed dialect reads them; a head cut mid-line
+    // loses its last record (a quote left open there is the cut, not the file's fault).
+    QVector<CsvRecord> records;
+    CsvReader reader(path, map.separator);
+    const CsvReader::Sink sink = [&](const CsvRecord &r) {
+        if (r.line > map.skipLines && records.size() <= kRows + 1)
+            records.push_back(r);
+    };
+    try {
+        reader.feed(head, sink);
+        reader.finish(sink);
+    } catch (const CsvError &) {
+        if (complete || records.size() <= kRows)
+            throw;
+    }
+    if (!complete && !records.isEmpty() && records.size() <= kRows + 1)
+        records.removeLast();
+    CsvRowDecoder decoder(map, path);
+    QStringList header;
+    QVector<QStringList> rows;
+    int width = 0;
+    for (const CsvRecord &r : records) {
+        QStringList texts;
+        for (const QByteArray &cell : r.fields)
+            texts << decoder.text(cell).trimmed();
+        width = std::max(width, static_cast<int>(texts.size()));
+        if (map.header && header.isEmpty())
+            header = texts;
+        else if (rows.size() < kRows)
+            rows << texts;
+    }
+    if (!map.header)
+        for (int c = 0; c < width; ++c)
+            header << QString();
+    guessColumns(header, rows, map);
+    return map;
 }
 
 } // namespace driftlab

@@ -26,6 +26,13 @@ public:
     static CsvColumnSpec guessColumn(const QString &header, int column = 0);
     // A Qt date-time format (or "iso8601") that reads `text`, else empty.
     static QString guessDateTimeFormat(const QString &text);
+    // The whole guess for a file (what the import dialog starts from, and `import-csv
+    // --guess-map`): its dialect from the first kHeadBytes, then the header and up to kRows data
+    // rows as that dialect reads them. Throws CsvError naming the file when it cannot be read
+    // or is not a text table.
+    static CsvColumnMap guessFile(const QString &path);
+    static constexpr int kHeadBytes = 64 * 1024;
+    static constexpr int kRows = 50;
 };
 
 } // namespace driftlab

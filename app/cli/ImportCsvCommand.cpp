@@ -5,6 +5,7 @@
 #include "OutputTarget.h"
 #include "CsvError.h"
 #include "CsvImporter.h"
+#include "CsvMapGuesser.h"
 #include "SessionStore.h"
 #include "UnitLabels.h"
 
@@ -41,9 +42,14 @@ int ImportCsvCommand::run(const QStringList &args)
                                                     "default: the map's session.started or session.started_from_file_name, else the "
                                                     "file's modification time, with a warning)."),
                                      QStringLiteral("iso"));
+    const QCommandLineOption guess(QStringLiteral("guess-map"),
+                                   QStringLiteral("Import nothing: write a starting column map guessed from FILE's first "
+                                                  "rows (dialect, time column, kinds, units, roles from the header) to MAP.json "
+                                                  "('-' = stdout), to check and then import with --map."),
+                                   QStringLiteral("MAP.json"));
     const QCommandLineOption json = CliOptions::json();
     const QCommandLineOption force = CliOptions::force();
-    p.addOptions({map, db, name, started, json, force});
+    p.addOptions({map, guess, db, name, started, json, force});
     p.addPositionalArgument(QStringLiteral("FILE"),
                             QStringLiteral("CSV file(s): one session each (one per run with the map's run column), all in one "
                                            "transaction."),
@@ -53,14 +59,19 @@ int ImportCsvCommand::run(const QStringList &args)
     const QStringList files = p.positionalArguments();
     if (files.isEmpty())
         throw UsageError(QStringLiteral("import-csv: expected at least one FILE argument"));
-    if (!p.isSet(map))
-        throw UsageError(QStringLiteral("import-csv: --map MAP.json is required (docs/csv-import.md)"));
+    if (p.isSet(map) && p.isSet(guess))
+        throw UsageError(QStringLiteral("import-csv: give --map to import or --guess-map to write a map, not both"));
+    if (!p.isSet(map) && !p.isSet(guess))
+        throw UsageError(QStringLiteral("import-csv: --map MAP.json is required (docs/csv-import.md); --guess-map MAP.json writes "
+                                        "a starting map from the file's header to check first"));
     for (const QString &file : files) {
         if (!QFileInfo(file).isFile())
             throw UsageError(QStringLiteral("import-csv: %1: no such file").arg(file));
         if (files.count(file) > 1)
             throw UsageError(QStringLiteral("import-csv: %1 is given twice").arg(file));
     }
+    if (p.isSet(guess))
+        return writeGuess(files, p.value(guess), p.isSet(force));
     if (p.isSet(started) && !QDateTime::fromString(p.value(started), Qt::ISODateWithMs).isValid())
         throw UsageError(QStringLiteral("import-csv: --started '%1' is not an ISO 8601 date-time (e.g. 2025-03-01T08:00:00Z)")
                              .arg(p.value(started)));
@@ -135,6 +146,46 @@ int ImportCsvCommand::run(const QStringList &args)
             << " samples over " << UnitLabels::clock(s.lastTime_s) // h:mm:ss, as every time on screen
             << (r.targets.isEmpty() ? QString() : QStringLiteral(", targets ") + r.targets.join(QLatin1Char(',')))
             << (s.run.isEmpty() ? QString() : QStringLiteral(" (run %1)").arg(s.run)) << '\n';
+    return 0;
+}
+
+int ImportCsvCommand::writeGuess(const QStringList &files, const QString &target, bool force)
+{
+    if (files.size() != 1)
+        throw UsageError(QStringLiteral("import-csv: --guess-map reads one FILE (got %1)").arg(files.size()));
+    OutputTarget(target, QStringLiteral("--guess-map")).formats({QStringLiteral("json")}).stdoutAllowed().check(force);
+    CsvColumnMap guessed;
+    try {
+        guessed = CsvMapGuesser::guessFile(files.first());
+    } catch (const CsvError &e) {
+        throw UsageError(QStringLiteral("import-csv: %1 (no map written)").arg(QString::fromStdString(e.what())));
+    }
+    if (guessed.columns.isEmpty())
+        throw UsageError(QStringLiteral("import-csv: %1: no column besides the time was found (no map written)").arg(files.first()));
+    // What was guessed, one line per column, for the user to check before importing.
+    const CsvTimeSpec &t = guessed.time;
+    CliSupport::progress(QStringLiteral("guessed from %1: separator '%2', decimal '%3', %4, %5 line(s) skipped")
+                             .arg(files.first(), guessed.separator == '\t' ? QStringLiteral("tab") : QString(QLatin1Char(guessed.separator)))
+                             .arg(QLatin1Char(guessed.decimal))
+                             .arg(guessed.encoding)
+                             .arg(guessed.skipLines));
+    const auto columnName = [](const QString &header, int index) {
+        return header.isEmpty() ? QStringLiteral("column %1").arg(index) : QStringLiteral("'%1'").arg(header);
+    };
+    CliSupport::progress(t.fromRows() ? QStringLiteral("  time: one row every %1").arg(t.interval)
+                         : t.column.isEmpty() && t.index == 0
+                             ? QStringLiteral("  time: no time column found (give one in the map's \"time\", or {\"interval\": \"1 min\"} "
+                                              "for one row per interval)")
+                             : QStringLiteral("  time: %1 (%2)").arg(columnName(t.column, t.index), t.format.isEmpty() ? t.unit : t.format));
+    for (const CsvColumnSpec &c : guessed.columns)
+        CliSupport::progress(QStringLiteral("  %1 -> %2: kind %3%4%5")
+                                 .arg(columnName(c.column, c.index), c.id, c.kind,
+                                      c.unit.isEmpty() ? QString() : QStringLiteral(", unit %1").arg(UnitLabels::display(c.unit)),
+                                      c.role.isEmpty() ? QString() : QStringLiteral(", role %1").arg(c.role)));
+    OutputTarget::writeFile(target, QJsonDocument(guessed.toJson()).toJson());
+    if (target != QLatin1String("-"))
+        CliSupport::progress(QStringLiteral("map written to %1: check it, then: driftlab-cli import-csv %2 --map %1")
+                                 .arg(target, files.first()));
     return 0;
 }
 

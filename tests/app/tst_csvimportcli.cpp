@@ -31,6 +31,7 @@ private slots:
     void badInputExitsTwoAndImportsNothing_data();
     void badInputExitsTwoAndImportsNothing();
     void usageErrorsExitTwo();
+    void guessedMapImports();
     void severalFilesRunsAndInterval();
     void utf8Messages_data();
     void utf8Messages();
@@ -209,6 +210,62 @@ void TestCsvImportCli::usageErrorsExitTwo()
     const Result r = run({QStringLiteral("import-csv"), file, QStringLiteral("--map"), m_dir.filePath(QStringLiteral("missing.json"))});
     QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("missing.json: cannot open the column map"), r.err.constData());
+}
+
+// A table nobody has mapped: --guess-map writes the map the import dialog would start from
+// (German logger: preamble, ';', decimal commas, Latin-1 units, a date-time column), imports
+// nothing, and the map then imports every row with the values the file holds.
+void TestCsvImportCli::guessedMapImports()
+{
+    const QString source = QStringLiteral(DRIFTLAB_SOURCE_DIR "/tests/data/csv/german_logger.csv");
+    const QString map = m_dir.filePath(QStringLiteral("guessed.json"));
+    const QString db = m_dir.filePath(QStringLiteral("guessed.sqlite"));
+    const auto slurp = [](const QString &path) {
+        QFile f(path);
+        return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+    };
+    Result r = run({QStringLiteral("import-csv"), source, QStringLiteral("--guess-map"), map, QStringLiteral("--db"), db});
+    QVERIFY2(r.code == 0, r.err.constData());
+    QVERIFY(!QFileInfo::exists(db)); // nothing imported, no database made
+    QVERIFY2(r.err.contains("separator ';', decimal ','"), r.err.constData());
+    QVERIFY2(r.err.contains("time: 'Datum' (dd.MM.yyyy HH:mm:ss)"), r.err.constData());
+    const QString told = QString::fromUtf8(r.err);
+    QVERIFY2(told.contains(QStringLiteral("'T Lager [°C]' -> T_Lager: kind temperature, unit °C")), r.err.constData());
+    QVERIFY2(told.contains(QStringLiteral("'Weg X [µm]' -> Weg_X: kind displacement, unit µm")), r.err.constData());
+    QVERIFY2(r.err.contains("--map " + map.toUtf8()), r.err.constData());
+    const QJsonObject written = QJsonDocument::fromJson(slurp(map)).object();
+    QCOMPARE(written.value(QStringLiteral("format")).toString(), QStringLiteral("driftlab-csv-map"));
+
+    // Never overwritten silently; --map and --guess-map together is bad usage; no map at all
+    // names the way to one.
+    const QByteArray before = slurp(map);
+    r = run({QStringLiteral("import-csv"), source, QStringLiteral("--guess-map"), map});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("already exists"), r.err.constData());
+    QCOMPARE(slurp(map), before);
+    QCOMPARE(run({QStringLiteral("import-csv"), source, QStringLiteral("--guess-map"), map, QStringLiteral("--map"), map}).code, 2);
+    r = run({QStringLiteral("import-csv"), source});
+    QCOMPARE(r.code, 2);
+    QVERIFY2(r.err.contains("--guess-map MAP.json"), r.err.constData());
+
+    // The guessed map imports the file: the rows and the first values as the file writes them
+    // (21,50 degC bearing, 0,0 um at 08:00:00).
+    r = run({QStringLiteral("import-csv"), source, QStringLiteral("--map"), map, QStringLiteral("--db"), db, QStringLiteral("--json"),
+             QStringLiteral("-")});
+    QVERIFY2(r.code == 0, r.err.constData());
+    const QJsonObject j = QJsonDocument::fromJson(r.out).object();
+    QCOMPARE(j.value(QStringLiteral("rows")).toInt(), 12);
+    SessionStore store(db);
+    bool sawBearing = false;
+    for (const ChannelInfo &c : store.channels(1)) {
+        if (c.key != QLatin1String("T_Lager"))
+            continue;
+        sawBearing = true;
+        const SampleBlock s = store.samples(c.id);
+        QCOMPARE(s.t.front(), 0.0);
+        QVERIFY(std::fabs(s.v.front() - 21.5) < 1e-9);
+    }
+    QVERIFY(sawBearing);
 }
 
 // Issue 32 item 5: a logger with no time column (one row a minute), a run column splitting a
