@@ -287,17 +287,21 @@ bool CsvImportDialog::openFile(const QString &path)
     m_updating = false;
     m_startGuessed = true;
     clearError();
+    // The guess `import-csv --guess-map` writes (one place); a file the reader refuses still
+    // shows its dialect, and the preview says where it fails.
     CsvColumnMap map;
-    CsvMapGuesser::guessDialect(m_head, map);
-    setColumnMap(map); // shows the guessed dialect and reads the header
+    try {
+        map = CsvMapGuesser::guessFile(path);
+    } catch (const CsvError &) {
+        map = CsvColumnMap();
+        CsvMapGuesser::guessDialect(m_head, map);
+    }
+    setColumnMap(map); // shows the guess and reads the header
     if (CsvMapMemory::recall(map, m_header)) {
         setColumnMap(map);
         m_status->setText(tr("Column assignment remembered from an earlier import of a table with this header."));
         return true;
     }
-    map = columnMap();
-    CsvMapGuesser::guessColumns(m_header, previewRows(), map);
-    setColumnMap(map);
     m_status->setText(tr("Kinds, units and roles guessed from the header: check them before importing."));
     return true;
 }
