@@ -205,7 +205,7 @@ int DataDrivenFitCommand::run(const QStringList &args)
     if (!p.isSet(json) || p.value(json) != QLatin1String("-")) {
         QTextStream o(stdout);
         auto line = [&](const QString &what, const ErrorMetrics &m) {
-            o << "  " << what.leftJustified(34) << QStringLiteral("RMSE %1  MAE %2  max|e| %3  MSE %4  fitting degree %5 %  (%6 samples)")
+            o << "  " << what.leftJustified(34) << QStringLiteral("RMSE %1 \u00b5m  MAE %2 \u00b5m  max|e| %3 \u00b5m  MSE %4 \u00b5m^2  fitting degree %5 %  (%6 samples)")
                                                           .arg(m.rmse, 0, 'f', 3)
                                                           .arg(m.mae, 0, 'f', 3)
                                                           .arg(m.maxAbs, 0, 'f', 2)
@@ -221,7 +221,7 @@ int DataDrivenFitCommand::run(const QStringList &args)
           << q.target << " fitted on session" << (ids.size() > 1 ? "s " : " ") << ids.join(QStringLiteral(", ")) << " in "
           << QString::number(r.wallTime_s, 'f', 2) << " s -> " << p.value(out) << '\n';
         if (!r.comparison.empty()) {
-            o << "  family           CV RMSE  CV SE  nested CV  paired SE  params  reference   held-out RMSE\n";
+            o << QStringLiteral("  family           CV RMSE  CV SE  nested CV  paired SE  params  reference   held-out RMSE  (\u00b5m)\n");
             auto num = [](double v, int width) {
                 return (std::isfinite(v) ? QString::number(v, 'f', 3) : QStringLiteral("-")).rightJustified(width);
             };
@@ -254,7 +254,7 @@ int DataDrivenFitCommand::run(const QStringList &args)
                 line(QStringLiteral("training session %1:").arg(v.session), v.metrics);
         line(r.trainingSessions.size() > 1 ? QStringLiteral("training (pooled):") : QStringLiteral("training:"), r.training.metrics);
         if (std::isfinite(r.cvRmse))
-            o << "  " << QStringLiteral("CV (%1):").arg(r.foldRule).leftJustified(34) << QStringLiteral("RMSE %1").arg(r.cvRmse, 0, 'f', 3)
+            o << "  " << QStringLiteral("CV (%1):").arg(r.foldRule).leftJustified(34) << QStringLiteral("RMSE %1 \u00b5m").arg(r.cvRmse, 0, 'f', 3)
               << '\n';
         if (r.holdout) {
             for (const ValidationSeries &v : r.holdoutSessions)
