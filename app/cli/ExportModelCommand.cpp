@@ -45,10 +45,11 @@ double finite(const QString &text, const QString &option)
 QString ExportModelCommand::summary() const
 {
     return QStringLiteral(
-        "Write a fitted model (MODEL.json from 'fit --json') for a CNC controller: 840d, fanuc, heidenhain,\n"
-        "linuxcnc, twincat, m80, c (portable C99), csv, json. Prints what it wrote, the notes (units, inputs)\n"
-        "and the approximation error where the target cannot hold the model exactly; a model the target\n"
-        "cannot express is refused with the reason (exit 2) and nothing is written. See docs/export.md.");
+        "Write a fitted model (MODEL.json from 'fit --out', or 'fit --json' for the seed-000 model) for a\n"
+        "CNC controller: 840d, fanuc, heidenhain, linuxcnc, twincat, m80, c (portable C99), csv, json.\n"
+        "Prints what it wrote, the notes (units, inputs) and the approximation error where the target\n"
+        "cannot hold the model exactly; a model the target cannot express is refused with the reason\n"
+        "(exit 2) and nothing is written. See docs/export.md.");
 }
 
 int ExportModelCommand::run(const QStringList &args)

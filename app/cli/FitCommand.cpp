@@ -5,6 +5,7 @@
 #include "OutputTarget.h"
 #include "SessionArgument.h"
 #include "ParameterPlausibility.h"
+#include "DataDrivenFit.h"
 #include "DataDrivenFitCommand.h"
 #include "ScrewModelFit.h"
 #include "SessionStore.h"
@@ -54,7 +55,9 @@ QString FitCommand::summary() const
         "IDENTIFIED when the standard error exceeds a third of the value (the same rules as 'diagnose').\n"
         "Sessions that all move at one feed rate get a note: one feed cannot separate the feed laws from\n"
         "lambda and P_f (seed 000 identifies on 3000, 6000 and 9000 mm/min fitted together).\n"
-        "Data-driven models: --model mlr|ridge|exp|synthetic|dynamic (see 'fit --model dynamic --help').");
+        "Data-driven models: --model ") + DataDrivenFit::allModels().join(QLatin1Char('|')) +
+           QStringLiteral(" on one or several sessions (runs);\n"
+                          "auto fits every family and chooses by cross-validation (see 'fit --model auto --help').");
 }
 
 int FitCommand::run(const QStringList &args)
@@ -63,7 +66,7 @@ int FitCommand::run(const QStringList &args)
         return DataDrivenFitCommand().run(args);
     QCommandLineParser p;
     const QCommandLineOption db = CliOptions::db();
-    const QCommandLineOption model(QStringLiteral("model"), QStringLiteral("Model to fit: fdm (seed-000 screw model)."),
+    const QCommandLineOption model(QStringLiteral("model"), QStringLiteral("Model to fit: fdm (seed-000 screw model), or a data-driven one (auto, ...; see above)."),
                                    QStringLiteral("name"), QStringLiteral("fdm"));
     const QCommandLineOption json = CliOptions::json();
     const QCommandLineOption force = CliOptions::force();
