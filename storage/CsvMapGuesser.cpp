@@ -10,6 +10,7 @@
 #include <QTextCodec>
 
 #include <algorithm>
+#include <limits>
 
 namespace driftlab {
 
@@ -54,6 +55,34 @@ bool isNumber(const QString &s, char decimal)
     bool ok = false;
     t.toDouble(&ok);
     return ok;
+}
+
+// Whether the first column, whose header names no time, still is one: a date-time text, a
+// header with a time unit ("t [min]"), or numbers that never decrease under a header that
+// names no other quantity. A column named like a temperature or a displacement ("T_bearing_C",
+// "probe_um"), or whose values go down, is a channel, and the table has no time column.
+bool firstColumnIsTime(const QString &header, const QVector<QStringList> &rows, char decimal)
+{
+    const QString first = rows.isEmpty() ? QString() : rows.front().value(0);
+    if (!first.isEmpty() && !isNumber(first, decimal) && !CsvMapGuesser::guessDateTimeFormat(first).isEmpty())
+        return true;
+    QString rest;
+    const QString unit = unitOf(header, rest);
+    if (QStringList{QStringLiteral("s"), QStringLiteral("ms"), QStringLiteral("min"), QStringLiteral("h")}.contains(unit))
+        return true;
+    if (!header.isEmpty() && CsvMapGuesser::guessColumn(header, 1).kind != QLatin1String("other"))
+        return false;
+    double previous = -std::numeric_limits<double>::infinity();
+    for (const QStringList &row : rows) {
+        const QString v = row.value(0);
+        if (!isNumber(v, decimal))
+            return false;
+        const double x = QString(v).replace(QLatin1Char(','), QLatin1Char('.')).toDouble();
+        if (x < previous)
+            return false;
+        previous = x;
+    }
+    return true;
 }
 
 } // namespace
@@ -235,7 +264,7 @@ void CsvMapGuesser::guessColumns(const QStringList &header, const QVector<QStrin
     static const QRegularExpression timeName(
         QStringLiteral("^(time|zeit|t|timestamp|date|datum|datetime|date_time|elapsed|\u6642\u9593)(\\s*[\\[\\(].*|_(s|ms|min|h))?$"),
         QRegularExpression::CaseInsensitiveOption);
-    int timeCol = 0;
+    int timeCol = -1;
     for (int c = 0; c < header.size(); ++c) {
         if (timeName.match(header[c].trimmed()).hasMatch()) {
             timeCol = c;
@@ -243,21 +272,29 @@ void CsvMapGuesser::guessColumns(const QStringList &header, const QVector<QStrin
         }
     }
     map.time = CsvTimeSpec();
-    if (map.header)
-        map.time.column = header.value(timeCol).trimmed();
-    else
-        map.time.index = timeCol + 1;
-    const QString first = rows.isEmpty() ? QString() : rows.front().value(timeCol);
-    QString rest;
-    const QString unit = unitOf(header.value(timeCol).trimmed(), rest);
-    if (!first.isEmpty() && !isNumber(first, map.decimal) && !guessDateTimeFormat(first).isEmpty()) {
-        map.time.format = guessDateTimeFormat(first);
-        map.time.unit.clear();
-    } else if (QStringList{QStringLiteral("s"), QStringLiteral("ms"), QStringLiteral("min"), QStringLiteral("h")}.contains(unit)) {
-        map.time.unit = unit;
-    } else if (isNumber(first, map.decimal)) {
-        const double v = QString(first).replace(QLatin1Char(','), QLatin1Char('.')).toDouble();
-        map.time.unit = v > 1e11 ? QStringLiteral("unix_ms") : v > 1e8 ? QStringLiteral("unix_s") : QStringLiteral("s");
+    if (timeCol < 0 && !firstColumnIsTime(header.value(0).trimmed(), rows, map.decimal)) {
+        // No time column (a logger writing one row per interval): the clock from the row
+        // number, at an interval the user must check (the file does not say it).
+        map.time.interval = QStringLiteral("1 min");
+        map.time.interval_s = 60.0;
+    } else {
+        timeCol = std::max(timeCol, 0);
+        if (map.header)
+            map.time.column = header.value(timeCol).trimmed();
+        else
+            map.time.index = timeCol + 1;
+        const QString first = rows.isEmpty() ? QString() : rows.front().value(timeCol);
+        QString rest;
+        const QString unit = unitOf(header.value(timeCol).trimmed(), rest);
+        if (!first.isEmpty() && !isNumber(first, map.decimal) && !guessDateTimeFormat(first).isEmpty()) {
+            map.time.format = guessDateTimeFormat(first);
+            map.time.unit.clear();
+        } else if (QStringList{QStringLiteral("s"), QStringLiteral("ms"), QStringLiteral("min"), QStringLiteral("h")}.contains(unit)) {
+            map.time.unit = unit;
+        } else if (isNumber(first, map.decimal)) {
+            const double v = QString(first).replace(QLatin1Char(','), QLatin1Char('.')).toDouble();
+            map.time.unit = v > 1e11 ? QStringLiteral("unix_ms") : v > 1e8 ? QStringLiteral("unix_s") : QStringLiteral("s");
+        }
     }
     map.columns.clear();
     QSet<QString> ids;

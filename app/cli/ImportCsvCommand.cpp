@@ -172,7 +172,8 @@ int ImportCsvCommand::writeGuess(const QStringList &files, const QString &target
     const auto columnName = [](const QString &header, int index) {
         return header.isEmpty() ? QStringLiteral("column %1").arg(index) : QStringLiteral("'%1'").arg(header);
     };
-    CliSupport::progress(t.fromRows() ? QStringLiteral("  time: one row every %1").arg(t.interval)
+    CliSupport::progress(t.fromRows() ? QStringLiteral("  time: no time column: one row every %1, a guess the file cannot confirm (set the "
+                                                       "map's time.interval to the logger's)").arg(t.interval)
                          : t.column.isEmpty() && t.index == 0
                              ? QStringLiteral("  time: no time column found (give one in the map's \"time\", or {\"interval\": \"1 min\"} "
                                               "for one row per interval)")

@@ -23,6 +23,7 @@ private slots:
     void loggerFiles_data();
     void loggerFiles();
     void preambleAndHeaderlessTables();
+    void tablesWithoutATimeColumn();
 };
 
 void TestCsvMapGuesser::dialect()
@@ -203,6 +204,38 @@ void TestCsvMapGuesser::preambleAndHeaderlessTables()
     // Dates with points are not decimal points: the numbers decide.
     CsvMapGuesser::guessDialect("Datum;T\n01.03.2025 08:00;20,5\n01.03.2025 08:01;20,6\n", m);
     QCOMPARE(m.decimal, ',');
+}
+
+// A logger that writes one row per interval has no time column: its first column is a
+// channel (named like one, or its values go down), and the guess is a row interval for the
+// user to set; a first column that counts up under a neutral name stays the time.
+void TestCsvMapGuesser::tablesWithoutATimeColumn()
+{
+    const QVector<QStringList> rising{{QStringLiteral("20.5"), QStringLiteral("0.1")}, {QStringLiteral("20.6"), QStringLiteral("0.3")},
+                                      {QStringLiteral("20.8"), QStringLiteral("0.6")}};
+    CsvColumnMap m;
+    CsvMapGuesser::guessColumns({QStringLiteral("T_bearing_C"), QStringLiteral("probe_um")}, rising, m);
+    QVERIFY(m.time.fromRows());
+    QCOMPARE(m.time.interval_s, 60.0);
+    QCOMPARE(m.columns.size(), 2); // the temperature is a channel, not the clock
+    QCOMPARE(m.columns[0].kind, QStringLiteral("temperature"));
+    // A neutral name whose values go down is no clock either.
+    const QVector<QStringList> falling{{QStringLiteral("5"), QStringLiteral("1")}, {QStringLiteral("4"), QStringLiteral("2")}};
+    CsvMapGuesser::guessColumns({QStringLiteral("Kanal 1"), QStringLiteral("Kanal 2")}, falling, m);
+    QVERIFY(m.time.fromRows());
+    // Counting up under a neutral name, or a time unit in the header: the time column.
+    const QVector<QStringList> counting{{QStringLiteral("0"), QStringLiteral("1")}, {QStringLiteral("15"), QStringLiteral("2")}};
+    CsvMapGuesser::guessColumns({QStringLiteral("Messpunkt"), QStringLiteral("T1")}, counting, m);
+    QVERIFY(!m.time.fromRows());
+    QCOMPARE(m.time.column, QStringLiteral("Messpunkt"));
+    CsvMapGuesser::guessColumns({QStringLiteral("Dauer [min]"), QStringLiteral("T1")}, falling, m);
+    QCOMPARE(m.time.column, QStringLiteral("Dauer [min]"));
+    QCOMPARE(m.time.unit, QStringLiteral("min"));
+    // The interval guess is a map the importer reads (and writes back) as such.
+    CsvMapGuesser::guessColumns({QStringLiteral("T_bearing_C"), QStringLiteral("probe_um")}, rising, m);
+    const CsvColumnMap back = CsvColumnMap::fromJson(QJsonDocument(m.toJson()).toJson(), QStringLiteral("guess.json"));
+    QCOMPARE(back.time.interval_s, 60.0);
+    QCOMPARE(back.columns.size(), 2);
 }
 
 QTEST_APPLESS_MAIN(TestCsvMapGuesser)
