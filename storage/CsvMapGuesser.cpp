@@ -264,21 +264,45 @@ void CsvMapGuesser::guessColumns(const QStringList &header, const QVector<QStrin
     static const QRegularExpression timeName(
         QStringLiteral("^(time|zeit|t|timestamp|date|datum|datetime|date_time|elapsed|\u6642\u9593)(\\s*[\\[\\(].*|_(s|ms|min|h))?$"),
         QRegularExpression::CaseInsensitiveOption);
+    // A column naming the run (test, cycle) of each row splits the table into sessions: a
+    // header like "run", "Lauf", "cycle", "Versuch", "segment" whose values repeat in blocks.
+    static const QRegularExpression runName(QStringLiteral("^(run|run_?(no|id|nr)|lauf|cycle|zyklus|versuch|segment|test_?(no|id|nr)?)$"),
+                                            QRegularExpression::CaseInsensitiveOption);
+    int runCol = -1;
+    map.runColumn.clear();
+    map.runIndex = 0;
+    for (int c = 0; c < header.size() && map.header; ++c) {
+        if (!runName.match(header[c].trimmed()).hasMatch())
+            continue;
+        int changes = 0;
+        for (int r = 1; r < rows.size(); ++r)
+            changes += rows[r].value(c) != rows[r - 1].value(c);
+        if (changes * 4 <= rows.size()) { // blocks, not a value per row
+            runCol = c;
+            map.runColumn = header[c].trimmed();
+            break;
+        }
+    }
     int timeCol = -1;
     for (int c = 0; c < header.size(); ++c) {
-        if (timeName.match(header[c].trimmed()).hasMatch()) {
+        if (c != runCol && timeName.match(header[c].trimmed()).hasMatch()) {
             timeCol = c;
             break;
         }
     }
     map.time = CsvTimeSpec();
-    if (timeCol < 0 && !firstColumnIsTime(header.value(0).trimmed(), rows, map.decimal)) {
+    // Without a column named like a time, the first column that is no run column may be one.
+    const int firstCol = runCol == 0 ? 1 : 0;
+    QVector<QStringList> firstValues;
+    for (const QStringList &r : rows)
+        firstValues << QStringList{r.value(firstCol)};
+    if (timeCol < 0 && !firstColumnIsTime(header.value(firstCol).trimmed(), firstValues, map.decimal)) {
         // No time column (a logger writing one row per interval): the clock from the row
         // number, at an interval the user must check (the file does not say it).
         map.time.interval = QStringLiteral("1 min");
         map.time.interval_s = 60.0;
     } else {
-        timeCol = std::max(timeCol, 0);
+        timeCol = timeCol < 0 ? firstCol : timeCol;
         if (map.header)
             map.time.column = header.value(timeCol).trimmed();
         else
@@ -299,7 +323,7 @@ void CsvMapGuesser::guessColumns(const QStringList &header, const QVector<QStrin
     map.columns.clear();
     QSet<QString> ids;
     for (int c = 0; c < header.size(); ++c) {
-        if (c == timeCol)
+        if (c == timeCol || c == runCol)
             continue;
         CsvColumnSpec s = guessColumn(header[c], c + 1);
         if (!map.header) {

@@ -1,7 +1,8 @@
 #pragma once
 // A starting column map for a table nobody has mapped yet: the dialect from the file's first
 // bytes (separator, decimal comma, encoding) and, from the header texts and first rows, the
-// time column (unit or date-time format) and per column an id, kind, unit and role read from
+// time column (unit or date-time format, or a row interval when there is none), a run column
+// ("run", "Lauf", "cycle": one session per run) and per column an id, kind, unit and role read from
 // names like "t1_C", "ch1_um", "T_amb (K)", "X-Sonde [mm]", "spindle_rpm". The import dialog
 // shows the guess for the user to correct; nothing is imported on a guess alone.
 
@@ -19,7 +20,8 @@ public:
     // Separator, decimal mark and encoding of a table from its first bytes (a few kB).
     static void guessDialect(const QByteArray &head, CsvColumnMap &map);
     // Time column and channels for a table with this header and these first data rows
-    // (texts, any number of rows). Keeps the map's dialect; replaces time and columns.
+    // (texts, any number of rows). Keeps the map's dialect; replaces time, run column and
+    // columns.
     static void guessColumns(const QStringList &header, const QVector<QStringList> &rows, CsvColumnMap &map);
     // id, kind, unit and role from one header text (column = the text); an empty text gives
     // the id "col<column>".

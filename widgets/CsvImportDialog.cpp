@@ -187,12 +187,18 @@ void CsvImportDialog::buildUi()
                     g = k;
             }
         }
-        if (keep.time.fromRows() || (!keep.time.column.isEmpty() && m_header.contains(keep.time.column)))
+        // The time as it was set, while it still fits: a row interval while the new columns
+        // have no time either, a time column the new header still has.
+        if (keep.time.fromRows() ? guess.time.fromRows() : (!keep.time.column.isEmpty() && m_header.contains(keep.time.column)))
             guess.time = keep.time;
-        if (!keep.runColumn.isEmpty() && !m_header.contains(keep.runColumn))
-            guess.runColumn.clear();
-        if (keep.runIndex > m_header.size())
+        // The run column as it was set, while the new header still has it; else the guess's.
+        if (!keep.runColumn.isEmpty() && m_header.contains(keep.runColumn)) {
+            guess.runColumn = keep.runColumn;
             guess.runIndex = 0;
+        } else if (keep.runIndex > 0 && keep.runIndex <= m_header.size()) {
+            guess.runIndex = keep.runIndex;
+            guess.runColumn.clear();
+        }
         setColumnMap(guess);
     };
     connect(m_separator, QOverload<int>::of(&QComboBox::currentIndexChanged), this, dialectChanged);

@@ -178,6 +178,8 @@ int ImportCsvCommand::writeGuess(const QStringList &files, const QString &target
                              ? QStringLiteral("  time: no time column found (give one in the map's \"time\", or {\"interval\": \"1 min\"} "
                                               "for one row per interval)")
                              : QStringLiteral("  time: %1 (%2)").arg(columnName(t.column, t.index), t.format.isEmpty() ? t.unit : t.format));
+    if (guessed.hasRuns())
+        CliSupport::progress(QStringLiteral("  run: %1 (one session per run)").arg(columnName(guessed.runColumn, guessed.runIndex)));
     for (const CsvColumnSpec &c : guessed.columns)
         CliSupport::progress(QStringLiteral("  %1 -> %2: kind %3%4%5")
                                  .arg(columnName(c.column, c.index), c.id, c.kind,

@@ -24,6 +24,7 @@ private slots:
     void loggerFiles();
     void preambleAndHeaderlessTables();
     void tablesWithoutATimeColumn();
+    void runColumn();
 };
 
 void TestCsvMapGuesser::dialect()
@@ -236,6 +237,28 @@ void TestCsvMapGuesser::tablesWithoutATimeColumn()
     const CsvColumnMap back = CsvColumnMap::fromJson(QJsonDocument(m.toJson()).toJson(), QStringLiteral("guess.json"));
     QCOMPARE(back.time.interval_s, 60.0);
     QCOMPARE(back.columns.size(), 2);
+}
+
+// A campaign in one file: a "run" column whose value names the run of each row (in blocks)
+// is the run column, not a channel; a column named so that changes on most rows is data.
+void TestCsvMapGuesser::runColumn()
+{
+    QVector<QStringList> rows;
+    for (int run = 1; run <= 2; ++run)
+        for (int k = 0; k < 6; ++k)
+            rows << QStringList{QString::number(60 * k), QString::number(run), QStringLiteral("20.%1").arg(k)};
+    CsvColumnMap m;
+    CsvMapGuesser::guessColumns({QStringLiteral("time_s"), QStringLiteral("Run"), QStringLiteral("T1_C")}, rows, m);
+    QCOMPARE(m.runColumn, QStringLiteral("Run"));
+    QCOMPARE(m.columns.size(), 1);
+    QCOMPARE(m.columns[0].id, QStringLiteral("T1"));
+    const CsvColumnMap back = CsvColumnMap::fromJson(QJsonDocument(m.toJson()).toJson(), QStringLiteral("guess.json"));
+    QCOMPARE(back.runColumn, QStringLiteral("Run"));
+    for (int r = 0; r < rows.size(); ++r)
+        rows[r][1] = QString::number(r); // a new value every row: not runs
+    CsvMapGuesser::guessColumns({QStringLiteral("time_s"), QStringLiteral("Run"), QStringLiteral("T1_C")}, rows, m);
+    QVERIFY(m.runColumn.isEmpty());
+    QCOMPARE(m.columns.size(), 2);
 }
 
 QTEST_APPLESS_MAIN(TestCsvMapGuesser)
