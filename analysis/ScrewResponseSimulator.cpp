@@ -18,6 +18,33 @@ std::invalid_argument inputError(const std::string &recording, const std::string
 {
     return std::invalid_argument("recording '" + recording + "': " + what);
 }
+
+// R = (I + dt/2 L) T + dt F for the interleaved columns (x[i * cols + c]); C > 0 fixes the
+// column count at compile time, C == 0 takes cols.
+template <int C>
+void explicitHalf(const double *T, const double *F, const double *conv, double half, double hr, int n, int cols, double *R)
+{
+    const int k = C > 0 ? C : cols;
+    {
+        const double w0 = 1.0 - half * conv[0] - hr;
+        for (int c = 0; c < k; ++c)
+            R[c] = w0 * T[c] + hr * T[k + c] + F[c];
+    }
+    for (int i = 1; i < n - 1; ++i) {
+        const double wi = 1.0 - half * conv[i] - 2.0 * hr;
+        const double *Ti = T + static_cast<size_t>(i) * k;
+        const double *Fi = F + static_cast<size_t>(i) * k;
+        double *Ri = R + static_cast<size_t>(i) * k;
+        for (int c = 0; c < k; ++c)
+            Ri[c] = wi * Ti[c] + hr * (Ti[c - k] + Ti[c + k]) + Fi[c];
+    }
+    {
+        const size_t last = static_cast<size_t>(n - 1) * k;
+        const double wl = 1.0 - half * conv[n - 1] - hr;
+        for (int c = 0; c < k; ++c)
+            R[last + c] = wl * T[last + c] + hr * T[last - k + c] + F[last + c];
+    }
+}
 } // namespace
 
 ScrewResponseSimulator::ScrewResponseSimulator(const ScrewGeometry &geometry,
@@ -386,25 +413,13 @@ double ScrewResponseSimulator::runRecording(Prepared &p, const std::vector<std::
             }
 
             // Explicit half: R = (I + dt/2 L) T + dt F; adiabatic fixed end, end face in conv.
-            {
-                const double w0 = 1.0 - half * conv[0] - hr;
-                for (int c = 0; c < cols; ++c)
-                    R[static_cast<size_t>(c)] = w0 * T[static_cast<size_t>(c)] + hr * T[static_cast<size_t>(cols + c)] +
-                                                F[static_cast<size_t>(c)];
-            }
-            for (int i = 1; i < n - 1; ++i) {
-                const double wi = 1.0 - half * conv[static_cast<size_t>(i)] - 2.0 * hr;
-                const double *Ti = T.data() + static_cast<size_t>(i) * cols;
-                const double *Fi = F.data() + static_cast<size_t>(i) * cols;
-                double *Ri = R.data() + static_cast<size_t>(i) * cols;
-                for (int c = 0; c < cols; ++c)
-                    Ri[c] = wi * Ti[c] + hr * (Ti[c - cols] + Ti[c + cols]) + Fi[c];
-            }
-            {
-                const size_t last = static_cast<size_t>(n - 1) * cols;
-                const double wl = 1.0 - half * conv[static_cast<size_t>(n) - 1] - hr;
-                for (int c = 0; c < cols; ++c)
-                    R[last + c] = wl * T[last + c] + hr * T[last - cols + c] + F[last + c];
+            switch (cols) { // the column count fixed at compile time where it is small (same operations)
+            case 2: explicitHalf<2>(T.data(), F.data(), conv, half, hr, n, cols, R.data()); break;
+            case 3: explicitHalf<3>(T.data(), F.data(), conv, half, hr, n, cols, R.data()); break;
+            case 4: explicitHalf<4>(T.data(), F.data(), conv, half, hr, n, cols, R.data()); break;
+            case 5: explicitHalf<5>(T.data(), F.data(), conv, half, hr, n, cols, R.data()); break;
+            case 6: explicitHalf<6>(T.data(), F.data(), conv, half, hr, n, cols, R.data()); break;
+            default: explicitHalf<0>(T.data(), F.data(), conv, half, hr, n, cols, R.data()); break;
             }
             solver.solveInterleaved(R.data(), cols);
             T.swap(R);
