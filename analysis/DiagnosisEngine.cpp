@@ -96,6 +96,7 @@ double DiagnosisEngine::crossValidate(const CandidateModel *model, const Diagnos
                            : std::min(3.0 * screwTimeConstant_s(options.initial.k2), (hi - lo) / 6.0);
     IdentificationOptions o = options;
     o.maxIterations = m_options.cvMaxIterations;
+    o.standardErrors = false; // a fold is judged by its prediction of the held-out runs alone
     double sq = 0.0;
     int n = 0;
     const int K = m_options.cvFolds;
@@ -356,7 +357,9 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
     double effectiveN = 0.0;
     {
         // First pass only to get the residual autocorrelation for the effective sample size.
-        ScrewModelIdentifier id(m_geometry, opts);
+        IdentificationOptions firstPass = opts;
+        firstPass.standardErrors = false; // its parameters and residuals alone are used
+        ScrewModelIdentifier id(m_geometry, firstPass);
         const CandidateModel built = assemble({}, {}, train); // the machine as built, when asked for
         built.addTo(id);
         built.bindTo(train);
