@@ -4,12 +4,14 @@
 #include "DecisiveTestPlanner.h"
 #include "DiagnosisReportAssembler.h"
 #include "MeasurementChainCheck.h"
+#include "ParallelJobs.h"
 #include "RecordingSpan.h"
 #include "ResidualLocator.h"
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <exception>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -444,9 +446,26 @@ void DiagnosisEngine::adviseTest(DiagnosisReport &report, const ForwardSelection
     if (!b || (!rivals.a.empty() && !a))
         return;
     try {
-        const CandidateFit fa = a ? evaluate(before, a, train, validate, opts, effectiveN)
-                                  : (before.empty() ? base : chosen.steps[before.size() - 1].fit);
-        const CandidateFit fb = evaluate(before, b, train, validate, opts, effectiveN);
+        // The two refits run side by side on the pool (each as it would alone); a failure is
+        // reported as before, A's first.
+        CandidateFit fits[2];
+        std::exception_ptr failed[2];
+        ParallelJobs(m_options.threads)
+            .run(
+                a ? 2 : 1,
+                [&](size_t k) {
+                    try {
+                        fits[k] = evaluate(before, k == 0 && a ? a : b, train, validate, opts, effectiveN);
+                    } catch (...) {
+                        failed[k] = std::current_exception();
+                    }
+                },
+                [](size_t) { return std::string("which test would decide"); }, [](double, const std::string &) { return true; });
+        for (const std::exception_ptr &e : failed)
+            if (e)
+                std::rethrow_exception(e);
+        const CandidateFit fa = a ? std::move(fits[0]) : (before.empty() ? base : chosen.steps[before.size() - 1].fit);
+        const CandidateFit fb = std::move(fits[a ? 1 : 0]);
         // A fitted model's predictions on another recording: fresh components in the order
         // evaluate() adds them (the candidate's own, then the accepted ones), bound to it.
         auto predictor = [&](const CandidateEffect *candidate, const CandidateFit &f) -> DecisiveTestPlanner::Predictor {
