@@ -4,12 +4,14 @@
 #include "DecisiveTestPlanner.h"
 #include "DiagnosisReportAssembler.h"
 #include "MeasurementChainCheck.h"
+#include "ParallelJobs.h"
 #include "RecordingSpan.h"
 #include "ResidualLocator.h"
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <exception>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -96,6 +98,7 @@ double DiagnosisEngine::crossValidate(const CandidateModel *model, const Diagnos
                            : std::min(3.0 * screwTimeConstant_s(options.initial.k2), (hi - lo) / 6.0);
     IdentificationOptions o = options;
     o.maxIterations = m_options.cvMaxIterations;
+    o.standardErrors = false; // a fold is judged by its prediction of the held-out runs alone
     double sq = 0.0;
     int n = 0;
     const int K = m_options.cvFolds;
@@ -356,7 +359,9 @@ DiagnosisReport DiagnosisEngine::run(const DiagnosisRecording &trainInput, const
     double effectiveN = 0.0;
     {
         // First pass only to get the residual autocorrelation for the effective sample size.
-        ScrewModelIdentifier id(m_geometry, opts);
+        IdentificationOptions firstPass = opts;
+        firstPass.standardErrors = false; // its parameters and residuals alone are used
+        ScrewModelIdentifier id(m_geometry, firstPass);
         const CandidateModel built = assemble({}, {}, train); // the machine as built, when asked for
         built.addTo(id);
         built.bindTo(train);
@@ -441,9 +446,26 @@ void DiagnosisEngine::adviseTest(DiagnosisReport &report, const ForwardSelection
     if (!b || (!rivals.a.empty() && !a))
         return;
     try {
-        const CandidateFit fa = a ? evaluate(before, a, train, validate, opts, effectiveN)
-                                  : (before.empty() ? base : chosen.steps[before.size() - 1].fit);
-        const CandidateFit fb = evaluate(before, b, train, validate, opts, effectiveN);
+        // The two refits run side by side on the pool (each as it would alone); a failure is
+        // reported as before, A's first.
+        CandidateFit fits[2];
+        std::exception_ptr failed[2];
+        ParallelJobs(m_options.threads)
+            .run(
+                a ? 2 : 1,
+                [&](size_t k) {
+                    try {
+                        fits[k] = evaluate(before, k == 0 && a ? a : b, train, validate, opts, effectiveN);
+                    } catch (...) {
+                        failed[k] = std::current_exception();
+                    }
+                },
+                [](size_t) { return std::string("which test would decide"); }, [](double, const std::string &) { return true; });
+        for (const std::exception_ptr &e : failed)
+            if (e)
+                std::rethrow_exception(e);
+        const CandidateFit fa = a ? std::move(fits[0]) : (before.empty() ? base : chosen.steps[before.size() - 1].fit);
+        const CandidateFit fb = std::move(fits[a ? 1 : 0]);
         // A fitted model's predictions on another recording: fresh components in the order
         // evaluate() adds them (the candidate's own, then the accepted ones), bound to it.
         auto predictor = [&](const CandidateEffect *candidate, const CandidateFit &f) -> DecisiveTestPlanner::Predictor {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -27,6 +29,8 @@ bool ParallelJobs::run(size_t n, const std::function<void(size_t)> &job, const s
         }
         return true;
     }
+    std::mutex mutex;
+    std::condition_variable changed; // a job finished
     std::vector<std::thread> pool;
     for (int t = 0; t < threads; ++t)
         pool.emplace_back([&] {
@@ -35,7 +39,11 @@ bool ParallelJobs::run(size_t n, const std::function<void(size_t)> &job, const s
                 if (k >= n || stop)
                     return;
                 job(k);
-                ++finished;
+                {
+                    const std::lock_guard<std::mutex> lock(mutex);
+                    ++finished;
+                }
+                changed.notify_one();
             }
         });
     // This thread reports progress and honours cancel.
@@ -48,7 +56,10 @@ bool ParallelJobs::run(size_t n, const std::function<void(size_t)> &job, const s
                       std::to_string(reported) + " of " + std::to_string(n) + " refitted, now " + label(running)))
                 stop = true;
         }
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        // Woken when a job finishes (the last one ends the wait at once, not up to 50 ms
+        // later: several such waits per diagnosis), else every 50 ms to poll for cancel.
+        std::unique_lock<std::mutex> lock(mutex);
+        changed.wait_for(lock, std::chrono::milliseconds(50), [&] { return finished != reported; });
     }
     for (std::thread &t : pool)
         t.join();

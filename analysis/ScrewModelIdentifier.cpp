@@ -463,6 +463,13 @@ IdentificationResult ScrewModelIdentifier::fit(const std::vector<ScrewRecording>
         if (entries[e].p.fitted)
             fittedEntries.push_back(static_cast<int>(e));
     const int p = static_cast<int>(fittedEntries.size());
+    if (!o.standardErrors) {
+        for (const Entry &e : entries)
+            res.all.push_back(e.p);
+        res.evaluations = problem.evaluations;
+        res.wallTime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return res;
+    }
     Eigen::MatrixXd J(rows, p);
     const Eigen::MatrixXd phiOpt = problem.phi();
     Eigen::VectorXd rPlus, rMinus;

@@ -45,6 +45,10 @@ struct IdentificationOptions {
     double lambdaPriorMean = 45.0, lambdaPriorSigma = 0.0;          // W/(m K)
     double fixedEndPriorMean_mm = 0.0, fixedEndPriorSigma_mm = 0.0;
     int maxIterations = 100;
+    // false: no covariance (it costs two simulations per nonlinear parameter): standard
+    // errors stay 0 and the correlation empty, for fits whose parameters and predictions alone
+    // are used (the folds of a cross-validation, a first pass). The fit itself is the same.
+    bool standardErrors = true;
     // Called after every solver iteration (from the fitting thread) with the iteration
     // number and the cost; return false to cancel: fit() then throws IdentificationCancelled.
     std::function<bool(int iteration, double cost)> progress;

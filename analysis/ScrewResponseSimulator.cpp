@@ -18,6 +18,33 @@ std::invalid_argument inputError(const std::string &recording, const std::string
 {
     return std::invalid_argument("recording '" + recording + "': " + what);
 }
+
+// R = (I + dt/2 L) T + dt F for the interleaved columns (x[i * cols + c]); C > 0 fixes the
+// column count at compile time, C == 0 takes cols.
+template <int C>
+void explicitHalf(const double *T, const double *F, const double *conv, double half, double hr, int n, int cols, double *R)
+{
+    const int k = C > 0 ? C : cols;
+    {
+        const double w0 = 1.0 - half * conv[0] - hr;
+        for (int c = 0; c < k; ++c)
+            R[c] = w0 * T[c] + hr * T[k + c] + F[c];
+    }
+    for (int i = 1; i < n - 1; ++i) {
+        const double wi = 1.0 - half * conv[i] - 2.0 * hr;
+        const double *Ti = T + static_cast<size_t>(i) * k;
+        const double *Fi = F + static_cast<size_t>(i) * k;
+        double *Ri = R + static_cast<size_t>(i) * k;
+        for (int c = 0; c < k; ++c)
+            Ri[c] = wi * Ti[c] + hr * (Ti[c - k] + Ti[c + k]) + Fi[c];
+    }
+    {
+        const size_t last = static_cast<size_t>(n - 1) * k;
+        const double wl = 1.0 - half * conv[n - 1] - hr;
+        for (int c = 0; c < k; ++c)
+            R[last + c] = wl * T[last + c] + hr * T[last - k + c] + F[last + c];
+    }
+}
 } // namespace
 
 ScrewResponseSimulator::ScrewResponseSimulator(const ScrewGeometry &geometry,
@@ -314,9 +341,8 @@ double ScrewResponseSimulator::runRecording(Prepared &p, const std::vector<std::
     // State, right-hand side and forcing, interleaved by input: x[i * cols + c].
     const size_t nc = static_cast<size_t>(n) * static_cast<size_t>(cols);
     std::vector<double> T(nc, 0.0), R(nc), F(nc);
-    std::vector<double> conv(static_cast<size_t>(n)), lower(static_cast<size_t>(n), -half * r),
-        upper(static_cast<size_t>(n), -half * r), diag(static_cast<size_t>(n)), watts(static_cast<size_t>(n)),
-        cum(static_cast<size_t>(n) + 1);
+    std::vector<double> lower(static_cast<size_t>(n), -half * r), upper(static_cast<size_t>(n), -half * r),
+        watts(static_cast<size_t>(n)), cum(static_cast<size_t>(n) + 1);
     HeatStepInput in;
     in.dt_s = dt;
     in.layout = &m_layout;
@@ -326,105 +352,114 @@ double ScrewResponseSimulator::runRecording(Prepared &p, const std::vector<std::
     const double hr = half * r;
     // Contact conductances of the components (W/K per cell), refilled every step.
     std::vector<double> contact(static_cast<size_t>(n), 0.0);
-    for (int j = 0; j < p.steps; ++j) {
+    auto stepInput = [&](int j) {
         const double vbar = p.meanFeed[static_cast<size_t>(j)];
-        const double *occ = p.occ.data() + static_cast<size_t>(j) * n;
-        const double *vocc = p.vocc.data() + static_cast<size_t>(j) * n;
         in.meanFeed_mm_min = vbar;
-        in.nutOccupancy = occ;
-        in.nutFeed = vocc;
+        in.nutOccupancy = p.occ.data() + static_cast<size_t>(j) * n;
+        in.nutFeed = p.vocc.data() + static_cast<size_t>(j) * n;
         in.fineFeed_mm_min = p.fineFeed.data() + static_cast<size_t>(j) * p.substeps;
         in.ambientDeviation_K =
             0.5 * (p.ambientDev[static_cast<size_t>(j)] + p.ambientDev[static_cast<size_t>(j) + 1]);
-        for (int i = 0; i < n; ++i) {
-            // mean over the step of h(t) x (not under nut or bearing)
-            const double shielded = i < nb ? 0.0 : k1 * (vbar - vocc[i]) + k2 * (1.0 - occ[i]);
-            conv[static_cast<size_t>(i)] = lat * std::max(0.0, shielded);
-        }
-        conv[static_cast<size_t>(n) - 1] += face * std::max(0.0, k1 * vbar + k2);
-        // Contacts (W/K) act like convection: a sink to ambient on the diagonal, the ambient's
-        // share through column 0.
-        std::fill(contact.begin(), contact.end(), 0.0);
-        for (const auto &s : sources)
-            s->addConductance(in, contact.data());
-        for (int i = 0; i < n; ++i)
-            conv[static_cast<size_t>(i)] += wattsToRate * contact[static_cast<size_t>(i)];
-        for (int i = 0; i < n; ++i)
-            diag[static_cast<size_t>(i)] = 1.0 + half * (2.0 * r + conv[static_cast<size_t>(i)]);
-        diag[0] -= hr;
-        diag[static_cast<size_t>(n) - 1] -= hr;
-        solver.factor(lower.data(), diag.data(), upper.data(), n);
-
-        // Forcing (K/s): ambient through convection in column 0, unit heat in the others.
-        const double TaMid = in.ambientDeviation_K;
-        for (int i = 0; i < n; ++i)
-            F[static_cast<size_t>(i) * cols] = dt * conv[static_cast<size_t>(i)] * TaMid;
-        for (int c = 1; c < cols; ++c) {
-            std::fill(watts.begin(), watts.end(), 0.0);
-            sources[static_cast<size_t>(c) - 1]->addUnitHeat(in, watts.data());
-            for (int i = 0; i < n; ++i)
-                F[static_cast<size_t>(i) * cols + static_cast<size_t>(c)] = dt * wattsToRate * watts[static_cast<size_t>(i)];
-        }
-
-        // Explicit half: R = (I + dt/2 L) T + dt F; adiabatic fixed end, end face in conv.
-        {
-            const double w0 = 1.0 - half * conv[0] - hr;
-            for (int c = 0; c < cols; ++c)
-                R[static_cast<size_t>(c)] = w0 * T[static_cast<size_t>(c)] + hr * T[static_cast<size_t>(cols + c)] +
-                                            F[static_cast<size_t>(c)];
-        }
-        for (int i = 1; i < n - 1; ++i) {
-            const double wi = 1.0 - half * conv[static_cast<size_t>(i)] - 2.0 * hr;
-            const double *Ti = T.data() + static_cast<size_t>(i) * cols;
-            const double *Fi = F.data() + static_cast<size_t>(i) * cols;
-            double *Ri = R.data() + static_cast<size_t>(i) * cols;
-            for (int c = 0; c < cols; ++c)
-                Ri[c] = wi * Ti[c] + hr * (Ti[c - cols] + Ti[c + cols]) + Fi[c];
-        }
-        {
-            const size_t last = static_cast<size_t>(n - 1) * cols;
-            const double wl = 1.0 - half * conv[static_cast<size_t>(n) - 1] - hr;
-            for (int c = 0; c < cols; ++c)
-                R[last + c] = wl * T[last + c] + hr * T[last - cols + c] + F[last + c];
-        }
-        solver.solveInterleaved(R.data(), cols);
-        T.swap(R);
-        cellUpdates += static_cast<double>(n) * cols;
-
-        // Observations read at boundary j + 1.
-        const int boundary = j + 1;
-        if (next < p.requests.size() && p.requests[next].boundary == boundary) {
-            for (int c = 0; c < cols; ++c) {
-                cum[0] = 0.0;
-                for (int i = 0; i < n; ++i)
-                    cum[static_cast<size_t>(i) + 1] = cum[static_cast<size_t>(i)] + T[static_cast<size_t>(i) * cols + c] * dx;
-                for (size_t q = next; q < p.requests.size() && p.requests[q].boundary == boundary; ++q) {
-                    const Request &rq = p.requests[q];
-                    const ResponseObservation &o = m_obs[static_cast<size_t>(rq.row)];
-                    double value = 0.0;
-                    if (o.temperature) {
-                        // Temperature rise of the cell containing the point (K, no expansion scale).
-                        const int cell = std::clamp(static_cast<int>(std::floor(o.distance_m / dx)), 0, n - 1);
-                        phi(rq.row, c) += rq.weight * T[static_cast<size_t>(cell) * cols + c];
-                        continue;
-                    }
-                    if (o.elongation) {
-                        value = cum[static_cast<size_t>(n)];
-                    } else {
-                        // eq. (13)-(16): expansion from the fixed end to |P_x - P_f|, signed.
-                        const double d_mm = o.position_mm - fixedEnd_mm;
-                        const double x = std::clamp(std::fabs(d_mm) / 1000.0, 0.0, dx * n);
-                        const int m = std::min(n, static_cast<int>(std::floor(x / dx)));
-                        value = cum[static_cast<size_t>(m)] +
-                                (m < n ? (x - m * dx) * T[static_cast<size_t>(m) * cols + c] : 0.0);
-                        if (d_mm < 0)
-                            value = -value;
-                    }
-                    phi(rq.row, c) += rq.weight * outScale * value;
-                }
+    };
+    // The steps' matrices do not depend on the temperatures (contacts are set by the nonlinear
+    // parameters alone: addConductance is const), so a block of steps is factored together,
+    // side by side, before the block is stepped through.
+    constexpr int kBlock = TridiagonalSolver::kMaxSystems;
+    std::vector<double> convBlock(static_cast<size_t>(kBlock) * n), diagBlock(static_cast<size_t>(kBlock) * n);
+    for (int j0 = 0; j0 < p.steps; j0 += kBlock) {
+        const int count = std::min(kBlock, p.steps - j0);
+        for (int b = 0; b < count; ++b) {
+            const int j = j0 + b;
+            stepInput(j);
+            const double vbar = in.meanFeed_mm_min;
+            const double *occ = in.nutOccupancy;
+            const double *vocc = in.nutFeed;
+            double *conv = convBlock.data() + static_cast<size_t>(b) * n;
+            double *diag = diagBlock.data() + static_cast<size_t>(b) * n;
+            for (int i = 0; i < n; ++i) {
+                // mean over the step of h(t) x (not under nut or bearing)
+                const double shielded = i < nb ? 0.0 : k1 * (vbar - vocc[i]) + k2 * (1.0 - occ[i]);
+                conv[static_cast<size_t>(i)] = lat * std::max(0.0, shielded);
             }
-            while (next < p.requests.size() && p.requests[next].boundary == boundary)
-                ++next;
+            conv[static_cast<size_t>(n) - 1] += face * std::max(0.0, k1 * vbar + k2);
+            // Contacts (W/K) act like convection: a sink to ambient on the diagonal, the ambient's
+            // share through column 0.
+            std::fill(contact.begin(), contact.end(), 0.0);
+            for (const auto &s : sources)
+                s->addConductance(in, contact.data());
+            for (int i = 0; i < n; ++i)
+                conv[static_cast<size_t>(i)] += wattsToRate * contact[static_cast<size_t>(i)];
+            for (int i = 0; i < n; ++i)
+                diag[static_cast<size_t>(i)] = 1.0 + half * (2.0 * r + conv[static_cast<size_t>(i)]);
+            diag[0] -= hr;
+            diag[static_cast<size_t>(n) - 1] -= hr;
+        }
+        solver.factorSeveral(lower.data(), diagBlock.data(), upper.data(), n, count);
+        for (int b = 0; b < count; ++b) {
+            const int j = j0 + b;
+            stepInput(j);
+            solver.select(b);
+            const double *conv = convBlock.data() + static_cast<size_t>(b) * n;
+
+            // Forcing (K/s): ambient through convection in column 0, unit heat in the others.
+            const double TaMid = in.ambientDeviation_K;
+            for (int i = 0; i < n; ++i)
+                F[static_cast<size_t>(i) * cols] = dt * conv[static_cast<size_t>(i)] * TaMid;
+            for (int c = 1; c < cols; ++c) {
+                std::fill(watts.begin(), watts.end(), 0.0);
+                sources[static_cast<size_t>(c) - 1]->addUnitHeat(in, watts.data());
+                for (int i = 0; i < n; ++i)
+                    F[static_cast<size_t>(i) * cols + static_cast<size_t>(c)] = dt * wattsToRate * watts[static_cast<size_t>(i)];
+            }
+
+            // Explicit half: R = (I + dt/2 L) T + dt F; adiabatic fixed end, end face in conv.
+            switch (cols) { // the column count fixed at compile time where it is small (same operations)
+            case 2: explicitHalf<2>(T.data(), F.data(), conv, half, hr, n, cols, R.data()); break;
+            case 3: explicitHalf<3>(T.data(), F.data(), conv, half, hr, n, cols, R.data()); break;
+            case 4: explicitHalf<4>(T.data(), F.data(), conv, half, hr, n, cols, R.data()); break;
+            case 5: explicitHalf<5>(T.data(), F.data(), conv, half, hr, n, cols, R.data()); break;
+            case 6: explicitHalf<6>(T.data(), F.data(), conv, half, hr, n, cols, R.data()); break;
+            default: explicitHalf<0>(T.data(), F.data(), conv, half, hr, n, cols, R.data()); break;
+            }
+            solver.solveInterleaved(R.data(), cols);
+            T.swap(R);
+            cellUpdates += static_cast<double>(n) * cols;
+
+            // Observations read at boundary j + 1.
+            const int boundary = j + 1;
+            if (next < p.requests.size() && p.requests[next].boundary == boundary) {
+                for (int c = 0; c < cols; ++c) {
+                    cum[0] = 0.0;
+                    for (int i = 0; i < n; ++i)
+                        cum[static_cast<size_t>(i) + 1] = cum[static_cast<size_t>(i)] + T[static_cast<size_t>(i) * cols + c] * dx;
+                    for (size_t q = next; q < p.requests.size() && p.requests[q].boundary == boundary; ++q) {
+                        const Request &rq = p.requests[q];
+                        const ResponseObservation &o = m_obs[static_cast<size_t>(rq.row)];
+                        double value = 0.0;
+                        if (o.temperature) {
+                            // Temperature rise of the cell containing the point (K, no expansion scale).
+                            const int cell = std::clamp(static_cast<int>(std::floor(o.distance_m / dx)), 0, n - 1);
+                            phi(rq.row, c) += rq.weight * T[static_cast<size_t>(cell) * cols + c];
+                            continue;
+                        }
+                        if (o.elongation) {
+                            value = cum[static_cast<size_t>(n)];
+                        } else {
+                            // eq. (13)-(16): expansion from the fixed end to |P_x - P_f|, signed.
+                            const double d_mm = o.position_mm - fixedEnd_mm;
+                            const double x = std::clamp(std::fabs(d_mm) / 1000.0, 0.0, dx * n);
+                            const int m = std::min(n, static_cast<int>(std::floor(x / dx)));
+                            value = cum[static_cast<size_t>(m)] +
+                                    (m < n ? (x - m * dx) * T[static_cast<size_t>(m) * cols + c] : 0.0);
+                            if (d_mm < 0)
+                                value = -value;
+                        }
+                        phi(rq.row, c) += rq.weight * outScale * value;
+                    }
+                }
+                while (next < p.requests.size() && p.requests[next].boundary == boundary)
+                    ++next;
+            }
         }
     }
     return cellUpdates;

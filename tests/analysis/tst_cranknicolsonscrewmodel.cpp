@@ -16,6 +16,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <random>
 #include <vector>
 
 using namespace driftlab;
@@ -28,6 +30,7 @@ class TestCrankNicolsonScrewModel : public QObject {
     Q_OBJECT
 private slots:
     void tridiagonalSolvesKnownSystem();
+    void tridiagonalFactorsSeveralAsOne();
     void layoutMatchesExplicitModel();
     void cosineModeDecaysExactly();
     void steadyFinMatchesClosedForm();
@@ -50,6 +53,63 @@ void TestCrankNicolsonScrewModel::tridiagonalSolvesKnownSystem()
         QVERIFY2(std::fabs(b[i] - x[i]) < 1e-12, qPrintable(QString("x[%1] = %2").arg(i).arg(b[i])));
     const std::vector<double> zero{0, 0};
     QVERIFY_EXCEPTION_THROWN(s.factor(zero.data(), zero.data(), zero.data(), 2), std::invalid_argument);
+}
+
+void TestCrankNicolsonScrewModel::tridiagonalFactorsSeveralAsOne()
+{
+    // The simulator factors four steps' matrices side by side (factorSeveral) and solves
+    // several interleaved right-hand sides (column counts unrolled at compile time): each
+    // system must come out bit for bit as factor() + solve() give it alone, one column at a
+    // time, and solve its system.
+    const int n = 37;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<double> lo(n), up(n), di(4 * n);
+    for (int i = 0; i < n; ++i) {
+        lo[i] = u(rng);
+        up[i] = u(rng);
+    }
+    for (double &d : di)
+        d = 3.0 + u(rng);
+    for (int count = 1; count <= TridiagonalSolver::kMaxSystems; ++count) {
+        TridiagonalSolver several;
+        several.factorSeveral(lo.data(), di.data(), up.data(), n, count);
+        for (int sys = 0; sys < count; ++sys) {
+            TridiagonalSolver one;
+            one.factor(lo.data(), di.data() + sys * n, up.data(), n);
+            several.select(sys);
+            for (int cols : {1, 2, 3, 4, 5, 6, 7, 9}) {
+                std::vector<double> rhs(static_cast<size_t>(n) * cols);
+                for (double &r : rhs)
+                    r = u(rng);
+                std::vector<double> x = rhs;
+                several.solveInterleaved(x.data(), cols);
+                for (int c = 0; c < cols; ++c) {
+                    std::vector<double> col(n);
+                    for (int i = 0; i < n; ++i)
+                        col[i] = rhs[static_cast<size_t>(i) * cols + c];
+                    one.solve(col.data());
+                    for (int i = 0; i < n; ++i) {
+                        const double got = x[static_cast<size_t>(i) * cols + c];
+                        QVERIFY2(std::memcmp(&got, &col[i], sizeof got) == 0,
+                                 qPrintable(QString("count %1 system %2 columns %3 x[%4][%5]: %6 vs %7")
+                                                .arg(count).arg(sys).arg(cols).arg(i).arg(c)
+                                                .arg(got, 0, 'g', 17).arg(col[i], 0, 'g', 17)));
+                        // and it solves the system
+                        const double *d = di.data() + sys * n;
+                        const double lhs = d[i] * got + (i > 0 ? lo[i] * x[static_cast<size_t>(i - 1) * cols + c] : 0.0) +
+                                           (i < n - 1 ? up[i] * x[static_cast<size_t>(i + 1) * cols + c] : 0.0);
+                        QVERIFY(std::fabs(lhs - rhs[static_cast<size_t>(i) * cols + c]) < 1e-12);
+                    }
+                }
+            }
+        }
+        QVERIFY_EXCEPTION_THROWN(several.select(count), std::invalid_argument);
+    }
+    std::vector<double> bad = di;
+    bad[2 * n] = 0.0; // the third system's first pivot
+    QVERIFY_EXCEPTION_THROWN(TridiagonalSolver().factorSeveral(lo.data(), bad.data(), up.data(), n, 3), std::invalid_argument);
+    QVERIFY_EXCEPTION_THROWN(TridiagonalSolver().factorSeveral(lo.data(), di.data(), up.data(), n, 5), std::invalid_argument);
 }
 
 void TestCrankNicolsonScrewModel::layoutMatchesExplicitModel()

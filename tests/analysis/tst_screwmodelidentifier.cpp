@@ -70,6 +70,7 @@ private slots:
     void addedComponentIsIdentified();
     void rejectsEmptyInput();
     void reportsProgressAndCancels();
+    void withoutStandardErrorsSameFit();
 
 private:
     std::vector<ScrewRecording> m_train;
@@ -236,6 +237,41 @@ void TestScrewModelIdentifier::reportsProgressAndCancels()
     ScrewModelIdentifier stopped(ScrewGeometry{}, cancelling);
     QVERIFY_EXCEPTION_THROWN(stopped.fit(m_train), IdentificationCancelled);
     QCOMPARE(calls, 2);
+}
+
+void TestScrewModelIdentifier::withoutStandardErrorsSameFit()
+{
+    // The diagnosis's cross-validation folds and first pass skip the covariance: the same
+    // fit and predictions bit for bit, two simulations fewer per nonlinear parameter (four
+    // base ones and the free-end lag here), no standard errors.
+    auto fit = [&](bool standardErrors, FitStatistics &heldOut) {
+        IdentificationOptions o = startOptions();
+        o.standardErrors = standardErrors;
+        ScrewModelIdentifier id(ScrewGeometry{}, o);
+        id.addHeatSource(std::make_shared<EndHeatSource>(EndHeatSource::End::Free, 1.0, false, 600.0));
+        const IdentificationResult r = id.fit({m_train[0]});
+        heldOut = id.predict(r, {m_heldOut});
+        return r;
+    };
+    FitStatistics heldWith, heldWithout;
+    const IdentificationResult with = fit(true, heldWith);
+    const IdentificationResult without = fit(false, heldWithout);
+    QCOMPARE(without.evaluations, with.evaluations - 2 * 5);
+    QVERIFY(without.weightedRms == with.weightedRms);
+    QVERIFY(without.amplitudes == with.amplitudes);
+    QVERIFY(without.nonlinearComponentValues == with.nonlinearComponentValues);
+    QCOMPARE(without.all.size(), with.all.size());
+    for (size_t k = 0; k < with.all.size(); ++k) {
+        QCOMPARE(without.all[k].name, with.all[k].name);
+        QVERIFY(without.all[k].value == with.all[k].value);
+        QCOMPARE(without.all[k].standardError, 0.0);
+        QVERIFY2(with.all[k].standardError > 0.0, with.all[k].name.c_str());
+    }
+    QCOMPARE(without.correlation.size(), Eigen::Index(0));
+    QCOMPARE(with.correlation.rows(), Eigen::Index(with.all.size()));
+    QCOMPARE(heldWithout.points.size(), heldWith.points.size());
+    for (size_t k = 0; k < heldWith.points.size(); ++k)
+        QVERIFY(heldWithout.points[k].predicted_um == heldWith.points[k].predicted_um);
 }
 
 void TestScrewModelIdentifier::rejectsEmptyInput()
