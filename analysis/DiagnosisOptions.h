@@ -44,6 +44,11 @@ struct DiagnosisOptions {
     bool tryTriples = false;
     // A pair's members: each must improve the prediction of the other alone at this level.
     double pairMemberAlpha = 0.01;
+    // The pair search pairs the candidate with the strongest partial evidence with every
+    // applicable candidate, not only with the others that have partial evidence of their own:
+    // an effect acting against another (heat at standstill against coolant cooling the screw)
+    // can be fitted at zero alone (ForwardSelection::tryPairs, issue 36 item 4).
+    bool pairStrongestWithEvery = true;
     // Still-air convection k2 below this (W/(m^2 K)) is below natural convection plus
     // radiation of a bare steel screw: the refit made the screw slower and cooler than physics
     // allows to absorb something (a heat-path lag does exactly this). A candidate that brings

@@ -113,6 +113,25 @@ bool ForwardSelection::tryPairs(Result &result, std::vector<Choice> &accepted, c
             if (!excluded(b, with))
                 pairs.emplace_back(a, b);
         }
+    // A member may be masked entirely: an effect acting against the other (heat put into the
+    // screw at standstill against coolant that takes heat out of it) is fitted at zero
+    // amplitude alone, with no evidence of its own: without the other in the model, the
+    // baseline's refitted parameters have already absorbed what is left of it. The candidate with the strongest partial evidence is
+    // therefore paired with every applicable candidate, not only with those with evidence of
+    // their own (the rate below counts every formable pair either way).
+    if (m_options.pairStrongestWithEvery && !partial.empty()) {
+        const size_t a = indexOf[partial.front()];
+        std::vector<Choice> with = accepted;
+        with.push_back({&m_library[a], round.fits[a].start});
+        for (size_t k = 0; k < outcomes.size(); ++k) {
+            const size_t b = indexOf[k];
+            const bool paired = std::any_of(pairs.begin(), pairs.end(), [&](const std::pair<size_t, size_t> &p) {
+                return (p.first == a && p.second == b) || (p.first == b && p.second == a);
+            });
+            if (outcomes[k].applicable && b != a && !paired && !excluded(b, with))
+                pairs.emplace_back(a, b);
+        }
+    }
     if (pairs.empty())
         return false;
     std::vector<CandidateFit> fits(pairs.size());

@@ -7,7 +7,8 @@
 // rules; it stops when no candidate passes (or after DiagnosisOptions::maxEffects effects).
 // Two effects that each explain too little alone (each below the held-out threshold because
 // the other spoils its fit) are tried together when no candidate passes alone: the pairs of
-// the (at most four) candidates with partial evidence, accepted when the pair passes every
+// the (at most four) candidates with partial evidence and of the strongest of them with every
+// other applicable candidate, accepted when the pair passes every
 // rule and each member clearly lowers the AICc of the other alone. Finally a larger effect
 // accepted early is replaced by the simpler one it contains when the final model does as
 // well with it (structure_linear that took part of a later effect's slope).
@@ -69,8 +70,10 @@ private:
         std::vector<std::string> failure;
         bool cancelled = false;
     };
-    // When no candidate passes alone: the pairs of candidates with partial evidence, each
-    // refitted together; the best pair that passes together is accepted as two steps. Its
+    // When no candidate passes alone: the pairs of candidates with partial evidence, and the
+    // strongest of them with every applicable candidate (DiagnosisOptions::pairStrongestWithEvery:
+    // a member acting against the other may show no evidence alone), each refitted together;
+    // the best pair that passes together is accepted as two steps. Its
     // Benjamini-Hochberg threshold counts every pair the round's applicable candidates could
     // form (those not refitted at p = 1), not only the pairs refitted.
     bool tryPairs(Result &result, std::vector<Choice> &accepted, const CandidateFit &reference, Round &round,

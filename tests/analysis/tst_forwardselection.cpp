@@ -9,6 +9,9 @@
 // p ~ 0.02), beside three dummies: one pair is refitted, ten could be formed. Counting the ten,
 // p ~ 0.02 is no discovery (Benjamini-Hochberg needs 0.005); a pair that predicts every run
 // better (p < 0.0001) is still named.
+// A member acting against the other (heat at standstill against coolant) shows no evidence
+// alone: the candidate with the strongest partial evidence is paired with every candidate, so
+// C + H is named; with that switched off (the search before) nothing is.
 
 #include "CandidateEffect.h"
 #include "ForwardSelection.h"
@@ -29,6 +32,7 @@ private slots:
     void tripleMaskedForSinglesAndPairsIsFound();
     void noTripleWithoutTheJointGain();
     void pairRateCountsEveryPairThatCouldBeFormed();
+    void opposingMemberWithoutEvidenceIsPaired();
 
 private:
     // The table of one world: the fit of a set of effects (its held-out points, CV, AICc,
@@ -38,7 +42,9 @@ private:
     // run by factor(run), plus a little noise of its own (seed).
     static CandidateFit heldoutFit(const std::function<double(int run)> &factor, unsigned seed, double cvGain, double ic,
                                    const std::set<std::string> &effects);
-    static std::vector<std::string> run(const std::vector<std::string> &codes, const Table &fitOf, bool triples);
+    static std::vector<std::string> run(const std::vector<std::string> &codes, const Table &fitOf, bool triples,
+                                        bool strongestWithEvery = true);
+    static std::vector<std::string> selectOpposing(bool together, bool strongestWithEvery);
     static std::vector<std::string> select(double tripleGain, bool triples);
     static std::vector<std::string> selectPair(bool evenGain);
     static double pairResidual(bool evenGain, int run) { return evenGain ? 0.45 : (run == 2 || run == 5) ? 0.1 : 0.7; }
@@ -74,7 +80,8 @@ CandidateFit TestForwardSelection::heldoutFit(const std::function<double(int run
     return f;
 }
 
-std::vector<std::string> TestForwardSelection::run(const std::vector<std::string> &codes, const Table &fitOf, bool triples)
+std::vector<std::string> TestForwardSelection::run(const std::vector<std::string> &codes, const Table &fitOf, bool triples,
+                                                   bool strongestWithEvery)
 {
     std::vector<CandidateEffect> library;
     for (const std::string &code : codes)
@@ -91,6 +98,7 @@ std::vector<std::string> TestForwardSelection::run(const std::vector<std::string
     o.threads = 1;
     o.empiricalTerms = false;
     o.tryTriples = triples;
+    o.pairStrongestWithEvery = strongestWithEvery;
     const ForwardSelection selection(o, library);
     const DiagnosisRecording recording;
     const ForwardSelection::Result r =
@@ -150,6 +158,35 @@ void TestForwardSelection::pairRateCountsEveryPairThatCouldBeFormed()
     QVERIFY(pair.eval.heldoutRms_um < 0.75 * base.eval.heldoutRms_um);
     QVERIFY2(selectPair(false).empty(), "a pair at p ~ 0.02 named with ten pairs in the false-discovery rate");
     QCOMPARE(selectPair(true), (std::vector<std::string>{"A", "B"}));
+}
+
+std::vector<std::string> TestForwardSelection::selectOpposing(bool together, bool strongestWithEvery)
+{
+    // C (coolant) alone: 5 % held-out, AICc 60 lower (partial evidence, not enough). H (heat at
+    // standstill, acting against C) alone: nothing (no held-out gain, AICc 2 higher: no partial
+    // evidence of its own). Together: 80 % held-out in every run, AICc 200 lower (or, when not
+    // `together`, no more than C alone). D1-D3 explain nothing.
+    return run({"C", "H", "D1", "D2", "D3"},
+               [&](const std::set<std::string> &s) {
+                   const bool c = s.count("C") > 0, h = s.count("H") > 0;
+                   const unsigned seed = static_cast<unsigned>(11 + 3 * s.size() + (c ? 17 : 0) + (h ? 34 : 0));
+                   if (c && h && together)
+                       return heldoutFit([](int) { return 0.2; }, seed, 0.8, -200.0, s);
+                   if (c)
+                       return heldoutFit([](int) { return 0.95; }, seed, 0.05, -60.0, s);
+                   return heldoutFit([](int) { return 1.0; }, seed, 0.0, 2.0, s);
+               },
+               false, strongestWithEvery);
+}
+
+void TestForwardSelection::opposingMemberWithoutEvidenceIsPaired()
+{
+    // H shows nothing alone, so the pairs of candidates with partial evidence (C only) are none;
+    // paired with every candidate, C + H is found and named, the dummies are not.
+    QCOMPARE(selectOpposing(true, true), (std::vector<std::string>{"C", "H"}));
+    QVERIFY(selectOpposing(true, false).empty());
+    // When H adds nothing to C, nothing is named (each member must add).
+    QVERIFY(selectOpposing(false, true).empty());
 }
 
 void TestForwardSelection::tripleMaskedForSinglesAndPairsIsFound()
