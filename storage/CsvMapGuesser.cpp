@@ -61,9 +61,9 @@ bool isNumber(const QString &s, char decimal)
 // header with a time unit ("t [min]"), or numbers that never decrease under a header that
 // names no other quantity. A column named like a temperature or a displacement ("T_bearing_C",
 // "probe_um"), or whose values go down, is a channel, and the table has no time column.
-bool firstColumnIsTime(const QString &header, const QVector<QStringList> &rows, char decimal)
+bool firstColumnIsTime(const QString &header, const QVector<QStringList> &rows, int column, char decimal)
 {
-    const QString first = rows.isEmpty() ? QString() : rows.front().value(0);
+    const QString first = rows.isEmpty() ? QString() : rows.front().value(column);
     if (!first.isEmpty() && !isNumber(first, decimal) && !CsvMapGuesser::guessDateTimeFormat(first).isEmpty())
         return true;
     QString rest;
@@ -74,7 +74,7 @@ bool firstColumnIsTime(const QString &header, const QVector<QStringList> &rows, 
         return false;
     double previous = -std::numeric_limits<double>::infinity();
     for (const QStringList &row : rows) {
-        const QString v = row.value(0);
+        const QString v = row.value(column);
         if (!isNumber(v, decimal))
             return false;
         const double x = QString(v).replace(QLatin1Char(','), QLatin1Char('.')).toDouble();
@@ -293,10 +293,7 @@ void CsvMapGuesser::guessColumns(const QStringList &header, const QVector<QStrin
     map.time = CsvTimeSpec();
     // Without a column named like a time, the first column that is no run column may be one.
     const int firstCol = runCol == 0 ? 1 : 0;
-    QVector<QStringList> firstValues;
-    for (const QStringList &r : rows)
-        firstValues << QStringList{r.value(firstCol)};
-    if (timeCol < 0 && !firstColumnIsTime(header.value(firstCol).trimmed(), firstValues, map.decimal)) {
+    if (timeCol < 0 && !firstColumnIsTime(header.value(firstCol).trimmed(), rows, firstCol, map.decimal)) {
         // No time column (a logger writing one row per interval): the clock from the row
         // number, at an interval the user must check (the file does not say it).
         map.time.interval = QStringLiteral("1 min");
