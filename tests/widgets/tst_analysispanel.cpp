@@ -7,6 +7,7 @@
 
 #include "AnalysisPanel.h"
 #include "../support/CliRunner.h"
+#include "../support/GrabForDocs.h"
 #include "DataDrivenFitRecord.h"
 #include "ExtrapolationWarning.h"
 #include "DataDrivenModelJson.h"
@@ -208,6 +209,8 @@ void TestAnalysisPanel::refusalsInTheDocksWords()
     };
     QCOMPARE(firstError(), QStringLiteral("Training time 0:00:00 to 1:00:00 and held-out time 0:30:00 to end overlap "
                                           "(0:30:00 to 1:00:00 would be fitted and held out): held-out time must not be fitted"));
+    if (!grabfordocs::dir().isEmpty()) // a picture of the refusal as the dock shows it, to look at
+        QVERIFY(grabfordocs::maximised(panel, QStringLiteral("analysis-refused"), [] {}));
     boxes[1]->setValue(boxes[1]->minimum());  // training to "end"
     boxes[2]->setValue(3.0 * 3600.0);         // held out from 3:00:00, after the 2-h session
     boxes[1]->setValue(3600.0);

@@ -22,6 +22,8 @@
 #include <QSpinBox>
 #include <QTableWidget>
 #include <QTemporaryDir>
+#include "../support/GrabForDocs.h"
+
 #include <QtTest>
 
 #include <algorithm>
@@ -357,6 +359,8 @@ void TestCsvImportDialog::intervalClockAndRunColumn()
     // Guessed already (2026-11-28): no column is a time, "Lauf" names the runs.
     QCOMPARE(unit->currentText(), QStringLiteral("interval"));
     QCOMPARE(run->currentText(), QStringLiteral("Lauf"));
+    if (!grabfordocs::dir().isEmpty()) // the guess as the dialog shows it, to look at
+        QVERIFY(grabfordocs::maximised(d, QStringLiteral("csv-guess-interval-run"), [] {}));
     unit->setCurrentText(QStringLiteral("interval"));
     QCOMPARE(interval->text(), QStringLiteral("1 min"));
     QVERIFY(interval->isEnabled());
