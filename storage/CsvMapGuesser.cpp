@@ -345,7 +345,13 @@ CsvColumnMap CsvMapGuesser::guessFile(const QString &path)
     const bool complete = f.atEnd();
     CsvColumnMap map;
     guessDialect(head, map);
-    // The header and the first rows as the guessed dialect reads them; a head cut mid-line
+    guessColumnsFromHead(head, complete, path, map);
+    return map;
+}
+
+void CsvMapGuesser::guessColumnsFromHead(const QByteArray &head, bool complete, const QString &path, CsvColumnMap &map)
+{
+    // The header and the first rows as the map's dialect reads them; a head cut mid-line
     // loses its last record (a quote left open there is the cut, not the file's fault).
     QVector<CsvRecord> records;
     CsvReader reader(path, map.separator);
@@ -380,7 +386,6 @@ CsvColumnMap CsvMapGuesser::guessFile(const QString &path)
         for (int c = 0; c < width; ++c)
             header << QString();
     guessColumns(header, rows, map);
-    return map;
 }
 
 } // namespace driftlab

@@ -33,6 +33,12 @@ public:
     // rows as that dialect reads them. Throws CsvError naming the file when it cannot be read
     // or is not a text table.
     static CsvColumnMap guessFile(const QString &path);
+    // guessColumns on the header and up to kRows data rows of `head` (the file's first bytes;
+    // `complete` when that is the whole file) as the map's dialect (separator, encoding,
+    // skipped lines, header) reads them: what guessFile does after guessing the dialect, and
+    // what the import dialog does when the user corrects the dialect. Throws CsvError naming
+    // `path` when the head is not a text table in that dialect.
+    static void guessColumnsFromHead(const QByteArray &head, bool complete, const QString &path, CsvColumnMap &map);
     static constexpr int kHeadBytes = 64 * 1024;
     static constexpr int kRows = 50;
 };

@@ -38,7 +38,7 @@ namespace driftlab {
 
 namespace {
 
-constexpr int kHeadBytes = 64 * 1024;
+constexpr int kHeadBytes = CsvMapGuesser::kHeadBytes;
 const QStringList kTimeUnits{QStringLiteral("s"), QStringLiteral("ms"), QStringLiteral("min"), QStringLiteral("h"),
                              QStringLiteral("unix_s"), QStringLiteral("unix_ms"), QStringLiteral("date-time"),
                              QStringLiteral("interval")};
@@ -179,8 +179,14 @@ void CsvImportDialog::buildUi()
         }
         // A fixed separator, preamble or encoding gives other columns: the old assignment names
         // columns that are gone. Guess the new ones, keeping what was set for surviving columns.
+        // The same guess as a new file's (CsvMapGuesser's rows), in the dialect the user set; a
+        // head that dialect cannot read is guessed from what the preview shows.
         CsvColumnMap guess = keep;
-        CsvMapGuesser::guessColumns(m_header, previewRows(), guess);
+        try {
+            CsvMapGuesser::guessColumnsFromHead(m_head, m_head.size() < kHeadBytes, m_path, guess);
+        } catch (const CsvError &) {
+            CsvMapGuesser::guessColumns(m_header, previewRows(), guess);
+        }
         for (CsvColumnSpec &g : guess.columns) {
             for (const CsvColumnSpec &k : keep.columns) {
                 if (k.index == 0 && g.index == 0 && k.column == g.column)

@@ -6,6 +6,7 @@
 
 #include "CsvColumnMap.h"
 #include "CsvImportDialog.h"
+#include "CsvMapGuesser.h"
 #include "MainWindow.h"
 #include "SessionStore.h"
 
@@ -44,6 +45,7 @@ private slots:
     void fixingTheFormatKeepsColumnsTicked();
     void loadingAMapClearsTheError();
     void intervalClockAndRunColumn();
+    void reguessAfterAFormatFixReadsWhatTheCliReads();
 
 private:
     QString write(const QString &name, const QByteArray &bytes);
@@ -396,6 +398,41 @@ void TestCsvImportDialog::intervalClockAndRunColumn()
     QCOMPARE(store.session(first + 1).started, QStringLiteral("2025-06-01T07:02:00Z")); // its first row is the file's third
     QCOMPARE(store.samples(store.channels(first + 1)[1].id).t, (QVector<double>{0, 60, 120}));
     QCOMPARE(store.samples(store.channels(first + 1)[1].id).v, (QVector<double>{0.0, 0.8, 1.5}));
+}
+
+void TestCsvImportDialog::reguessAfterAFormatFixReadsWhatTheCliReads()
+{
+    // A logger without a time column whose first channel warms for 30 rows and then cools: a
+    // clock never runs back, so it is no clock and the rows are (the interval guess). The first
+    // 20 rows alone rise, so a guess from them takes the channel for the time. After a wrong
+    // separator is set and put right, the dialog guesses again: from the same rows as
+    // `import-csv --guess-map` (CsvMapGuesser::guessFile). Before 2026-11-28 it guessed from
+    // the 20 rows of its preview and took "Kanal 1" for the time.
+    QByteArray text = "Kanal 1,Kanal 2\n";
+    for (int r = 0; r < 60; ++r) {
+        const double k1 = r < 30 ? 20.0 + 0.1 * r : 23.0 - 0.1 * (r - 30);
+        text += QByteArray::number(k1, 'f', 1) + ',' + QByteArray::number(21.0 + 0.01 * r, 'f', 2) + '\n';
+    }
+    const QString file = write(QStringLiteral("warm_cool.csv"), text);
+    const CsvColumnMap cli = CsvMapGuesser::guessFile(file);
+    QVERIFY(cli.time.fromRows());
+    CsvImportDialog d(m_db);
+    QVERIFY(d.openFile(file));
+    QVERIFY(d.columnMap().time.fromRows());
+    auto *separator = d.findChild<QComboBox *>(QStringLiteral("CsvSeparator"));
+    QVERIFY(separator);
+    separator->setCurrentIndex(separator->findData(static_cast<int>(';')));
+    QCOMPARE(d.columnMap().columns.size(), 1); // "Kanal 1,Kanal 2" as one column
+    separator->setCurrentIndex(separator->findData(static_cast<int>(',')));
+    const CsvColumnMap m = d.columnMap();
+    QVERIFY2(m.time.fromRows(), qPrintable(m.time.column));
+    QCOMPARE(m.time.interval, cli.time.interval);
+    QCOMPARE(m.columns.size(), cli.columns.size());
+    for (int c = 0; c < m.columns.size(); ++c) {
+        QCOMPARE(m.columns[c].column, cli.columns[c].column);
+        QCOMPARE(m.columns[c].kind, cli.columns[c].kind);
+        QCOMPARE(m.columns[c].unit, cli.columns[c].unit);
+    }
 }
 
 QTEST_MAIN(TestCsvImportDialog)
