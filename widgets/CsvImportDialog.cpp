@@ -276,6 +276,18 @@ void CsvImportDialog::updateTimeWidgets()
     m_timeFormat->setEnabled(dateTime && !isImporting());
     m_timeZone->setEnabled(dateTime && !isImporting());
     m_timeColumn->setEnabled(!interval && !isImporting());
+    // With a row interval no column is the time: the greyed box is blank (it showed the first
+    // header, which read as if that column were the clock), and the column it had comes back
+    // when a unit is chosen again.
+    const bool updating = m_updating;
+    m_updating = true;
+    if (interval && m_timeColumn->currentIndex() >= 0) {
+        m_timeColumnBeforeInterval = m_timeColumn->currentIndex();
+        m_timeColumn->setCurrentIndex(-1);
+    } else if (!interval && m_timeColumn->currentIndex() < 0 && m_timeColumn->count() > 0) {
+        m_timeColumn->setCurrentIndex(std::min(m_timeColumnBeforeInterval, m_timeColumn->count() - 1));
+    }
+    m_updating = updating;
     m_interval->setEnabled(interval && !isImporting());
     m_started->setEnabled(!dateTime && !unit.startsWith(QLatin1String("unix")) && !isImporting());
     updateStartWarning();
@@ -340,6 +352,7 @@ void CsvImportDialog::reloadPreview()
     if (!run.isEmpty() && m_header.contains(run))
         m_runColumn->setCurrentText(run);
     m_updating = false;
+    updateTimeWidgets(); // blank again under a row interval
 }
 
 QTableWidget *CsvImportDialog::preview() const

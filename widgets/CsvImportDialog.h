@@ -85,6 +85,7 @@ private:
     QByteArray m_head;               // the file's first bytes (preview)
     QStringList m_header;            // header texts (or "column N")
     bool m_updating = false;
+    int m_timeColumnBeforeInterval = 0; // the time column to show again when a unit replaces the interval
     bool m_startGuessed = false;     // the start shown is the file's modification time
 
     QLineEdit *m_file = nullptr;

@@ -317,6 +317,21 @@ void TestCsvImportDialog::fixingTheFormatKeepsColumnsTicked()
     decimal->setCurrentIndex(decimal->findData(static_cast<int>(',')));
     QCOMPARE(ticked(d), 4);
     QCOMPARE(d.columnMap().columns[0].id, QStringLiteral("T_fixed"));
+    // A row interval leaves the greyed time-column box blank (it showed "Datum" before
+    // 2026-11-28, as if that were still the clock); the date-time unit brings "Datum" back.
+    auto *unit = d.findChild<QComboBox *>(QStringLiteral("CsvTimeUnit"));
+    auto *timeColumn = d.findChild<QComboBox *>(QStringLiteral("CsvTimeColumn"));
+    unit->setCurrentText(QStringLiteral("interval"));
+    QVERIFY(!timeColumn->isEnabled());
+    QCOMPARE(timeColumn->currentText(), QString());
+    QVERIFY(d.columnMap().time.fromRows());
+    decimal->setCurrentIndex(decimal->findData(static_cast<int>('.'))); // the preview reloads
+    QCOMPARE(timeColumn->currentText(), QString());
+    decimal->setCurrentIndex(decimal->findData(static_cast<int>(',')));
+    unit->setCurrentText(QStringLiteral("date-time"));
+    QVERIFY(timeColumn->isEnabled());
+    QCOMPARE(timeColumn->currentText(), QStringLiteral("Datum"));
+    QCOMPARE(d.columnMap().time.column, QStringLiteral("Datum"));
 }
 
 void TestCsvImportDialog::loadingAMapClearsTheError()
