@@ -85,6 +85,30 @@ bool firstColumnIsTime(const QString &header, const QVector<QStringList> &rows, 
     return true;
 }
 
+// The place a temperature's name gives, as a word of it ("T_fixed_bearing", "Festlager",
+// "Bett links"); empty when it names none or only "bearing" / "Lager" (which of the two is
+// then a guess the user must make, not the program).
+QString temperatureRole(const QString &lowerName)
+{
+    static const QRegularExpression split(QStringLiteral("[^a-z0-9\u00e4\u00f6\u00fc\u00df]+"));
+    const QStringList words = lowerName.split(split, Qt::SkipEmptyParts);
+    const auto any = [&words](std::initializer_list<const char *> names) {
+        for (const char *n : names)
+            if (words.contains(QString::fromUtf8(n)))
+                return true;
+        return false;
+    };
+    if (any({"fixed", "fest", "festlager", "fixedend"}))
+        return QStringLiteral("fixed_bearing");
+    if (any({"free", "los", "loslager", "freeend"}))
+        return QStringLiteral("free_bearing");
+    if (any({"bed", "bett", "column", "st\u00e4nder", "staender", "frame", "gestell", "structure", "base"}))
+        return QStringLiteral("structure");
+    if (any({"screw", "ballscrew", "kgt"}))
+        return QStringLiteral("screw_surface");
+    return QString();
+}
+
 } // namespace
 
 void CsvMapGuesser::guessDialect(const QByteArray &head, CsvColumnMap &map)
@@ -255,6 +279,8 @@ CsvColumnSpec CsvMapGuesser::guessColumn(const QString &header, int column)
         s.role = QStringLiteral("nut");
     else if (lower.contains(QLatin1String("motor")))
         s.role = QStringLiteral("motor");
+    else if (s.kind == QLatin1String("temperature"))
+        s.role = temperatureRole(lower);
     s.id = channelId(name, column);
     return s;
 }

@@ -90,6 +90,17 @@ void TestCsvMapGuesser::headerTexts_data()
     QTest::newRow("empty") << "" << "col4" << "other" << "" << "";
     QTest::newRow("spindle temperature is no drive") << "Spindle Temp (C)" << "Spindle_Temp" << "temperature" << "degC" << "";
     QTest::newRow("German speed") << "Drehzahl [1/min]" << "Drehzahl" << "other" << "1/min" << "spindle";
+    // A temperature's place from a word of its name (2026-11-28; before, none of these had a role).
+    QTest::newRow("fixed bearing") << "T_fixed_bearing (C)" << "T_fixed_bearing" << "temperature" << "degC" << "fixed_bearing";
+    QTest::newRow("Festlager") << "Festlager [\u00b0C]" << "Festlager" << "temperature" << "\u00b0C" << "fixed_bearing";
+    QTest::newRow("Loslager") << "T Loslager [\u00b0C]" << "T_Loslager" << "temperature" << "\u00b0C" << "free_bearing";
+    QTest::newRow("free end") << "temp free end" << "temp_free_end" << "temperature" << "degC" << "free_bearing";
+    QTest::newRow("bed") << "Bett links [\u00b0C]" << "Bett_links" << "temperature" << "\u00b0C" << "structure";
+    QTest::newRow("St\u00e4nder") << "St\u00e4nder [\u00b0C]" << "St\u00e4nder" << "temperature" << "\u00b0C" << "structure";
+    QTest::newRow("screw") << "T_screw_mid (C)" << "T_screw_mid" << "temperature" << "degC" << "screw_surface";
+    QTest::newRow("which bearing is not said") << "T Lager [\u00b0C]" << "T_Lager" << "temperature" << "\u00b0C" << "";
+    QTest::newRow("a word, not a part of one") << "T_freezer (C)" << "T_freezer" << "temperature" << "degC" << "";
+    QTest::newRow("a displacement at the bed is no temperature place") << "Bett [\u00b5m]" << "Bett" << "displacement" << "\u00b5m" << "";
 }
 
 void TestCsvMapGuesser::headerTexts()
