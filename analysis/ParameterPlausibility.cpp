@@ -31,24 +31,35 @@ std::vector<PlausibilityFlag> ParameterPlausibility::implausible(const Identific
 {
     std::vector<PlausibilityFlag> out;
     const FdmParameters &p = r.parameters;
+    // A value at an identification bound is where the optimiser was stopped, not where the
+    // data put it: said with the bounds, beside any distance from physics.
+    const auto bound = [](double v, double lo, double hi, int prec, const std::string &unit) {
+        return atBound(v, lo, hi) ? ", at its identification bound (" + fmt(lo, prec) + " to " + fmt(hi, prec) + unit +
+                                        "): the fit ran out of room, so the model may be absorbing physics it lacks"
+                                  : std::string();
+    };
+    const std::string lambdaBound = bound(p.conductivity_W_mK, o.lambdaLower, o.lambdaUpper, 1, " W/(m K)");
     if (p.conductivity_W_mK < kMinConductivity_W_mK || p.conductivity_W_mK > kMaxConductivity_W_mK)
         out.push_back({"lambda", p.conductivity_W_mK, kSteelConductivity_W_mK,
                        "conductivity " + fmt(p.conductivity_W_mK, 1) + " W/(m K) is far from steel's ~" +
                            fmt(kSteelConductivity_W_mK, 0) + " W/(m K) (plausible " + fmt(kMinConductivity_W_mK, 1) + " to " +
-                           fmt(kMaxConductivity_W_mK, 0) +
-                           "): the model bends heat flow to fit something it does not contain"});
-    else if (atBound(p.conductivity_W_mK, o.lambdaLower, o.lambdaUpper))
-        out.push_back({"lambda", p.conductivity_W_mK, kSteelConductivity_W_mK, "lambda at its bound"});
+                           fmt(kMaxConductivity_W_mK, 0) + ")" + lambdaBound +
+                           (lambdaBound.empty() ? ": the model bends heat flow to fit something it does not contain" : "")});
+    else if (!lambdaBound.empty())
+        out.push_back({"lambda", p.conductivity_W_mK, kSteelConductivity_W_mK,
+                       "lambda " + fmt(p.conductivity_W_mK, 1) + " W/(m K)" + lambdaBound});
     if (o.fitFixedEnd) {
+        const std::string fixedEndBound = bound(p.fixedEndPosition_mm, o.fixedEndLower_mm, o.fixedEndUpper_mm, 1, " mm");
         if (std::isfinite(drawingFixedEnd_mm) && std::fabs(p.fixedEndPosition_mm - drawingFixedEnd_mm) > kMaxFixedEndOffset_mm)
             out.push_back({"P_f", p.fixedEndPosition_mm, drawingFixedEnd_mm,
                            "fixed end identified at " + fmt(p.fixedEndPosition_mm, 1) + " mm, the drawing says " +
-                               fmt(drawingFixedEnd_mm, 1) + " mm"});
-        else if (atBound(p.fixedEndPosition_mm, o.fixedEndLower_mm, o.fixedEndUpper_mm))
-            out.push_back({"P_f", p.fixedEndPosition_mm, drawingFixedEnd_mm, "P_f at its bound"});
+                               fmt(drawingFixedEnd_mm, 1) + " mm" + fixedEndBound});
+        else if (!fixedEndBound.empty())
+            out.push_back({"P_f", p.fixedEndPosition_mm, drawingFixedEnd_mm, "P_f " + fmt(p.fixedEndPosition_mm, 1) + " mm" + fixedEndBound});
     }
     if (atBound(p.k1, o.k1Lower, o.k1Upper))
-        out.push_back({"k1", p.k1, 0.911e-3, "k1 at its bound"});
+        out.push_back({"k1", p.k1, 0.911e-3, "k1 " + fmt(p.k1 * 1e3, 3) + "e-3 W/(m^2 K)/(mm/min)" +
+                                                 bound(p.k1, o.k1Lower, o.k1Upper, 3, " W/(m^2 K)/(mm/min)")});
     if (p.k2 < kMinK2_W_m2K)
         out.push_back({"k2", p.k2, 26.0,
                        "still-air convection k2 = " + fmt(p.k2, 1) + " W/(m^2 K) below " + fmt(kMinK2_W_m2K, 0) +
@@ -61,7 +72,7 @@ std::vector<PlausibilityFlag> ParameterPlausibility::implausible(const Identific
                            " (more than forced air cools a screw: the model needs a heat sink it does not contain, e.g. "
                            "heat that leaves by another path such as a coolant)"});
     else if (atBound(p.k2, o.k2Lower, o.k2Upper))
-        out.push_back({"k2", p.k2, 26.0, "k2 at its bound"});
+        out.push_back({"k2", p.k2, 26.0, "k2 " + fmt(p.k2, 1) + " W/(m^2 K)" + bound(p.k2, o.k2Lower, o.k2Upper, 1, " W/(m^2 K)")});
     if (p.k3 <= 1e-9)
         out.push_back({"k3", p.k3, 0.9e-3, "no bearing heat identified (k3 = 0, at its lower bound)"});
     if (p.k4 <= 1e-9)

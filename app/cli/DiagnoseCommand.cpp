@@ -197,6 +197,10 @@ int DiagnoseCommand::run(const QStringList &args)
                              .arg(report.baseline.heldoutRms_um, 0, 'f', 3)
                              .arg(report.corrected.heldoutRms_um, 0, 'f', 3)
                              .arg(report.wallTime_s, 0, 'f', 1));
+    // Where the baseline disagrees, and a baseline parameter at its bound, as the dock and the
+    // report say it (ResidualLocator's summary).
+    if (!report.location.summary.empty())
+        CliSupport::progress(QStringLiteral("where: ") + QString::fromStdString(report.location.summary));
     for (const DiagnosisStep &s : report.steps)
         if (!s.description.empty() && s.effect != "unexplained")
             CliSupport::progress(QStringLiteral("  %1: %2").arg(QString::fromStdString(s.effect), QString::fromStdString(s.description)));
