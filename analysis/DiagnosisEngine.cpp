@@ -446,16 +446,21 @@ void DiagnosisEngine::adviseTest(DiagnosisReport &report, const ForwardSelection
     if (!b || (!rivals.a.empty() && !a))
         return;
     try {
-        // The two refits run side by side on the pool (each as it would alone); a failure is
-        // reported as before, A's first.
+        // A rival the selection's rounds refitted on top of `before` is taken from there (the
+        // same refit: same fit, no simulation); the others run side by side on the pool (each as
+        // it would alone); a failure is reported as before, A's first.
         CandidateFit fits[2];
         std::exception_ptr failed[2];
         ParallelJobs(m_options.threads)
             .run(
                 a ? 2 : 1,
                 [&](size_t k) {
+                    const CandidateEffect *rival = k == 0 && a ? a : b;
                     try {
-                        fits[k] = evaluate(before, k == 0 && a ? a : b, train, validate, opts, effectiveN);
+                        if (const CandidateFit *done = chosen.findRefit(before, rival->code))
+                            fits[k] = *done;
+                        else
+                            fits[k] = evaluate(before, rival, train, validate, opts, effectiveN);
                     } catch (...) {
                         failed[k] = std::current_exception();
                     }

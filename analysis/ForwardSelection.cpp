@@ -374,6 +374,17 @@ int ForwardSelection::winner(std::vector<CandidateOutcome> &outcomes) const
     return best;
 }
 
+const CandidateFit *ForwardSelection::Result::findRefit(const std::vector<Choice> &accepted, const std::string &candidate) const
+{
+    for (const Refitted &r : refitted)
+        if (r.candidate == candidate &&
+            std::equal(r.accepted.begin(), r.accepted.end(), accepted.begin(), accepted.end(), [](const Choice &x, const Choice &y) {
+                return x.effect && y.effect && x.effect->code == y.effect->code && x.start == y.start;
+            }))
+            return &r.fit;
+    return nullptr;
+}
+
 ForwardSelection::Result ForwardSelection::run(const CandidateFit &baseline, const DiagnosisRecording &train,
                                                const DiagnosisRecording &validate, double effectiveN, const Refit &refit,
                                                const Tick &tick) const
@@ -423,8 +434,11 @@ ForwardSelection::Result ForwardSelection::run(const CandidateFit &baseline, con
         }
         std::vector<const CandidateFit *> fitted;
         for (size_t c : which)
-            if (round.failure[c].empty())
+            if (round.failure[c].empty()) {
                 fitted.push_back(&round.fits[c]);
+                result.refitted.push_back({accepted, m_library[c].code, round.fits[c]});
+                result.refitted.back().fit.pendingCrossValidation = nullptr; // its components are the round's
+            }
         const double threshold = m_acceptance.discoveryThreshold(fitted, *reference);
         std::vector<CandidateOutcome> outcomes;
         std::vector<size_t> indexOf;

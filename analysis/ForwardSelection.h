@@ -57,6 +57,19 @@ public:
         // choice points into `empirical`).
         std::shared_ptr<const std::vector<CandidateEffect>> empirical;
         std::vector<CandidateOutcome> empiricalRound;
+        // Every refit of the rounds (the pairs', triples' and empirical ones aside) with the
+        // effects it was refitted on top of, cross-validated or not (no deferred CV left), so
+        // that a later step needing the same refit (the decisive-test advice) takes it from
+        // here: the same fit without its simulations.
+        struct Refitted {
+            std::vector<Choice> accepted;
+            std::string candidate; // CandidateEffect::code
+            CandidateFit fit;
+        };
+        std::vector<Refitted> refitted;
+        // The rounds' refit of `candidate` on top of exactly `accepted` (effects and starts, in
+        // order), or null when no round refitted it so.
+        const CandidateFit *findRefit(const std::vector<Choice> &accepted, const std::string &candidate) const;
     };
 
     ForwardSelection(const DiagnosisOptions &options, const std::vector<CandidateEffect> &library);

@@ -12,6 +12,9 @@
 // A member acting against the other (heat at standstill against coolant) shows no evidence
 // alone: the candidate with the strongest partial evidence is paired with every candidate, so
 // C + H is named; with that switched off (the search before) nothing is.
+// The rounds' refits are kept with the effects they were refitted on top of (the decisive-test
+// advice takes its rivals from there instead of refitting them): A passes alone, D is refitted
+// on top of A in the second round; each kept fit is the table's for its set.
 
 #include "CandidateEffect.h"
 #include "ForwardSelection.h"
@@ -33,6 +36,7 @@ private slots:
     void noTripleWithoutTheJointGain();
     void pairRateCountsEveryPairThatCouldBeFormed();
     void opposingMemberWithoutEvidenceIsPaired();
+    void roundRefitsAreKeptForLaterSteps();
 
 private:
     // The table of one world: the fit of a set of effects (its held-out points, CV, AICc,
@@ -202,6 +206,54 @@ void TestForwardSelection::noTripleWithoutTheJointGain()
 {
     // Three together explain no more than two: nothing is named.
     QVERIFY(select(0.20, true).empty());
+}
+
+void TestForwardSelection::roundRefitsAreKeptForLaterSteps()
+{
+    // The table: A explains half of the held-out residual (AICc 40 lower), D nothing.
+    auto fitOf = [](const std::set<std::string> &s) {
+        const double gain = s.count("A") ? 0.5 : 0.0;
+        return heldoutFit([gain](int) { return 1.0 - gain; }, static_cast<unsigned>(5 + s.size()), gain, s.count("A") ? -40.0 : 0.0, s);
+    };
+    std::vector<CandidateEffect> library;
+    for (const std::string code : {"A", "D"})
+        library.push_back({code, "effect " + code, "feed", {}, [](const DiagnosisRecording &, int) { return CandidateModel{}; }});
+    int refits = 0;
+    auto refit = [&](const std::vector<ForwardSelection::Choice> &accepted, const CandidateEffect &candidate) {
+        ++refits;
+        std::set<std::string> s{candidate.code};
+        for (const ForwardSelection::Choice &a : accepted)
+            s.insert(a.effect->code);
+        CandidateFit f = fitOf(s);
+        f.amplitudeNames = {candidate.code + "_amp"};
+        f.start = 1;
+        return f;
+    };
+    DiagnosisOptions o;
+    o.threads = 1;
+    o.empiricalTerms = false;
+    const ForwardSelection selection(o, library);
+    const DiagnosisRecording recording;
+    const ForwardSelection::Result r =
+        selection.run(fitOf({}), recording, recording, 100.0, refit, [](double, const std::string &) { return true; });
+    QCOMPARE(r.steps.size(), size_t(1));
+    QCOMPARE(r.steps[0].choice.effect->code, std::string("A"));
+    QCOMPARE(refits, 3); // A and D against the baseline, D on top of A
+    QCOMPARE(r.refitted.size(), size_t(3));
+    const CandidateEffect other{"A", "the same code from another library", "feed", {}, nullptr};
+    const CandidateFit *a = r.findRefit({}, "A");
+    const CandidateFit *d = r.findRefit({}, "D");
+    const CandidateFit *da = r.findRefit({{&other, 1}}, "D");
+    QVERIFY(a && d && da);
+    QCOMPARE(a->eval.heldoutRms_um, fitOf({"A"}).eval.heldoutRms_um);
+    QCOMPARE(d->eval.heldoutRms_um, fitOf({"D"}).eval.heldoutRms_um);
+    QCOMPARE(da->eval.heldoutRms_um, fitOf({"A", "D"}).eval.heldoutRms_um);
+    QVERIFY(!da->pendingCrossValidation); // never run twice on the round's components
+    // Another start of A, another order or set, or a candidate never refitted: not kept.
+    QVERIFY(!r.findRefit({{&other, 0}}, "D"));
+    QVERIFY(!r.findRefit({{&other, 1}, {&other, 1}}, "D"));
+    QVERIFY(!r.findRefit({{&other, 1}}, "A"));
+    QVERIFY(!r.findRefit({}, "B"));
 }
 
 QTEST_GUILESS_MAIN(TestForwardSelection)
