@@ -73,6 +73,44 @@ double CandidateAcceptance::plausibilityDistance(const FdmParameters &p, double 
     return d;
 }
 
+bool CandidateAcceptance::lambdaAtBound(double lambda) const
+{
+    const double tol = 1e-6 * std::max(1.0, m_options.lambdaUpper_W_mK - m_options.lambdaLower_W_mK);
+    return m_options.physicalBounds && (lambda <= m_options.lambdaLower_W_mK + tol || lambda >= m_options.lambdaUpper_W_mK - tol);
+}
+
+bool CandidateAcceptance::fixedEndAtBound(double fixedEnd, double drawing) const
+{
+    return m_options.physicalBounds && std::isfinite(drawing) &&
+           std::fabs(fixedEnd - drawing) >= m_options.fixedEndTolerance_mm - 1e-6 * std::max(1.0, m_options.fixedEndTolerance_mm);
+}
+
+double CandidateAcceptance::returnTowardPhysics(const FdmParameters &cand, const FdmParameters &ref, double drawing,
+                                                std::string *words) const
+{
+    const double regained = plausibilityDistance(ref, drawing) - plausibilityDistance(cand, drawing);
+    if (regained < m_options.minPhysicsReturn || lambdaAtBound(cand.conductivity_W_mK) ||
+        fixedEndAtBound(cand.fixedEndPosition_mm, drawing))
+        return 0.0;
+    if (words) {
+        // Each parameter that moved closer, from where the reference had it.
+        const double steel = m_options.steelConductivity_W_mK;
+        std::string text;
+        auto lambdaOff = [steel](double l) { return std::fabs(std::log2(std::max(l, 1e-9) / steel)); };
+        if (lambdaOff(cand.conductivity_W_mK) < lambdaOff(ref.conductivity_W_mK) && lambdaOff(ref.conductivity_W_mK) > 0.5)
+            text += std::string("brings lambda back from ") + (lambdaAtBound(ref.conductivity_W_mK) ? "its " : "") +
+                    fixedText(ref.conductivity_W_mK, 0) + " W/(m K)" + (lambdaAtBound(ref.conductivity_W_mK) ? " bound" : "") +
+                    " to " + fixedText(cand.conductivity_W_mK, 0) + " W/(m K) (steel " + fixedText(steel, 0) + ")";
+        const double refOff = std::fabs(ref.fixedEndPosition_mm - drawing), candOff = std::fabs(cand.fixedEndPosition_mm - drawing);
+        if (std::isfinite(drawing) && candOff < refOff && refOff > 10.0)
+            text += std::string(text.empty() ? "brings " : ", ") + "P_f back from " +
+                    (fixedEndAtBound(ref.fixedEndPosition_mm, drawing) ? "its bound at " : "") + fixedText(ref.fixedEndPosition_mm, 1) +
+                    " mm to " + fixedText(cand.fixedEndPosition_mm, 1) + " mm (drawing " + fixedText(drawing, 1) + " mm)";
+        *words = text;
+    }
+    return regained;
+}
+
 CandidateOutcome CandidateAcceptance::judge(const CandidateEffect &effect, const CandidateFit &ev, const CandidateFit &reference,
                                             double effectiveN, double drawing, double discoveryThreshold, bool laterStep,
                                             size_t hypotheses) const
@@ -162,6 +200,14 @@ CandidateOutcome CandidateAcceptance::judge(const CandidateEffect &effect, const
                           fixedText(ev.fit.parameters.fixedEndPosition_mm, 1) + " mm, distance " + fixedText(out.plausibilityDistance, 2) +
                           " vs reference " + fixedText(baseDistance, 2) +
                           (plausibleOk ? "" : " (the refit bends the seed-000 parameters away from physics)"));
+    // Back toward physics from a reference that absorbed something by running lambda / P_f
+    // away from steel and the drawing: evidence beside the held-out test, not instead of it.
+    std::string backWords;
+    const double physicsReturn = returnTowardPhysics(ev.fit.parameters, reference.fit.parameters, drawing, &backWords);
+    if (physicsReturn > 0.0)
+        out.reasons.push_back("evidence from physics: the refit " + backWords + "; plausibility distance " + fixedText(baseDistance, 2) +
+                              " -> " + fixedText(out.plausibilityDistance, 2) + ", score +" +
+                              fixedText(m_options.plausibilityScoreWeight * physicsReturn, 3));
     out.reasons.push_back("held-out RMS " + fixedText(ev.eval.heldoutRms_um, 3) + " \u00b5m vs reference " + fixedText(b.heldoutRms_um, 3) + " \u00b5m (" +
                           fixedText(100.0 * out.heldoutImprovement, 1) + " % better" +
                           (out.heldoutImprovement >= heldNeeded ? ")" : ", below the " + fixedText(100.0 * heldNeeded, 0) + " % needed)"));
@@ -209,7 +255,8 @@ CandidateOutcome CandidateAcceptance::judge(const CandidateEffect &effect, const
     out.othersPass = cvOk && icOk && zOk && sizeOk && out.insideBounds && temperaturesOk;
     out.accepted = heldOk && out.othersPass;
     const double cvTerm = cvWaived ? std::max(out.cvImprovement, 0.0) : out.cvImprovement;
-    out.score = out.heldoutImprovement + 0.5 * cvTerm - 0.05 * std::max(0.0, out.plausibilityDistance - baseDistance);
+    out.score = out.heldoutImprovement + 0.5 * cvTerm -
+                m_options.plausibilityScoreWeight * (std::max(0.0, out.plausibilityDistance - baseDistance) - physicsReturn);
     return out;
 }
 

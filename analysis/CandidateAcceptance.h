@@ -8,7 +8,9 @@
 // AICc lower at the effective sample size, a significant amplitude, every parameter inside
 // its bounds, the effect's size parameters large enough, and the predicted screw temperatures
 // not clearly worse. Plausibility of lambda / P_f is
-// evidence in the score, not a veto.
+// evidence in the score, not a veto, both ways: bending them away from physics costs score,
+// bringing them back toward steel and the drawing from a reference that ran away earns as
+// much and is said in the reasons (returnTowardPhysics, issue 36 item 1).
 
 #include "CandidateEffect.h"
 #include "CandidateFit.h"
@@ -16,6 +18,7 @@
 #include "DiagnosisTypes.h"
 #include "HeldoutPredictionTest.h"
 
+#include <string>
 #include <vector>
 
 namespace driftlab {
@@ -54,7 +57,21 @@ public:
     // grows by 1 per further factor 2 in lambda and per further 20 mm in P_f.
     double plausibilityDistance(const FdmParameters &p, double drawingFixedEnd_mm) const;
 
+    // How far the candidate's refit brings lambda and P_f back toward steel and the drawing
+    // from a reference away from them (issue 36 item 1): the drop of plausibilityDistance, 0
+    // when it drops by less than DiagnosisOptions::minPhysicsReturn or when the refit puts
+    // lambda or P_f at an identification bound itself (from one bound to the other is the
+    // same absorption, not physics). `words` (when not null): the move in physical words,
+    // e.g. "brings lambda back from its 120 W/(m K) bound to 52 W/(m K) (steel 45)".
+    double returnTowardPhysics(const FdmParameters &candidate, const FdmParameters &reference, double drawingFixedEnd_mm,
+                               std::string *words = nullptr) const;
+
 private:
+    // lambda / P_f at the identification bound the diagnosis sets (DiagnosisOptions::
+    // physicalBounds; P_f only when the drawing is known).
+    bool lambdaAtBound(double lambda) const;
+    bool fixedEndAtBound(double fixedEnd_mm, double drawingFixedEnd_mm) const;
+
     DiagnosisOptions m_options;
 };
 

@@ -28,6 +28,18 @@ struct DiagnosisOptions {
     // Physical plausibility of the refit's seed-000 parameters (see plausibilityDistance): a
     // candidate further from physics than the baseline by more than this is reported so.
     double maxPlausibilityLoss = 1.0;
+    // Weight of the plausibility distance in a candidate's score, both ways (issue 36 item 1):
+    // a refit that bends lambda / P_f away from physics loses this much score per unit of
+    // distance beyond the reference's, and one that brings them back toward steel and the
+    // drawing from a reference away from physics (CandidateAcceptance::returnTowardPhysics)
+    // gains as much per unit regained. 0.05 is the weight the move away has carried since the
+    // score was introduced (a factor 2 in lambda counts like 5 % held-out); the move back was
+    // made symmetric to it, not tuned.
+    double plausibilityScoreWeight = 0.05;
+    // The smallest drop of the plausibility distance reported as a move back toward physics
+    // (a quarter of a unit: lambda ~19 % closer to steel in its ratio, or P_f 5 mm closer to
+    // the drawing); below it the refit only wobbles. Chosen, not tuned.
+    double minPhysicsReturn = 0.25;
     // A candidate whose refit is less plausible than the reference (maxPlausibilityLoss) may
     // predict the training screw temperatures (infrared profile, surface PT100s) worse by at
     // most this fraction of the reference model's RMS to be named.
