@@ -2,6 +2,7 @@
 
 #include "FixedText.h"
 #include "HeldoutPredictionTest.h"
+#include "ParameterPlausibility.h"
 
 #include <algorithm>
 #include <cmath>
@@ -75,14 +76,13 @@ double CandidateAcceptance::plausibilityDistance(const FdmParameters &p, double 
 
 bool CandidateAcceptance::lambdaAtBound(double lambda) const
 {
-    const double tol = 1e-6 * std::max(1.0, m_options.lambdaUpper_W_mK - m_options.lambdaLower_W_mK);
-    return m_options.physicalBounds && (lambda <= m_options.lambdaLower_W_mK + tol || lambda >= m_options.lambdaUpper_W_mK - tol);
+    return m_options.physicalBounds && ParameterPlausibility::atBound(lambda, m_options.lambdaLower_W_mK, m_options.lambdaUpper_W_mK);
 }
 
 bool CandidateAcceptance::fixedEndAtBound(double fixedEnd, double drawing) const
 {
     return m_options.physicalBounds && std::isfinite(drawing) &&
-           std::fabs(fixedEnd - drawing) >= m_options.fixedEndTolerance_mm - 1e-6 * std::max(1.0, m_options.fixedEndTolerance_mm);
+           ParameterPlausibility::atBound(fixedEnd, drawing - m_options.fixedEndTolerance_mm, drawing + m_options.fixedEndTolerance_mm);
 }
 
 double CandidateAcceptance::returnTowardPhysics(const FdmParameters &cand, const FdmParameters &ref, double drawing,

@@ -18,13 +18,13 @@ std::string fmt(double v, int prec)
     return o.str();
 }
 
-bool atBound(double v, double lo, double hi)
+} // namespace
+
+bool ParameterPlausibility::atBound(double v, double lo, double hi)
 {
     const double tol = 1e-6 * std::max(1.0, hi - lo);
     return v <= lo + tol || v >= hi - tol;
 }
-
-} // namespace
 
 std::vector<PlausibilityFlag> ParameterPlausibility::implausible(const IdentificationResult &r, const IdentificationOptions &o,
                                                                  double drawingFixedEnd_mm)

@@ -30,6 +30,8 @@ public:
     static constexpr double kMaxFixedEndOffset_mm = 30.0;
     static constexpr double kMaxRelativeStandardError = 1.0 / 3.0;
 
+    // v at lo or hi within 1e-6 of the range (the optimiser stopped there).
+    static bool atBound(double v, double lo, double hi);
     // Implausible values and values at a bound of result.parameters (k1..k4, lambda, P_f);
     // drawingFixedEnd_mm NaN = unknown (no P_f check).
     static std::vector<PlausibilityFlag> implausible(const IdentificationResult &result, const IdentificationOptions &options,
